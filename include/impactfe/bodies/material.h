@@ -1,0 +1,77 @@
+#ifndef impactfe_bodies_material_h
+#define impactfe_bodies_material_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/symmetric_tensor.h>
+
+namespace impactfe
+{
+  using namespace dealii;
+
+  /**
+   * How a two-dimensional model represents the third direction.
+   */
+  enum class PlaneModel
+  {
+    plane_strain,
+    plane_stress
+  };
+
+  /**
+   * Linear viscoelastic material: isotropic Hooke's law plus Kelvin--Voigt
+   * viscous moduli, and optional Rayleigh damping. Parameter subsection
+   * `Material`.
+   *
+   * The Kelvin--Voigt viscous moduli are taken proportional to the elastic
+   * ones (same Poisson's ratio, viscous Young's modulus `Viscosity`), so the
+   * damping matrix is C = (eta/E) K + a M + b K.
+   */
+  struct MaterialParameters
+  {
+    double     youngs_modulus  = 1.;
+    double     density         = 1.;
+    double     poissons_ratio  = 0.;
+    double     viscosity       = 0.;
+    double     rayleigh_mass      = 0.;
+    double     rayleigh_stiffness = 0.;
+    PlaneModel plane_model     = PlaneModel::plane_strain;
+
+    /**
+     * Declare the entries for a model of dimension @p dim. Poisson's ratio
+     * exists from 2D on and the plane model only in 2D, so that a parameter
+     * file never carries entries that do nothing.
+     */
+    static void
+    declare_parameters(ParameterHandler &prm, const unsigned int dim);
+    void
+    parse_parameters(ParameterHandler &prm, const unsigned int dim);
+
+    /** Kelvin--Voigt relaxation time eta/E plus the Rayleigh stiffness term. */
+    double
+    stiffness_damping_factor() const
+    {
+      return viscosity / youngs_modulus + rayleigh_stiffness;
+    }
+
+    bool
+    has_damping() const
+    {
+      return viscosity > 0. || rayleigh_mass > 0. || rayleigh_stiffness > 0.;
+    }
+
+    /** Longitudinal (P) wave speed of the model in dimension @p dim. */
+    template <int dim>
+    double
+    longitudinal_wave_speed() const;
+
+    /**
+     * The elasticity tensor of the model in dimension @p dim: uniaxial stress
+     * in 1D, plane strain or plane stress in 2D, isotropic 3D.
+     */
+    template <int dim>
+    SymmetricTensor<4, dim>
+    elasticity_tensor() const;
+  };
+} // namespace impactfe
+
+#endif

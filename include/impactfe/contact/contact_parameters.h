@@ -1,0 +1,31 @@
+#ifndef impactfe_contact_contact_parameters_h
+#define impactfe_contact_contact_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+
+namespace impactfe
+{
+  using namespace dealii;
+
+  /**
+   * Parameter subsection `Contact solver`: how each step's LCP is solved and
+   * what is kept for replay with lcp-solve.
+   */
+  struct ContactSolverParameters
+  {
+    /// Start Lemke from the previous step's active set.
+    bool warm_start = true;
+    /// Step whose LCP is written to the output directory (-1: none). A step
+    /// whose LCP fails is always written.
+    int dump_step = -1;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+} // namespace impactfe
+
+#endif

@@ -1,0 +1,158 @@
+#ifndef impactfe_contact_contact_set_h
+#define impactfe_contact_contact_set_h
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/types.h>
+
+#include <deal.II/lac/block_vector.h>
+
+#include <impactfe/bodies/elastic_body.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace impactfe
+{
+  using namespace dealii;
+
+  /**
+   * One contact candidate: a node of a body (side A) against either a node
+   * of another body (side B) or a rigid obstacle. The local frame is
+   * (n, t1, t2) with n pointing from side B towards side A, so that
+   *   g = (x_A - x_B) . n >= 0 when open,
+   *   V_N = (v_A - v_B) . n, and the impulse P_N n acts on A, -P_N n on B.
+   */
+  struct ContactCandidate
+  {
+    unsigned int body_a   = 0;
+    unsigned int vertex_a = 0;
+    /// numbers::invalid_unsigned_int for a rigid obstacle.
+    unsigned int body_b   = numbers::invalid_unsigned_int;
+    unsigned int vertex_b = numbers::invalid_unsigned_int;
+    /// Reference position of the node of side A (3 coordinates, padded).
+    std::array<double, 3> position{{0., 0., 0.}};
+    /// Frame: direction 0 is the normal, then the tangents.
+    std::array<std::array<double, 3>, 3> frame{};
+    double               initial_gap = 0.;
+    double               friction_coefficient = 0.;
+
+    bool
+    against_rigid_obstacle() const
+    {
+      return body_b == numbers::invalid_unsigned_int;
+    }
+  };
+
+
+
+  /**
+   * The contact candidates of a scene and the linear operator H that maps
+   * local impulses (per candidate: normal, then tangents) to nodal forces
+   * in the global block vector of all bodies. Small perturbations: H, the
+   * frames and g0 are fixed, and g(u) = g0 + H_N^T u.
+   *
+   * The number of local directions per candidate is 1 for frictionless
+   * scenes (whatever the dimension: only what the scene needs) and dim with
+   * friction.
+   */
+  class ContactSet
+  {
+  public:
+    /** @p n_directions: 1 (frictionless) or the space dimension. */
+    explicit ContactSet(const unsigned int n_directions = 1);
+
+    unsigned int
+    n_directions() const;
+    unsigned int
+    n_candidates() const;
+    /** n_candidates() * n_directions(): the columns of H. */
+    unsigned int
+    n_columns() const;
+    const ContactCandidate &
+    candidate(const unsigned int c) const;
+    const std::vector<ContactCandidate> &
+    candidates() const;
+
+    /**
+     * Node-to-rigid-plane candidates: every vertex of body @p body_index on
+     * the boundary with id @p boundary_id, against the plane through
+     * @p plane_point with unit normal @p plane_normal pointing to the side
+     * where the body is. Returns how many candidates were added; throws if
+     * the boundary has no vertex.
+     */
+    template <int dim>
+    unsigned int
+    add_node_to_plane(const std::vector<const ElasticBody<dim> *> &bodies,
+                      const unsigned int                            body_index,
+                      const types::boundary_id                      boundary_id,
+                      const Point<dim>                             &plane_point,
+                      const Tensor<1, dim>                         &plane_normal,
+                      const double friction_coefficient = 0.);
+
+    /**
+     * Node-to-node candidates between two bodies with matching interface
+     * nodes: each vertex of body A on @p boundary_a is paired with the vertex
+     * of body B on @p boundary_b that lies on the same normal line (through
+     * the interface normal @p normal, pointing from B towards A). The initial
+     * gap is the distance along n. Throws if a node has no partner.
+     */
+    template <int dim>
+    unsigned int
+    add_node_to_node(const std::vector<const ElasticBody<dim> *> &bodies,
+                     const unsigned int                            body_a,
+                     const types::boundary_id                      boundary_a,
+                     const unsigned int                            body_b,
+                     const types::boundary_id                      boundary_b,
+                     const Tensor<1, dim>                         &normal,
+                     const double friction_coefficient = 0.);
+
+    /**
+     * Fix the global DoF layout (the block sizes of the bodies) and build
+     * H. Call after all candidates are added and the bodies are set up.
+     */
+    template <int dim>
+    void
+    build_operator(const std::vector<const ElasticBody<dim> *> &bodies);
+
+    /** g_c = g0_c + H_N,c^T u for every candidate. */
+    void
+    gaps(const BlockVector<double> &displacement, std::vector<double> &g) const;
+    /** V_N,c = H_N,c^T v. */
+    void
+    normal_velocities(const BlockVector<double> &velocity,
+                      std::vector<double>       &normal_velocity) const;
+    /** All local components H^T v, ordered per candidate. */
+    void
+    local_velocities(const BlockVector<double> &velocity,
+                     std::vector<double>       &local_velocity) const;
+    /** H_j^T v for one column j = c * n_directions + k. */
+    double
+    column_dot(const unsigned int column, const BlockVector<double> &v) const;
+    /** f += alpha H_j for one column j. */
+    void
+    add_column(const unsigned int   column,
+               const double         alpha,
+               BlockVector<double> &f) const;
+
+  private:
+    struct Entry
+    {
+      unsigned int block;
+      types::global_dof_index dof;
+      double       coefficient;
+    };
+
+    unsigned int                           directions;
+    std::vector<ContactCandidate>          candidate_list;
+    /// Column j of H as (block, dof, coefficient) entries.
+    std::vector<std::vector<Entry>>        columns;
+
+    template <int dim>
+    void
+    set_frame(ContactCandidate &candidate, const Tensor<1, dim> &normal) const;
+  };
+} // namespace impactfe
+
+#endif

@@ -1,0 +1,207 @@
+#ifndef impactfe_dynamics_multibody_system_h
+#define impactfe_dynamics_multibody_system_h
+
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/lac/block_vector.h>
+#include <deal.II/lac/sparse_direct.h>
+
+#include <impactfe/bodies/elastic_body.h>
+#include <impactfe/contact/contact_parameters.h>
+#include <impactfe/contact/contact_set.h>
+#include <impactfe/lcp/dense_matrix.h>
+#include <impactfe/lcp/lemke.h>
+#include <impactfe/time_integration/time_integrator.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace impactfe
+{
+  using namespace dealii;
+
+  /** What one time step did: forces, the LCP, the active set. */
+  struct StepReport
+  {
+    unsigned int step = 0;
+    double       time = 0.;
+    /// Sum over candidates of the normal contact force (impulse / step for
+    /// the theta-schemes, r^{i+1} for Newmark), positive in compression.
+    double normal_force = 0.;
+    /// Magnitude of the sum of the tangential contact forces.
+    double       tangential_force = 0.;
+    unsigned int active_contacts  = 0;
+    /// Rows of the LCP solved this step (0 if no candidate could touch).
+    unsigned int lcp_size   = 0;
+    unsigned int lcp_pivots = 0;
+    /// How many times the candidate set had to grow within the step.
+    unsigned int lcp_resolves = 0;
+  };
+
+
+
+  /** Thrown when a step's LCP is not solved; the message names the step. */
+  struct ContactSolverFailure : public ExceptionBase
+  {
+    ContactSolverFailure(const std::string &message)
+      : text(message)
+    {}
+    void
+    print_info(std::ostream &out) const override
+    {
+      out << text << std::endl;
+    }
+    const char *
+    what() const noexcept override
+    {
+      return text.c_str();
+    }
+    std::string text;
+  };
+
+
+
+  /**
+   * Bodies, contact candidates and a time scheme, advanced step by step.
+   *
+   * Each step (see ../shared/spec/schemes.md, "Condensation"):
+   *  1. v_free = M~^{-1} F~ (one solve with the factorisation of M~, made
+   *     once in setup());
+   *  2. the local free velocities V_free = H^T v_free and the scheme's gap
+   *     terms b_N;
+   *  3. the LCP on the candidates that can touch in this step (w_N free < 0,
+   *     plus those active in the previous step; the set grows if an excluded
+   *     candidate would be pushed into penetration), with the Delassus
+   *     operator W = H^T M~^{-1} H computed once in setup();
+   *  4. v^{i+1} = v_free + (M~^{-1} H) P with the stored columns M~^{-1} H;
+   *  5. the scheme completes u^{i+1} (and a^{i+1}).
+   */
+  template <int dim>
+  class MultibodySystem
+  {
+  public:
+    MultibodySystem(const TimeSteppingParameters  &time_stepping,
+                    const ContactSolverParameters &solver_parameters);
+
+    /** Register a body (set up already). Returns its index. */
+    unsigned int
+    add_body(const ElasticBody<dim> &body);
+
+    const std::vector<const ElasticBody<dim> *> &
+    bodies() const;
+
+    /** Add candidates here before setup(). */
+    ContactSet &
+    contacts();
+    const ContactSet &
+    contacts() const;
+
+    /** Where failing (and requested) LCPs are written. */
+    void
+    set_dump_directory(const std::string &directory);
+
+    /**
+     * Build the operators, factorise M~, compute W and, for Newmark, the
+     * initial acceleration. Call after bodies, candidates and the initial
+     * state (state().displacement, state().velocity) are set.
+     */
+    void
+    setup();
+
+    /** Zero state with the block layout of the bodies (before setup()). */
+    MechanicalState &
+    state();
+    const MechanicalState &
+    state() const;
+
+    /** Advance by one step. Throws ContactSolverFailure if the LCP fails. */
+    StepReport
+    do_time_step();
+
+    const TimeIntegrator &
+    integrator() const;
+
+    /** 1/2 v^T M v, per body or in total. */
+    double
+    kinetic_energy() const;
+    double
+    kinetic_energy(const unsigned int body) const;
+    /** 1/2 u^T K u. */
+    double
+    elastic_energy() const;
+    double
+    elastic_energy(const unsigned int body) const;
+    /** Total linear momentum of one body. */
+    Tensor<1, dim>
+    momentum(const unsigned int body) const;
+    /** Total contact force of the last step on one body (global axes). */
+    Tensor<1, dim>
+    contact_force(const unsigned int body) const;
+    /** Nodal contact forces of the last step (H P times force/impulse). */
+    const BlockVector<double> &
+    nodal_contact_force() const;
+    /** Local impulses of the last step, per candidate [N, T...]. */
+    const std::vector<double> &
+    impulses() const;
+    /** Candidates with P_N > 0 in the last step. */
+    const std::vector<bool> &
+    active_set() const;
+    /** The Delassus operator W (n_columns x n_columns). */
+    const lcp::DenseMatrix &
+    delassus_operator() const;
+    /** Total pivots, largest LCP, failures so far. */
+    unsigned long long
+    total_pivots() const;
+    unsigned int
+    largest_lcp() const;
+
+  private:
+    TimeSteppingParameters                time_stepping;
+    ContactSolverParameters               solver_parameters;
+    std::vector<const ElasticBody<dim> *> body_list;
+    ContactSet                            contact_set;
+    std::unique_ptr<TimeIntegrator>       scheme;
+    std::string                           dump_directory = ".";
+
+    MechanicalOperators operators;
+    /// Step matrices M~ per body and their factorisations.
+    std::vector<std::unique_ptr<SparseMatrix<double>>>  step_matrices;
+    std::vector<std::unique_ptr<SparseDirectUMFPACK>>   step_solvers;
+    /// Columns M~^{-1} H_j.
+    std::vector<BlockVector<double>> response_columns;
+    lcp::DenseMatrix                 delassus;
+    /// Uniform unit fields e_d per component, for momenta and net forces.
+    std::array<BlockVector<double>, dim> unit_fields;
+
+    MechanicalState current, next;
+    unsigned int    step_number = 0;
+
+    // Work space of a step, kept to avoid allocation in the time loop.
+    BlockVector<double>       free_velocity;
+    BlockVector<double>       contact_force_field;
+    std::vector<double>       local_free_velocity;
+    std::vector<double>       gap_terms;
+    std::vector<double>       local_impulses;
+    std::vector<bool>         active;
+    std::vector<unsigned int> lcp_candidates;
+
+    unsigned long long pivot_count  = 0;
+    unsigned int       lcp_max_size = 0;
+
+    BlockVector<double>
+    make_block_vector() const;
+    void
+    solve_step_matrix(BlockVector<double> &rhs_and_solution) const;
+    /** Solve the LCP on lcp_candidates; fills local_impulses. */
+    lcp::Result
+    solve_contact_lcp();
+    /** The LCP of the current candidate set, as solved. */
+    void
+    build_lcp(lcp::DenseMatrix &M, std::vector<double> &q) const;
+    void
+    dump_lcp(const std::string &file_name) const;
+  };
+} // namespace impactfe
+
+#endif

@@ -1,0 +1,122 @@
+#ifndef impactfe_output_output_h
+#define impactfe_output_output_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <impactfe/dynamics/multibody_system.h>
+
+#include <fstream>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+namespace impactfe
+{
+  using namespace dealii;
+
+  /** Parameter subsection `Output`. */
+  struct OutputParameters
+  {
+    std::string directory       = "results";
+    bool        vtu_output      = true;
+    unsigned int output_interval = 1;
+    bool        plot            = true;
+    bool        print_performance = true;
+
+    static void
+    declare_parameters(ParameterHandler &prm,
+                       const std::string &default_directory);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
+  /** Create @p directory (and parents); throws with its name on failure. */
+  void
+  create_output_directory(const std::string &directory);
+
+
+
+  /**
+   * `history.csv`: a header line, then one row per time step. Rows are
+   * complete lines, so a run that stops early leaves a valid file.
+   */
+  class HistoryWriter
+  {
+  public:
+    HistoryWriter(const std::string &file_name, const std::vector<std::string> &columns);
+    void
+    add_row(const std::vector<double> &values);
+    const std::vector<std::string> &
+    columns() const;
+
+  private:
+    std::ofstream            out;
+    std::vector<std::string> column_names;
+  };
+
+
+
+  /**
+   * A flat JSON object written in one go (`summary.json`): keys in the order
+   * they were added; values are numbers, strings, or nested objects.
+   */
+  class JsonObject
+  {
+  public:
+    JsonObject &
+    add(const std::string &key, const double value);
+    JsonObject &
+    add(const std::string &key, const std::string &value);
+    JsonObject &
+    add(const std::string &key, const JsonObject &value);
+    std::string
+    str(const unsigned int indent = 0) const;
+    void
+    write(const std::string &file_name) const;
+
+  private:
+    std::vector<std::pair<std::string, std::string>> entries;
+    std::vector<JsonObject>                          nested;
+  };
+
+
+
+  /**
+   * VTU files of every body on its deformed mesh (one file per body and
+   * output step) with displacement, velocity, nodal contact force, and the
+   * nodal gap and active flag, plus a `solution.pvd` record with one part
+   * per body that ParaView opens as a time series.
+   */
+  template <int dim>
+  class SolutionWriter
+  {
+  public:
+    SolutionWriter(const std::string &directory);
+    void
+    write(const MultibodySystem<dim> &system, const unsigned int step);
+
+  private:
+    std::string directory;
+    std::vector<std::tuple<double, unsigned int, std::string>> records;
+  };
+
+
+
+  /**
+   * Run tools/plot_history.py on @p history (if python3 with matplotlib is
+   * there) to draw the columns @p columns, each beside `exact_<column>` when
+   * the file has it. Returns the PNG name, or an empty string with the reason
+   * in @p why_not.
+   */
+  std::string
+  plot_history(const std::string              &history,
+               const std::string              &png,
+               const std::vector<std::string> &columns,
+               const std::string              &title,
+               std::string                    &why_not);
+} // namespace impactfe
+
+#endif

@@ -1,0 +1,154 @@
+#ifndef impactfe_time_integration_time_integrator_h
+#define impactfe_time_integration_time_integrator_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/block_vector.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace impactfe
+{
+  using namespace dealii;
+
+  class ContactSet;
+
+  /** The time schemes of ../shared/spec/schemes.md. */
+  enum class Scheme
+  {
+    theta,
+    theta_euler,
+    modified_theta,
+    newmark
+  };
+
+  std::string
+  to_string(const Scheme scheme);
+
+  /**
+   * Parameter subsection `Time stepping`.
+   */
+  struct TimeSteppingParameters
+  {
+    Scheme scheme        = Scheme::theta_euler;
+    double theta         = 0.55;
+    double newmark_beta  = 0.25;
+    double newmark_gamma = 0.5;
+    double time_step     = 1e-3;
+    double end_time      = 1.;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    /** Parses and checks; throws with a message naming the entry. */
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    /** Number of steps to reach the end time (the last one may end past it
+     * by less than a rounding error). */
+    unsigned int
+    n_steps() const;
+  };
+
+
+
+  /**
+   * The discrete mechanical operators of all bodies, M v' + C v + K u = F +
+   * contact forces. The operators are block diagonal, one block per body
+   * (bodies interact only through contact), so they are kept per body.
+   */
+  struct MechanicalOperators
+  {
+    std::vector<const SparseMatrix<double> *> mass;
+    std::vector<const SparseMatrix<double> *> stiffness;
+    /// Entries are nullptr for bodies without damping: C is skipped there.
+    std::vector<const SparseMatrix<double> *> damping;
+    /// External load, constant in time.
+    BlockVector<double> external_force;
+  };
+
+
+
+  /** Displacement, velocity and (Newmark only) acceleration at one time. */
+  struct MechanicalState
+  {
+    double              time = 0.;
+    BlockVector<double> displacement;
+    BlockVector<double> velocity;
+    BlockVector<double> acceleration;
+  };
+
+
+
+  /**
+   * One time step of any scheme, written at the velocity level:
+   *
+   *   M~ v^{i+1} = F~ + H P,    w_N = V_N^{i+1} + b_N >= 0  _|_  P_N >= 0,
+   *
+   * with M~ = M + c_C C + c_K K fixed while h is fixed. A scheme supplies
+   * c_C and c_K, the free right-hand side F~, the gap term b_N of its
+   * discrete Signorini condition, and the update of u (and a) once v^{i+1}
+   * is known. Everything else (Delassus operator, LCP, output) is shared.
+   */
+  class TimeIntegrator
+  {
+  public:
+    explicit TimeIntegrator(const TimeSteppingParameters &parameters);
+    virtual ~TimeIntegrator() = default;
+
+    Scheme
+    scheme() const;
+    double
+    time_step() const;
+
+    /** c_C in M~ = M + c_C C + c_K K. */
+    virtual double
+    damping_coefficient() const = 0;
+    /** c_K in M~ = M + c_C C + c_K K. */
+    virtual double
+    stiffness_coefficient() const = 0;
+
+    /** F~ of M~ v^{i+1} = F~ + H P from the state at t_i. */
+    virtual void
+    free_rhs(const MechanicalOperators &operators,
+             const MechanicalState     &state,
+             BlockVector<double>       &rhs) const = 0;
+
+    /** b_N per contact candidate for the step from @p state. */
+    virtual void
+    gap_term(const ContactSet      &contacts,
+             const MechanicalState &state,
+             std::vector<double>   &b) const = 0;
+
+    /** Given v^{i+1} in @p new_state, complete u^{i+1} (and a^{i+1}). */
+    virtual void
+    complete_step(const MechanicalState &old_state,
+                  MechanicalState       &new_state) const = 0;
+
+    /** The contact force that the impulse P of one step represents. */
+    virtual double
+    force_per_impulse() const;
+
+    /** Whether the state needs a^0 (M a^0 = F - K u^0 - C v^0). */
+    virtual bool
+    needs_initial_acceleration() const;
+
+  protected:
+    const TimeSteppingParameters parameters;
+    const double                 h;
+
+    /** out += alpha A x for block-diagonal A, skipping null blocks. */
+    static void
+    add_vmult(BlockVector<double>                             &out,
+              const double                                     alpha,
+              const std::vector<const SparseMatrix<double> *> &A,
+              const BlockVector<double>                       &x);
+  };
+
+  std::unique_ptr<TimeIntegrator>
+  create_time_integrator(const TimeSteppingParameters &parameters);
+} // namespace impactfe
+
+#endif

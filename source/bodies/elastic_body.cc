@@ -1,0 +1,334 @@
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <impactfe/bodies/elastic_body.h>
+
+namespace impactfe
+{
+  void
+  DiscretizationParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Discretization");
+    prm.declare_entry(
+      "Mass matrix",
+      "consistent",
+      Patterns::Selection("consistent|lumped"),
+      "Consistent Q1/P1 mass matrix, or its row-sum lumped (diagonal) form.");
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  DiscretizationParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Discretization");
+    lumped_mass = (prm.get("Mass matrix") == "lumped");
+    prm.leave_subsection();
+  }
+
+
+
+  template <int dim>
+  ElasticBody<dim>::ElasticBody(const std::string              &name,
+                                const MaterialParameters       &material,
+                                const DiscretizationParameters &discretization,
+                                const double out_of_plane_measure)
+    : body_name(name)
+    , material_parameters(material)
+    , discretization_parameters(discretization)
+    , out_of_plane(out_of_plane_measure)
+    , fe(FE_Q<dim>(1), dim)
+  {
+    AssertThrow(out_of_plane > 0.,
+                ExcMessage("Body '" + name +
+                           "': the cross-section area (1D) or thickness (2D) "
+                           "must be > 0."));
+  }
+
+
+
+  template <int dim>
+  Triangulation<dim> &
+  ElasticBody<dim>::triangulation()
+  {
+    return mesh;
+  }
+
+
+
+  template <int dim>
+  void
+  ElasticBody<dim>::setup()
+  {
+    AssertThrow(mesh.n_active_cells() > 0,
+                ExcMessage("Body '" + body_name + "' has an empty mesh."));
+    dofs.reinit(mesh);
+    dofs.distribute_dofs(fe);
+
+    DynamicSparsityPattern dsp(dofs.n_dofs(), dofs.n_dofs());
+    DoFTools::make_sparsity_pattern(dofs, dsp);
+    pattern.copy_from(dsp);
+
+    vertex_dofs.assign(mesh.n_vertices() * dim, numbers::invalid_dof_index);
+    for (const auto &cell : dofs.active_cell_iterators())
+      for (const unsigned int v : cell->vertex_indices())
+        for (unsigned int c = 0; c < dim; ++c)
+          vertex_dofs[cell->vertex_index(v) * dim + c] =
+            cell->vertex_dof_index(v, c);
+    mass.reinit(pattern);
+    stiffness.reinit(pattern);
+    if (has_damping())
+      damping.reinit(pattern);
+    else
+      damping.clear();
+    body_force_vector.reinit(dofs.n_dofs());
+    assemble();
+  }
+
+
+
+  template <int dim>
+  void
+  ElasticBody<dim>::set_body_force(const Tensor<1, dim> &force_density)
+  {
+    body_force_density = force_density;
+    if (dofs.n_dofs() > 0)
+      assemble();
+  }
+
+
+
+  // @sect3{Assembly of M, K, C and the load}
+  // Q1 elements with a 2-point Gauss rule: exact for the consistent mass and
+  // the stiffness of affine cells. The damping matrix is the Kelvin--Voigt
+  // term (eta/E) K plus Rayleigh a M + b K.
+  template <int dim>
+  void
+  ElasticBody<dim>::assemble()
+  {
+    mass      = 0.;
+    stiffness = 0.;
+    body_force_vector = 0.;
+
+    const QGauss<dim> quadrature(2);
+    FEValues<dim>     fe_values(fe,
+                            quadrature,
+                            update_values | update_gradients |
+                              update_JxW_values);
+    const unsigned int dofs_per_cell = fe.n_dofs_per_cell();
+    FullMatrix<double> cell_mass(dofs_per_cell, dofs_per_cell);
+    FullMatrix<double> cell_stiffness(dofs_per_cell, dofs_per_cell);
+    Vector<double>     cell_load(dofs_per_cell);
+    std::vector<types::global_dof_index> local_dofs(dofs_per_cell);
+
+    const SymmetricTensor<4, dim> elasticity =
+      material_parameters.elasticity_tensor<dim>();
+    const double rho = material_parameters.density;
+
+    for (const auto &cell : dofs.active_cell_iterators())
+      {
+        fe_values.reinit(cell);
+        cell_mass      = 0.;
+        cell_stiffness = 0.;
+        cell_load      = 0.;
+        for (const unsigned int q : fe_values.quadrature_point_indices())
+          {
+            const double dx = fe_values.JxW(q) * out_of_plane;
+            for (const unsigned int i : fe_values.dof_indices())
+              {
+                const unsigned int ci = fe.system_to_component_index(i).first;
+                const double       phi_i = fe_values.shape_value(i, q);
+                SymmetricTensor<2, dim> eps_i;
+                const Tensor<1, dim> grad_i = fe_values.shape_grad(i, q);
+                // eps_i = sym(e_ci (x) grad phi_i); a SymmetricTensor stores
+                // [ci][d] and [d][ci] once.
+                for (unsigned int d = 0; d < dim; ++d)
+                  eps_i[ci][d] = (d == ci ? 1. : 0.5) * grad_i[d];
+                const SymmetricTensor<2, dim> sigma_i = elasticity * eps_i;
+                cell_load(i) += body_force_density[ci] * phi_i * dx;
+                for (const unsigned int j : fe_values.dof_indices())
+                  {
+                    const unsigned int cj =
+                      fe.system_to_component_index(j).first;
+                    if (ci == cj)
+                      cell_mass(i, j) +=
+                        rho * phi_i * fe_values.shape_value(j, q) * dx;
+                    const Tensor<1, dim> grad_j = fe_values.shape_grad(j, q);
+                    // sigma_i : eps_j with eps_j = sym(e_cj (x) grad_j)
+                    double contraction = 0.;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      contraction += sigma_i[cj][d] * grad_j[d];
+                    cell_stiffness(i, j) += contraction * dx;
+                  }
+              }
+          }
+        cell->get_dof_indices(local_dofs);
+        if (discretization_parameters.lumped_mass)
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            {
+              double row_sum = 0.;
+              for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                row_sum += cell_mass(i, j);
+              mass.add(local_dofs[i], local_dofs[i], row_sum);
+            }
+        else
+          mass.add(local_dofs, cell_mass);
+        stiffness.add(local_dofs, cell_stiffness);
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          body_force_vector(local_dofs[i]) += cell_load(i);
+      }
+
+    if (has_damping())
+      {
+        damping.copy_from(stiffness);
+        damping *= material_parameters.stiffness_damping_factor();
+        damping.add(material_parameters.rayleigh_mass, mass);
+      }
+  }
+
+
+
+  template <int dim>
+  const std::string &
+  ElasticBody<dim>::name() const
+  {
+    return body_name;
+  }
+
+  template <int dim>
+  const MaterialParameters &
+  ElasticBody<dim>::material() const
+  {
+    return material_parameters;
+  }
+
+  template <int dim>
+  const DoFHandler<dim> &
+  ElasticBody<dim>::dof_handler() const
+  {
+    return dofs;
+  }
+
+  template <int dim>
+  unsigned int
+  ElasticBody<dim>::n_dofs() const
+  {
+    return dofs.n_dofs();
+  }
+
+  template <int dim>
+  const SparsityPattern &
+  ElasticBody<dim>::sparsity_pattern() const
+  {
+    return pattern;
+  }
+
+  template <int dim>
+  const SparseMatrix<double> &
+  ElasticBody<dim>::mass_matrix() const
+  {
+    return mass;
+  }
+
+  template <int dim>
+  const SparseMatrix<double> &
+  ElasticBody<dim>::stiffness_matrix() const
+  {
+    return stiffness;
+  }
+
+  template <int dim>
+  const SparseMatrix<double> &
+  ElasticBody<dim>::damping_matrix() const
+  {
+    return damping;
+  }
+
+  template <int dim>
+  bool
+  ElasticBody<dim>::has_damping() const
+  {
+    return material_parameters.has_damping();
+  }
+
+  template <int dim>
+  const Vector<double> &
+  ElasticBody<dim>::external_force() const
+  {
+    return body_force_vector;
+  }
+
+
+
+  template <int dim>
+  double
+  ElasticBody<dim>::total_mass() const
+  {
+    // 1^T M 1 for one displacement component.
+    Vector<double> ones(dofs.n_dofs()), tmp(dofs.n_dofs());
+    Tensor<1, dim> e0;
+    e0[0] = 1.;
+    fill_uniform(ones, e0);
+    mass.vmult(tmp, ones);
+    return ones * tmp;
+  }
+
+
+
+  template <int dim>
+  types::global_dof_index
+  ElasticBody<dim>::vertex_dof(const unsigned int vertex_index,
+                               const unsigned int component) const
+  {
+    const types::global_dof_index dof =
+      vertex_index < mesh.n_vertices() ?
+        vertex_dofs[vertex_index * dim + component] :
+        numbers::invalid_dof_index;
+    AssertThrow(dof != numbers::invalid_dof_index,
+                ExcMessage("Body '" + body_name + "': vertex " +
+                           std::to_string(vertex_index) +
+                           " belongs to no cell."));
+    return dof;
+  }
+
+
+
+  template <int dim>
+  double
+  ElasticBody<dim>::nodal_value(const Vector<double> &vector,
+                                const unsigned int    vertex_index,
+                                const unsigned int    component) const
+  {
+    return vector(vertex_dof(vertex_index, component));
+  }
+
+
+
+  template <int dim>
+  void
+  ElasticBody<dim>::fill_uniform(Vector<double>       &vector,
+                                 const Tensor<1, dim> &value) const
+  {
+    vector.reinit(dofs.n_dofs());
+    std::vector<types::global_dof_index> local_dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dofs.active_cell_iterators())
+      {
+        cell->get_dof_indices(local_dofs);
+        for (unsigned int i = 0; i < local_dofs.size(); ++i)
+          vector(local_dofs[i]) = value[fe.system_to_component_index(i).first];
+      }
+  }
+
+
+
+  template class ElasticBody<1>;
+  template class ElasticBody<2>;
+  template class ElasticBody<3>;
+} // namespace impactfe

@@ -1,0 +1,340 @@
+#include <deal.II/base/exceptions.h>
+
+#include <impactfe/contact/contact_set.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace impactfe
+{
+  ContactSet::ContactSet(const unsigned int n_directions)
+    : directions(n_directions)
+  {
+    AssertThrow(n_directions >= 1 && n_directions <= 3,
+                ExcMessage("A contact set has 1, 2 or 3 local directions."));
+  }
+
+  unsigned int
+  ContactSet::n_directions() const
+  {
+    return directions;
+  }
+
+  unsigned int
+  ContactSet::n_candidates() const
+  {
+    return candidate_list.size();
+  }
+
+  unsigned int
+  ContactSet::n_columns() const
+  {
+    return candidate_list.size() * directions;
+  }
+
+  const ContactCandidate &
+  ContactSet::candidate(const unsigned int c) const
+  {
+    return candidate_list[c];
+  }
+
+  const std::vector<ContactCandidate> &
+  ContactSet::candidates() const
+  {
+    return candidate_list;
+  }
+
+
+
+  namespace
+  {
+    // Vertices of a body on the boundary with the given id.
+    template <int dim>
+    std::set<unsigned int>
+    boundary_vertices(const ElasticBody<dim> &body, const types::boundary_id id)
+    {
+      std::set<unsigned int> vertices;
+      for (const auto &cell : body.dof_handler().active_cell_iterators())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              cell->face(f)->boundary_id() == id)
+            for (const unsigned int v : cell->face(f)->vertex_indices())
+              vertices.insert(cell->face(f)->vertex_index(v));
+      return vertices;
+    }
+
+    template <int dim>
+    Point<dim>
+    vertex_position(const ElasticBody<dim> &body, const unsigned int vertex)
+    {
+      return body.dof_handler().get_triangulation().get_vertices()[vertex];
+    }
+  } // namespace
+
+
+
+  // @sect3{Local frames}
+  // The normal is direction 0. In 2D the tangent is the normal turned by
+  // +90 degrees; in 3D two orthonormal tangents complete a right-handed
+  // frame.
+  template <int dim>
+  void
+  ContactSet::set_frame(ContactCandidate &candidate, const Tensor<1, dim> &normal) const
+  {
+    const double norm = normal.norm();
+    AssertThrow(norm > 0., ExcMessage("A contact normal must not be zero."));
+    std::array<double, 3> n{{0., 0., 0.}};
+    for (unsigned int d = 0; d < dim; ++d)
+      n[d] = normal[d] / norm;
+    candidate.frame[0] = n;
+    if (dim == 2)
+      candidate.frame[1] = {{-n[1], n[0], 0.}};
+    if (dim == 3)
+      {
+        // t1: the unit vector orthogonal to n built from the axis least
+        // aligned with n; t2 = n x t1.
+        std::array<double, 3> a{{0., 0., 0.}};
+        const unsigned int    axis =
+          (std::abs(n[0]) <= std::abs(n[1]) && std::abs(n[0]) <= std::abs(n[2])) ? 0 :
+          (std::abs(n[1]) <= std::abs(n[2])) ? 1 : 2;
+        a[axis] = 1.;
+        std::array<double, 3> t1{{a[1] * n[2] - a[2] * n[1],
+                                  a[2] * n[0] - a[0] * n[2],
+                                  a[0] * n[1] - a[1] * n[0]}};
+        const double l = std::sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
+        for (double &x : t1)
+          x /= l;
+        candidate.frame[1] = t1;
+        candidate.frame[2] = {{n[1] * t1[2] - n[2] * t1[1],
+                               n[2] * t1[0] - n[0] * t1[2],
+                               n[0] * t1[1] - n[1] * t1[0]}};
+      }
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  ContactSet::add_node_to_plane(const std::vector<const ElasticBody<dim> *> &bodies,
+                                const unsigned int       body_index,
+                                const types::boundary_id boundary_id,
+                                const Point<dim>        &plane_point,
+                                const Tensor<1, dim>    &plane_normal,
+                                const double             friction_coefficient)
+  {
+    AssertThrow(body_index < bodies.size(),
+                ExcMessage("Contact: body index out of range."));
+    AssertThrow(friction_coefficient >= 0.,
+                ExcMessage("Contact: the friction coefficient must be >= 0."));
+    const auto &body     = *bodies[body_index];
+    const auto  vertices = boundary_vertices(body, boundary_id);
+    AssertThrow(!vertices.empty(),
+                ExcMessage("Contact: body '" + body.name() +
+                           "' has no vertex on boundary id " +
+                           std::to_string(boundary_id) +
+                           ", so the contact boundary is empty."));
+    const Tensor<1, dim> n = plane_normal / plane_normal.norm();
+    for (const unsigned int v : vertices)
+      {
+        ContactCandidate candidate;
+        candidate.body_a   = body_index;
+        candidate.vertex_a = v;
+        const Point<dim> x = vertex_position(body, v);
+        for (unsigned int d = 0; d < dim; ++d)
+          candidate.position[d] = x[d];
+        set_frame(candidate, n);
+        candidate.initial_gap          = (x - plane_point) * n;
+        candidate.friction_coefficient = friction_coefficient;
+        candidate_list.push_back(candidate);
+      }
+    return vertices.size();
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  ContactSet::add_node_to_node(const std::vector<const ElasticBody<dim> *> &bodies,
+                               const unsigned int       body_a,
+                               const types::boundary_id boundary_a,
+                               const unsigned int       body_b,
+                               const types::boundary_id boundary_b,
+                               const Tensor<1, dim>    &normal,
+                               const double             friction_coefficient)
+  {
+    AssertThrow(body_a < bodies.size() && body_b < bodies.size() &&
+                  body_a != body_b,
+                ExcMessage("Contact: node-to-node needs two distinct bodies."));
+    AssertThrow(friction_coefficient >= 0.,
+                ExcMessage("Contact: the friction coefficient must be >= 0."));
+    const auto &A = *bodies[body_a];
+    const auto &B = *bodies[body_b];
+    const auto  vertices_a = boundary_vertices(A, boundary_a);
+    const auto  vertices_b = boundary_vertices(B, boundary_b);
+    AssertThrow(!vertices_a.empty(),
+                ExcMessage("Contact: body '" + A.name() +
+                           "' has no vertex on boundary id " +
+                           std::to_string(boundary_a) + "."));
+    AssertThrow(!vertices_b.empty(),
+                ExcMessage("Contact: body '" + B.name() +
+                           "' has no vertex on boundary id " +
+                           std::to_string(boundary_b) + "."));
+    const Tensor<1, dim> n = normal / normal.norm();
+
+    // Size scale for the matching tolerance.
+    double scale = 0.;
+    for (const unsigned int v : vertices_b)
+      scale = std::max(scale, vertex_position(B, v).norm());
+    const double tolerance = 1e-8 * std::max(scale, 1.);
+
+    for (const unsigned int va : vertices_a)
+      {
+        const Point<dim> xa      = vertex_position(A, va);
+        unsigned int     partner = numbers::invalid_unsigned_int;
+        for (const unsigned int vb : vertices_b)
+          {
+            const Tensor<1, dim> d = xa - vertex_position(B, vb);
+            if ((d - (d * n) * n).norm() <= tolerance)
+              {
+                partner = vb;
+                break;
+              }
+          }
+        AssertThrow(partner != numbers::invalid_unsigned_int,
+                    ExcMessage("Contact: the node of body '" + A.name() +
+                               "' at boundary id " +
+                               std::to_string(boundary_a) +
+                               " has no matching node on body '" + B.name() +
+                               "'. Node-to-node contact needs matching "
+                               "interface meshes."));
+        ContactCandidate candidate;
+        candidate.body_a   = body_a;
+        candidate.vertex_a = va;
+        candidate.body_b   = body_b;
+        candidate.vertex_b = partner;
+        for (unsigned int d = 0; d < dim; ++d)
+          candidate.position[d] = xa[d];
+        set_frame(candidate, n);
+        candidate.initial_gap          = (xa - vertex_position(B, partner)) * n;
+        candidate.friction_coefficient = friction_coefficient;
+        candidate_list.push_back(candidate);
+      }
+    return vertices_a.size();
+  }
+
+
+
+  // @sect3{The H operator}
+  // Column (c, k) of H holds +e_k on the DoFs of node A and -e_k on those of
+  // node B, e_k being direction k of the candidate's frame.
+  template <int dim>
+  void
+  ContactSet::build_operator(const std::vector<const ElasticBody<dim> *> &bodies)
+  {
+    AssertThrow(directions == 1 || directions == dim,
+                ExcMessage("Contact: the number of local directions must be 1 "
+                           "(frictionless) or the space dimension."));
+    columns.assign(n_columns(), {});
+    for (unsigned int c = 0; c < candidate_list.size(); ++c)
+      {
+        const ContactCandidate &cand = candidate_list[c];
+        for (unsigned int k = 0; k < directions; ++k)
+          {
+            auto &column = columns[c * directions + k];
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                const double e = cand.frame[k][d];
+                if (e == 0.)
+                  continue;
+                column.push_back(
+                  {cand.body_a, bodies[cand.body_a]->vertex_dof(cand.vertex_a, d), e});
+                if (!cand.against_rigid_obstacle())
+                  column.push_back({cand.body_b,
+                                    bodies[cand.body_b]->vertex_dof(cand.vertex_b, d),
+                                    -e});
+              }
+          }
+      }
+  }
+
+
+
+  double
+  ContactSet::column_dot(const unsigned int column, const BlockVector<double> &v) const
+  {
+    double sum = 0.;
+    for (const Entry &e : columns[column])
+      sum += e.coefficient * v.block(e.block)(e.dof);
+    return sum;
+  }
+
+
+
+  void
+  ContactSet::add_column(const unsigned int   column,
+                         const double         alpha,
+                         BlockVector<double> &f) const
+  {
+    for (const Entry &e : columns[column])
+      f.block(e.block)(e.dof) += alpha * e.coefficient;
+  }
+
+
+
+  void
+  ContactSet::gaps(const BlockVector<double> &u, std::vector<double> &g) const
+  {
+    g.resize(candidate_list.size());
+    for (unsigned int c = 0; c < candidate_list.size(); ++c)
+      g[c] = candidate_list[c].initial_gap + column_dot(c * directions, u);
+  }
+
+
+
+  void
+  ContactSet::normal_velocities(const BlockVector<double> &v,
+                                std::vector<double>       &normal_velocity) const
+  {
+    normal_velocity.resize(candidate_list.size());
+    for (unsigned int c = 0; c < candidate_list.size(); ++c)
+      normal_velocity[c] = column_dot(c * directions, v);
+  }
+
+
+
+  void
+  ContactSet::local_velocities(const BlockVector<double> &v,
+                               std::vector<double>       &local_velocity) const
+  {
+    local_velocity.resize(n_columns());
+    for (unsigned int j = 0; j < n_columns(); ++j)
+      local_velocity[j] = column_dot(j, v);
+  }
+
+
+
+#define IMPACTFE_INSTANTIATE(dim)                                              \
+  template unsigned int ContactSet::add_node_to_plane<dim>(                    \
+    const std::vector<const ElasticBody<dim> *> &,                             \
+    const unsigned int,                                                        \
+    const types::boundary_id,                                                  \
+    const Point<dim> &,                                                        \
+    const Tensor<1, dim> &,                                                    \
+    const double);                                                             \
+  template unsigned int ContactSet::add_node_to_node<dim>(                     \
+    const std::vector<const ElasticBody<dim> *> &,                             \
+    const unsigned int,                                                        \
+    const types::boundary_id,                                                  \
+    const unsigned int,                                                        \
+    const types::boundary_id,                                                  \
+    const Tensor<1, dim> &,                                                    \
+    const double);                                                             \
+  template void ContactSet::build_operator<dim>(                               \
+    const std::vector<const ElasticBody<dim> *> &);
+
+  IMPACTFE_INSTANTIATE(1)
+  IMPACTFE_INSTANTIATE(2)
+  IMPACTFE_INSTANTIATE(3)
+#undef IMPACTFE_INSTANTIATE
+} // namespace impactfe

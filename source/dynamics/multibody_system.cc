@@ -1,0 +1,504 @@
+#include <deal.II/base/exceptions.h>
+
+#include <impactfe/dynamics/multibody_system.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace impactfe
+{
+  template <int dim>
+  MultibodySystem<dim>::MultibodySystem(
+    const TimeSteppingParameters  &time_stepping,
+    const ContactSolverParameters &solver_parameters)
+    : time_stepping(time_stepping)
+    , solver_parameters(solver_parameters)
+    , scheme(create_time_integrator(time_stepping))
+  {}
+
+
+
+  template <int dim>
+  unsigned int
+  MultibodySystem<dim>::add_body(const ElasticBody<dim> &body)
+  {
+    AssertThrow(body.n_dofs() > 0,
+                ExcMessage("Body '" + body.name() +
+                           "' must be set up before it is added."));
+    body_list.push_back(&body);
+    current.displacement = make_block_vector();
+    current.velocity     = make_block_vector();
+    current.acceleration = make_block_vector();
+    return body_list.size() - 1;
+  }
+
+
+
+  template <int dim>
+  const std::vector<const ElasticBody<dim> *> &
+  MultibodySystem<dim>::bodies() const
+  {
+    return body_list;
+  }
+
+  template <int dim>
+  ContactSet &
+  MultibodySystem<dim>::contacts()
+  {
+    return contact_set;
+  }
+
+  template <int dim>
+  const ContactSet &
+  MultibodySystem<dim>::contacts() const
+  {
+    return contact_set;
+  }
+
+  template <int dim>
+  void
+  MultibodySystem<dim>::set_dump_directory(const std::string &directory)
+  {
+    dump_directory = directory;
+  }
+
+  template <int dim>
+  MechanicalState &
+  MultibodySystem<dim>::state()
+  {
+    return current;
+  }
+
+  template <int dim>
+  const MechanicalState &
+  MultibodySystem<dim>::state() const
+  {
+    return current;
+  }
+
+  template <int dim>
+  const TimeIntegrator &
+  MultibodySystem<dim>::integrator() const
+  {
+    return *scheme;
+  }
+
+
+
+  template <int dim>
+  BlockVector<double>
+  MultibodySystem<dim>::make_block_vector() const
+  {
+    std::vector<types::global_dof_index> sizes;
+    for (const auto *body : body_list)
+      sizes.push_back(body->n_dofs());
+    return BlockVector<double>(sizes);
+  }
+
+
+
+  template <int dim>
+  void
+  MultibodySystem<dim>::solve_step_matrix(BlockVector<double> &x) const
+  {
+    for (unsigned int b = 0; b < body_list.size(); ++b)
+      step_solvers[b]->solve(x.block(b));
+  }
+
+
+
+  // @sect3{Set-up: M~, its factorisation and the Delassus operator}
+  // M~ = M + c_C C + c_K K depends only on the scheme and h, so it is
+  // factorised once per body. The columns M~^{-1} H_j are computed once too:
+  // they give W = H^T M~^{-1} H and the velocity correction of every step.
+  template <int dim>
+  void
+  MultibodySystem<dim>::setup()
+  {
+    AssertThrow(!body_list.empty(), ExcMessage("The scene has no body."));
+    const unsigned int n_bodies = body_list.size();
+
+    operators.mass.clear();
+    operators.stiffness.clear();
+    operators.damping.clear();
+    operators.external_force = make_block_vector();
+    step_matrices.clear();
+    step_solvers.clear();
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        const ElasticBody<dim> &body = *body_list[b];
+        operators.mass.push_back(&body.mass_matrix());
+        operators.stiffness.push_back(&body.stiffness_matrix());
+        operators.damping.push_back(body.has_damping() ? &body.damping_matrix() :
+                                                         nullptr);
+        operators.external_force.block(b) = body.external_force();
+
+        auto step_matrix =
+          std::make_unique<SparseMatrix<double>>(body.sparsity_pattern());
+        step_matrix->copy_from(body.mass_matrix());
+        step_matrix->add(scheme->stiffness_coefficient(), body.stiffness_matrix());
+        if (body.has_damping())
+          step_matrix->add(scheme->damping_coefficient(), body.damping_matrix());
+        auto solver = std::make_unique<SparseDirectUMFPACK>();
+        solver->factorize(*step_matrix);
+        step_matrices.push_back(std::move(step_matrix));
+        step_solvers.push_back(std::move(solver));
+      }
+
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        unit_fields[d] = make_block_vector();
+        Tensor<1, dim> e;
+        e[d] = 1.;
+        for (unsigned int b = 0; b < n_bodies; ++b)
+          body_list[b]->fill_uniform(unit_fields[d].block(b), e);
+      }
+
+    contact_set.build_operator(body_list);
+    const unsigned int n_columns = contact_set.n_columns();
+    response_columns.assign(n_columns, make_block_vector());
+    delassus.reinit(n_columns, n_columns);
+    for (unsigned int j = 0; j < n_columns; ++j)
+      {
+        contact_set.add_column(j, 1., response_columns[j]);
+        solve_step_matrix(response_columns[j]);
+      }
+    for (unsigned int i = 0; i < n_columns; ++i)
+      for (unsigned int j = 0; j < n_columns; ++j)
+        delassus(i, j) = contact_set.column_dot(i, response_columns[j]);
+
+    // Newmark starts from a^0 with M a^0 = F - K u^0 - C v^0 (no contact
+    // force at t = 0).
+    if (scheme->needs_initial_acceleration())
+      for (unsigned int b = 0; b < n_bodies; ++b)
+        {
+          const ElasticBody<dim> &body = *body_list[b];
+          Vector<double>          rhs(body.external_force());
+          Vector<double>          tmp(body.n_dofs());
+          body.stiffness_matrix().vmult(tmp, current.displacement.block(b));
+          rhs -= tmp;
+          if (body.has_damping())
+            {
+              body.damping_matrix().vmult(tmp, current.velocity.block(b));
+              rhs -= tmp;
+            }
+          SparseDirectUMFPACK mass_solver;
+          mass_solver.factorize(body.mass_matrix());
+          mass_solver.solve(rhs);
+          current.acceleration.block(b) = rhs;
+        }
+
+    next                = current;
+    free_velocity       = make_block_vector();
+    contact_force_field = make_block_vector();
+    local_impulses.assign(n_columns, 0.);
+    active.assign(contact_set.n_candidates(), false);
+    step_number = 0;
+  }
+
+
+
+  // @sect3{The LCP of one step}
+  // Frictionless: w_N = W_NN P_N + (V_free,N + b_N), the n_c x n_c normal
+  // block on the candidates that can touch.
+  template <int dim>
+  void
+  MultibodySystem<dim>::build_lcp(lcp::DenseMatrix    &M,
+                                  std::vector<double> &q) const
+  {
+    const unsigned int nd = contact_set.n_directions();
+    const unsigned int n  = lcp_candidates.size();
+    AssertThrow(nd == 1,
+                ExcMessage("Frictional contact is not available in this "
+                           "build yet."));
+    M.reinit(n, n);
+    q.resize(n);
+    for (unsigned int a = 0; a < n; ++a)
+      {
+        const unsigned int ca = lcp_candidates[a];
+        q[a] = local_free_velocity[ca * nd] + gap_terms[ca];
+        for (unsigned int b = 0; b < n; ++b)
+          M(a, b) = delassus(ca * nd, lcp_candidates[b] * nd);
+      }
+  }
+
+
+
+  template <int dim>
+  lcp::Result
+  MultibodySystem<dim>::solve_contact_lcp()
+  {
+    lcp::DenseMatrix    M;
+    std::vector<double> q;
+    build_lcp(M, q);
+    std::vector<bool> guess(lcp_candidates.size());
+    for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
+      guess[a] = active[lcp_candidates[a]];
+
+    const lcp::Result result =
+      solver_parameters.warm_start ? lcp::solve_lemke_warm(M, q, guess) :
+                                     lcp::solve_lemke(M, q);
+    const unsigned int nd = contact_set.n_directions();
+    std::fill(local_impulses.begin(), local_impulses.end(), 0.);
+    if (result.status == lcp::Status::solved)
+      for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
+        local_impulses[lcp_candidates[a] * nd] = result.z[a];
+    return result;
+  }
+
+
+
+  template <int dim>
+  void
+  MultibodySystem<dim>::dump_lcp(const std::string &file_name) const
+  {
+    lcp::DenseMatrix    M;
+    std::vector<double> q;
+    build_lcp(M, q);
+    std::ofstream out(file_name);
+    out << std::setprecision(17);
+    // Siconos numerics' dense LCP text format: size, then M (storage 0 =
+    // dense, sizes, entries column by column), then q.
+    out << M.n_rows() << "\n0\n" << M.n_rows() << " " << M.n_cols() << "\n";
+    for (unsigned int j = 0; j < M.n_cols(); ++j)
+      for (unsigned int i = 0; i < M.n_rows(); ++i)
+        out << M(i, j) << (i + 1 == M.n_rows() ? "\n" : " ");
+    for (unsigned int i = 0; i < q.size(); ++i)
+      out << q[i] << (i + 1 == q.size() ? "\n" : " ");
+  }
+
+
+
+  // @sect3{One time step}
+  template <int dim>
+  StepReport
+  MultibodySystem<dim>::do_time_step()
+  {
+    ++step_number;
+    const double h  = scheme->time_step();
+    const unsigned int nd = contact_set.n_directions();
+    const unsigned int n_candidates = contact_set.n_candidates();
+
+    StepReport report;
+    report.step = step_number;
+    report.time = current.time + h;
+
+    // 1. Free velocity.
+    scheme->free_rhs(operators, current, free_velocity);
+    solve_step_matrix(free_velocity);
+
+    // 2. Local free velocities and the scheme's gap terms.
+    contact_set.local_velocities(free_velocity, local_free_velocity);
+    scheme->gap_term(contact_set, current, gap_terms);
+
+    // 3. The LCP on the candidates that can touch: those whose free normal
+    // velocity would close the gap within the step, plus the previous
+    // active set. If the impulses push an excluded candidate into
+    // penetration, it joins and the LCP is solved again.
+    std::vector<bool> in_lcp(n_candidates, false);
+    double            scale = 0.;
+    for (unsigned int c = 0; c < n_candidates; ++c)
+      {
+        const double w_free = local_free_velocity[c * nd] + gap_terms[c];
+        in_lcp[c]           = (w_free < 0.) || active[c];
+        scale = std::max({scale, std::abs(local_free_velocity[c * nd]),
+                          std::abs(gap_terms[c])});
+      }
+    const double tolerance = 1e-12 * scale;
+    std::fill(local_impulses.begin(), local_impulses.end(), 0.);
+    for (;;)
+      {
+        lcp_candidates.clear();
+        for (unsigned int c = 0; c < n_candidates; ++c)
+          if (in_lcp[c])
+            lcp_candidates.push_back(c);
+        if (lcp_candidates.empty())
+          break;
+
+        const lcp::Result result = solve_contact_lcp();
+        report.lcp_size   = lcp_candidates.size() * (nd == 1 ? 1 : 3);
+        report.lcp_pivots += result.pivots;
+        if (result.status != lcp::Status::solved)
+          {
+            std::ostringstream name;
+            name << dump_directory << "/lcp_failure_step_" << step_number
+                 << ".dat";
+            dump_lcp(name.str());
+            std::ostringstream message;
+            message << "The contact LCP of step " << step_number << " (t = "
+                    << report.time << " s, " << lcp_candidates.size()
+                    << " contact candidates) was not solved: "
+                    << lcp::to_string(result.status) << ". "
+                    << result.message << " The LCP was written to "
+                    << name.str() << " (replay: lcp-solve " << name.str()
+                    << ").";
+            throw ContactSolverFailure(message.str());
+          }
+        if (solver_parameters.dump_step == static_cast<int>(step_number))
+          dump_lcp(dump_directory + "/lcp_step_" +
+                   std::to_string(step_number) + ".dat");
+
+        bool grown = false;
+        for (unsigned int c = 0; c < n_candidates; ++c)
+          if (!in_lcp[c])
+            {
+              double w = local_free_velocity[c * nd] + gap_terms[c];
+              for (const unsigned int a : lcp_candidates)
+                for (unsigned int k = 0; k < nd; ++k)
+                  w += delassus(c * nd, a * nd + k) * local_impulses[a * nd + k];
+              if (w < -tolerance)
+                {
+                  in_lcp[c] = true;
+                  grown     = true;
+                }
+            }
+        if (!grown)
+          break;
+        ++report.lcp_resolves;
+      }
+    pivot_count += report.lcp_pivots;
+    lcp_max_size = std::max(lcp_max_size, report.lcp_size);
+
+    // 4. v^{i+1} = v_free + sum_j (M~^{-1} H_j) P_j, and the nodal forces.
+    next.velocity = free_velocity;
+    contact_force_field = 0.;
+    const double force_factor = scheme->force_per_impulse();
+    for (unsigned int j = 0; j < contact_set.n_columns(); ++j)
+      if (local_impulses[j] != 0.)
+        {
+          next.velocity.add(local_impulses[j], response_columns[j]);
+          contact_set.add_column(j, force_factor * local_impulses[j],
+                                 contact_force_field);
+        }
+
+    // 5. Displacement (and acceleration) update.
+    scheme->complete_step(current, next);
+    next.time = report.time;
+    std::swap(current, next);
+
+    // Report.
+    Tensor<1, dim> tangential;
+    for (unsigned int c = 0; c < n_candidates; ++c)
+      {
+        const double p_n = local_impulses[c * nd];
+        active[c]        = p_n > 0.;
+        report.active_contacts += active[c] ? 1 : 0;
+        report.normal_force += force_factor * p_n;
+        for (unsigned int k = 1; k < nd; ++k)
+          for (unsigned int d = 0; d < dim; ++d)
+            tangential[d] += force_factor * local_impulses[c * nd + k] *
+                             contact_set.candidate(c).frame[k][d];
+      }
+    report.tangential_force = tangential.norm();
+    return report;
+  }
+
+
+
+  // @sect3{Energies, momenta and forces}
+  template <int dim>
+  double
+  MultibodySystem<dim>::kinetic_energy(const unsigned int b) const
+  {
+    return 0.5 * body_list[b]->mass_matrix().matrix_norm_square(
+                   current.velocity.block(b));
+  }
+
+  template <int dim>
+  double
+  MultibodySystem<dim>::kinetic_energy() const
+  {
+    double e = 0.;
+    for (unsigned int b = 0; b < body_list.size(); ++b)
+      e += kinetic_energy(b);
+    return e;
+  }
+
+  template <int dim>
+  double
+  MultibodySystem<dim>::elastic_energy(const unsigned int b) const
+  {
+    return 0.5 * body_list[b]->stiffness_matrix().matrix_norm_square(
+                   current.displacement.block(b));
+  }
+
+  template <int dim>
+  double
+  MultibodySystem<dim>::elastic_energy() const
+  {
+    double e = 0.;
+    for (unsigned int b = 0; b < body_list.size(); ++b)
+      e += elastic_energy(b);
+    return e;
+  }
+
+  template <int dim>
+  Tensor<1, dim>
+  MultibodySystem<dim>::momentum(const unsigned int b) const
+  {
+    Tensor<1, dim> p;
+    for (unsigned int d = 0; d < dim; ++d)
+      p[d] = body_list[b]->mass_matrix().matrix_scalar_product(
+        unit_fields[d].block(b), current.velocity.block(b));
+    return p;
+  }
+
+  template <int dim>
+  Tensor<1, dim>
+  MultibodySystem<dim>::contact_force(const unsigned int b) const
+  {
+    Tensor<1, dim> f;
+    for (unsigned int d = 0; d < dim; ++d)
+      f[d] = unit_fields[d].block(b) * contact_force_field.block(b);
+    return f;
+  }
+
+  template <int dim>
+  const BlockVector<double> &
+  MultibodySystem<dim>::nodal_contact_force() const
+  {
+    return contact_force_field;
+  }
+
+  template <int dim>
+  const std::vector<double> &
+  MultibodySystem<dim>::impulses() const
+  {
+    return local_impulses;
+  }
+
+  template <int dim>
+  const std::vector<bool> &
+  MultibodySystem<dim>::active_set() const
+  {
+    return active;
+  }
+
+  template <int dim>
+  const lcp::DenseMatrix &
+  MultibodySystem<dim>::delassus_operator() const
+  {
+    return delassus;
+  }
+
+  template <int dim>
+  unsigned long long
+  MultibodySystem<dim>::total_pivots() const
+  {
+    return pivot_count;
+  }
+
+  template <int dim>
+  unsigned int
+  MultibodySystem<dim>::largest_lcp() const
+  {
+    return lcp_max_size;
+  }
+
+  template class MultibodySystem<1>;
+  template class MultibodySystem<2>;
+  template class MultibodySystem<3>;
+} // namespace impactfe

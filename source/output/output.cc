@@ -1,0 +1,316 @@
+#include <deal.II/base/exceptions.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/mapping_q_eulerian.h>
+
+#include <deal.II/numerics/data_out.h>
+
+#include <impactfe/output/output.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+namespace impactfe
+{
+  void
+  OutputParameters::declare_parameters(ParameterHandler  &prm,
+                                       const std::string &default_directory)
+  {
+    prm.enter_subsection("Output");
+    prm.declare_entry("Output directory",
+                      default_directory,
+                      Patterns::Anything(),
+                      "Directory for history.csv, summary.json, the VTU/PVD "
+                      "files and the plots. Created if missing.");
+    prm.declare_entry("VTU output",
+                      "true",
+                      Patterns::Bool(),
+                      "Write VTU files (deformed mesh, velocity, contact "
+                      "force, gap, active set) and a solution.pvd record.");
+    prm.declare_entry("Output interval",
+                      "1",
+                      Patterns::Integer(1),
+                      "Write VTU files every this many time steps [steps]. "
+                      "history.csv always has every step.");
+    prm.declare_entry("Plot",
+                      "true",
+                      Patterns::Bool(),
+                      "Draw the PNG plots at the end of the run (needs "
+                      "python3 with matplotlib).");
+    prm.declare_entry("Print performance data",
+                      "true",
+                      Patterns::Bool(),
+                      "Print CPU times and LCP pivot counts on the screen (they "
+                      "are always in summary.json). Tests set this to false so "
+                      "that the screen output is reproducible.");
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  OutputParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    directory       = prm.get("Output directory");
+    vtu_output      = prm.get_bool("VTU output");
+    output_interval = prm.get_integer("Output interval");
+    plot            = prm.get_bool("Plot");
+    print_performance = prm.get_bool("Print performance data");
+    prm.leave_subsection();
+    AssertThrow(!directory.empty(),
+                ExcMessage("Output: 'Output directory' must not be empty."));
+  }
+
+
+
+  void
+  create_output_directory(const std::string &directory)
+  {
+    std::error_code error;
+    std::filesystem::create_directories(directory, error);
+    AssertThrow(!error && std::filesystem::is_directory(directory),
+                ExcMessage("Output: cannot create the output directory '" +
+                           directory + "': " + error.message()));
+  }
+
+
+
+  HistoryWriter::HistoryWriter(const std::string              &file_name,
+                               const std::vector<std::string> &columns)
+    : out(file_name)
+    , column_names(columns)
+  {
+    AssertThrow(out, ExcMessage("Output: cannot write " + file_name));
+    for (unsigned int i = 0; i < columns.size(); ++i)
+      out << columns[i] << (i + 1 == columns.size() ? "\n" : ",");
+    out << std::setprecision(10);
+  }
+
+
+
+  void
+  HistoryWriter::add_row(const std::vector<double> &values)
+  {
+    AssertThrow(values.size() == column_names.size(), ExcInternalError());
+    for (unsigned int i = 0; i < values.size(); ++i)
+      {
+        AssertThrow(std::isfinite(values[i]),
+                    ExcMessage("Output: the value of column '" +
+                               column_names[i] +
+                               "' is not finite; the run is stopped before "
+                               "it writes it."));
+        out << values[i] << (i + 1 == values.size() ? "\n" : ",");
+      }
+  }
+
+
+
+  const std::vector<std::string> &
+  HistoryWriter::columns() const
+  {
+    return column_names;
+  }
+
+
+
+  JsonObject &
+  JsonObject::add(const std::string &key, const double value)
+  {
+    std::ostringstream s;
+    if (std::isfinite(value))
+      s << std::setprecision(10) << value;
+    else
+      s << "null";
+    entries.emplace_back(key, s.str());
+    return *this;
+  }
+
+  JsonObject &
+  JsonObject::add(const std::string &key, const std::string &value)
+  {
+    std::string escaped = "\"";
+    for (const char c : value)
+      {
+        if (c == '"' || c == '\\')
+          escaped += '\\';
+        escaped += c;
+      }
+    entries.emplace_back(key, escaped + "\"");
+    return *this;
+  }
+
+  JsonObject &
+  JsonObject::add(const std::string &key, const JsonObject &value)
+  {
+    entries.emplace_back(key, "\x01" + std::to_string(entries.size()));
+    nested.push_back(value);
+    return *this;
+  }
+
+  std::string
+  JsonObject::str(const unsigned int indent) const
+  {
+    const std::string pad(indent + 2, ' ');
+    std::string       s = "{\n";
+    unsigned int      nested_index = 0;
+    for (unsigned int i = 0; i < entries.size(); ++i)
+      {
+        s += pad + "\"" + entries[i].first + "\": ";
+        if (!entries[i].second.empty() && entries[i].second[0] == '\x01')
+          s += nested[nested_index++].str(indent + 2);
+        else
+          s += entries[i].second;
+        s += (i + 1 == entries.size() ? "\n" : ",\n");
+      }
+    return s + std::string(indent, ' ') + "}";
+  }
+
+  void
+  JsonObject::write(const std::string &file_name) const
+  {
+    std::ofstream out(file_name);
+    AssertThrow(out, ExcMessage("Output: cannot write " + file_name));
+    out << str() << "\n";
+  }
+
+
+
+  template <int dim>
+  SolutionWriter<dim>::SolutionWriter(const std::string &directory)
+    : directory(directory)
+  {}
+
+
+
+  template <int dim>
+  void
+  SolutionWriter<dim>::write(const MultibodySystem<dim> &system,
+                             const unsigned int          step)
+  {
+    const auto        &bodies   = system.bodies();
+    const auto        &state    = system.state();
+    const ContactSet  &contacts = system.contacts();
+    std::vector<double> gaps;
+    contacts.gaps(state.displacement, gaps);
+
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        const ElasticBody<dim> &body = *bodies[b];
+
+        // Nodal scalars (gap, active flag) on a scalar Q1 space of the
+        // same mesh; nodes that are no candidate get gap = -1 and active 0.
+        DoFHandler<dim> scalar_dofs(body.dof_handler().get_triangulation());
+        const FE_Q<dim> scalar_fe(1);
+        scalar_dofs.distribute_dofs(scalar_fe);
+        Vector<double> gap(scalar_dofs.n_dofs()), active(scalar_dofs.n_dofs());
+        gap = -1.;
+        std::vector<types::global_dof_index> vertex_to_scalar(
+          body.dof_handler().get_triangulation().n_vertices(),
+          numbers::invalid_dof_index);
+        for (const auto &cell : scalar_dofs.active_cell_iterators())
+          for (const unsigned int v : cell->vertex_indices())
+            vertex_to_scalar[cell->vertex_index(v)] = cell->vertex_dof_index(v, 0);
+        for (unsigned int c = 0; c < contacts.n_candidates(); ++c)
+          {
+            const ContactCandidate &cand = contacts.candidate(c);
+            unsigned int            vertex = numbers::invalid_unsigned_int;
+            if (cand.body_a == b)
+              vertex = cand.vertex_a;
+            else if (cand.body_b == b)
+              vertex = cand.vertex_b;
+            if (vertex == numbers::invalid_unsigned_int)
+              continue;
+            gap(vertex_to_scalar[vertex])    = gaps[c];
+            active(vertex_to_scalar[vertex]) = system.active_set()[c] ? 1. : 0.;
+          }
+
+        const Vector<double> &u = state.displacement.block(b);
+        MappingQEulerian<dim> deformed(1, body.dof_handler(), u);
+        DataOut<dim>          data_out;
+        data_out.attach_dof_handler(body.dof_handler());
+        const std::vector<DataComponentInterpretation::DataComponentInterpretation>
+          vector_field(dim, DataComponentInterpretation::component_is_part_of_vector);
+        data_out.add_data_vector(u,
+                                 std::vector<std::string>(dim, "displacement"),
+                                 DataOut<dim>::type_dof_data,
+                                 vector_field);
+        data_out.add_data_vector(state.velocity.block(b),
+                                 std::vector<std::string>(dim, "velocity"),
+                                 DataOut<dim>::type_dof_data,
+                                 vector_field);
+        data_out.add_data_vector(system.nodal_contact_force().block(b),
+                                 std::vector<std::string>(dim, "contact_force"),
+                                 DataOut<dim>::type_dof_data,
+                                 vector_field);
+        data_out.add_data_vector(scalar_dofs, gap, "gap");
+        data_out.add_data_vector(scalar_dofs, active, "active_contact");
+        data_out.build_patches(deformed, 1);
+
+        DataOutBase::VtkFlags flags(state.time, step);
+        data_out.set_flags(flags);
+        std::ostringstream name;
+        name << body.name() << "-" << std::setw(5) << std::setfill('0') << step
+             << ".vtu";
+        std::ofstream out(directory + "/" + name.str());
+        AssertThrow(out, ExcMessage("Output: cannot write " + name.str()));
+        data_out.write_vtu(out);
+        records.emplace_back(state.time, b, name.str());
+      }
+
+    // The record is rewritten whole each time, so it is always valid.
+    std::ofstream pvd(directory + "/solution.pvd");
+    pvd << "<?xml version=\"1.0\"?>\n"
+        << "<VTKFile type=\"Collection\" version=\"0.1\" "
+           "byte_order=\"LittleEndian\">\n  <Collection>\n";
+    pvd << std::setprecision(12);
+    for (const auto &[time, part, file] : records)
+      pvd << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\""
+          << part << "\" file=\"" << file << "\"/>\n";
+    pvd << "  </Collection>\n</VTKFile>\n";
+  }
+
+
+
+  std::string
+  plot_history(const std::string              &history,
+               const std::string              &png,
+               const std::vector<std::string> &columns,
+               const std::string              &title,
+               std::string                    &why_not)
+  {
+    const std::string script =
+      std::string(IMPACTFE_SOURCE_DIR) + "/tools/plot_history.py";
+    if (!std::filesystem::exists(script))
+      {
+        why_not = "the plot script " + script + " is missing";
+        return "";
+      }
+    if (std::system("/usr/bin/python3 -c 'import matplotlib' > /dev/null 2>&1") != 0)
+      {
+        why_not = "python3-matplotlib is not installed (apt-get install "
+                  "python3-matplotlib)";
+        return "";
+      }
+    std::string command = "/usr/bin/python3 '" + script + "' '" + history +
+                          "' '" + png + "' --title '" + title + "'";
+    for (const auto &c : columns)
+      command += " '" + c + "'";
+    if (std::system((command + " > /dev/null 2>&1").c_str()) != 0)
+      {
+        why_not = "the plot script failed (run: " + command + ")";
+        return "";
+      }
+    return png;
+  }
+
+
+
+  template class SolutionWriter<1>;
+  template class SolutionWriter<2>;
+  template class SolutionWriter<3>;
+} // namespace impactfe

@@ -1,0 +1,447 @@
+// @sect3{The four time schemes}
+//
+// Each scheme is written at the velocity level (see time_integrator.h and
+// ../shared/spec/schemes.md): it gives the step matrix coefficients, the free
+// right-hand side, the gap term b_N of its discrete Signorini condition
+// w_N = V_N^{i+1} + b_N >= 0 _|_ P_N >= 0, and the displacement update.
+// The external load is constant in time, so h (theta F^{i+1} + (1-theta)
+// F^i) = h F.
+
+#include <deal.II/base/exceptions.h>
+
+#include <impactfe/contact/contact_set.h>
+#include <impactfe/time_integration/time_integrator.h>
+#include <impactfe/utilities/program.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace impactfe
+{
+  std::string
+  to_string(const Scheme scheme)
+  {
+    switch (scheme)
+      {
+        case Scheme::theta:
+          return "theta";
+        case Scheme::theta_euler:
+          return "theta-euler";
+        case Scheme::modified_theta:
+          return "modified-theta";
+        case Scheme::newmark:
+          return "newmark";
+      }
+    return "unknown";
+  }
+
+
+
+  void
+  TimeSteppingParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time stepping");
+    prm.declare_entry(
+      "Scheme",
+      "theta-euler",
+      Patterns::Selection("theta|theta-euler|modified-theta|newmark"),
+      "Time scheme: theta (Moreau-Jean theta-method, gap from the theta "
+      "displacement update), theta-euler (u^{i+1} = u^i + h v^{i+1}), "
+      "modified-theta (theta dynamics, gap at u + h(1-theta) v), or newmark "
+      "(displacement-level Signorini; the baseline).");
+    prm.declare_entry("Theta",
+                      "0.55",
+                      Patterns::Double(),
+                      "theta of the theta-schemes [-], in (0, 1]. 0.5 is "
+                      "the trapezoidal rule; larger values damp.");
+    prm.declare_entry("Newmark beta",
+                      "0.25",
+                      Patterns::Double(),
+                      "Newmark beta [-], in (0, 0.5].");
+    prm.declare_entry("Newmark gamma",
+                      "0.5",
+                      Patterns::Double(),
+                      "Newmark gamma [-], in [0.5, 1].");
+    prm.declare_entry("Time step", "1e-3", Patterns::Double(), "Time step h [s]. Must be > 0.");
+    prm.declare_entry("End time", "1", Patterns::Double(), "End time T [s]. Must be > 0.");
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  TimeSteppingParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time stepping");
+    const std::string name = prm.get("Scheme");
+    scheme = name == "theta"          ? Scheme::theta :
+             name == "theta-euler"    ? Scheme::theta_euler :
+             name == "modified-theta" ? Scheme::modified_theta :
+                                        Scheme::newmark;
+    theta         = prm.get_double("Theta");
+    newmark_beta  = prm.get_double("Newmark beta");
+    newmark_gamma = prm.get_double("Newmark gamma");
+    time_step     = prm.get_double("Time step");
+    end_time      = prm.get_double("End time");
+    prm.leave_subsection();
+
+    AssertThrow(theta > 0. && theta <= 1.,
+                ExcMessage("Time stepping: 'Theta' must be in (0, 1], got " +
+                           format_number(theta) + "."));
+    AssertThrow(newmark_beta > 0. && newmark_beta <= 0.5,
+                ExcMessage("Time stepping: 'Newmark beta' must be in "
+                           "(0, 0.5], got " +
+                           format_number(newmark_beta) + "."));
+    AssertThrow(newmark_gamma >= 0.5 && newmark_gamma <= 1.,
+                ExcMessage("Time stepping: 'Newmark gamma' must be in "
+                           "[0.5, 1], got " +
+                           format_number(newmark_gamma) + "."));
+    AssertThrow(time_step > 0. && std::isfinite(time_step),
+                ExcMessage("Time stepping: 'Time step' must be > 0, got " +
+                           format_number(time_step) + "."));
+    AssertThrow(end_time > 0. && std::isfinite(end_time),
+                ExcMessage("Time stepping: 'End time' must be > 0, got " +
+                           format_number(end_time) + "."));
+    AssertThrow(end_time / time_step < 1e9,
+                ExcMessage("Time stepping: 'End time' / 'Time step' = " +
+                           format_number(end_time / time_step) +
+                           " steps is more than this program will run."));
+  }
+
+
+
+  unsigned int
+  TimeSteppingParameters::n_steps() const
+  {
+    return static_cast<unsigned int>(std::ceil(end_time / time_step - 1e-9));
+  }
+
+
+
+  TimeIntegrator::TimeIntegrator(const TimeSteppingParameters &parameters)
+    : parameters(parameters)
+    , h(parameters.time_step)
+  {}
+
+  Scheme
+  TimeIntegrator::scheme() const
+  {
+    return parameters.scheme;
+  }
+
+  double
+  TimeIntegrator::time_step() const
+  {
+    return h;
+  }
+
+  double
+  TimeIntegrator::force_per_impulse() const
+  {
+    return 1. / h;
+  }
+
+  bool
+  TimeIntegrator::needs_initial_acceleration() const
+  {
+    return false;
+  }
+
+  void
+  TimeIntegrator::add_vmult(BlockVector<double>                             &out,
+                            const double                                     alpha,
+                            const std::vector<const SparseMatrix<double> *> &A,
+                            const BlockVector<double>                       &x)
+  {
+    if (alpha == 0.)
+      return;
+    for (unsigned int b = 0; b < x.n_blocks(); ++b)
+      {
+        if (A[b] == nullptr)
+          continue;
+        Vector<double> &o = out.block(b);
+        const auto     &m = *A[b];
+        for (unsigned int row = 0; row < m.m(); ++row)
+          {
+            double sum = 0.;
+            for (auto entry = m.begin(row); entry != m.end(row); ++entry)
+              sum += entry->value() * x.block(b)(entry->column());
+            o(row) += alpha * sum;
+          }
+      }
+  }
+
+
+
+  namespace
+  {
+    // @sect4{theta-method (Moreau--Jean)}
+    // u^{i+1} = u^i + h (theta v^{i+1} + (1-theta) v^i);
+    // g^{i+1} = g^i + h theta V_N^{i+1} + h (1-theta) V_N^i, so Signorini on
+    // g^{i+1}/(h theta) gives b_N = g^i/(h theta) + (1-theta)/theta V_N^i.
+    class ThetaMethod : public TimeIntegrator
+    {
+    public:
+      using TimeIntegrator::TimeIntegrator;
+
+      double
+      damping_coefficient() const override
+      {
+        return h * parameters.theta;
+      }
+
+      double
+      stiffness_coefficient() const override
+      {
+        return h * h * parameters.theta * parameters.theta;
+      }
+
+      void
+      free_rhs(const MechanicalOperators &op,
+               const MechanicalState     &s,
+               BlockVector<double>       &rhs) const override
+      {
+        const double theta = parameters.theta;
+        rhs                = 0.;
+        add_vmult(rhs, 1., op.mass, s.velocity);
+        add_vmult(rhs, -h * (1. - theta), op.damping, s.velocity);
+        add_vmult(rhs, -h * h * theta * (1. - theta), op.stiffness, s.velocity);
+        add_vmult(rhs, -h, op.stiffness, s.displacement);
+        rhs.add(h, op.external_force);
+      }
+
+      void
+      gap_term(const ContactSet      &contacts,
+               const MechanicalState &s,
+               std::vector<double>   &b) const override
+      {
+        const double theta = parameters.theta;
+        contacts.gaps(s.displacement, b);
+        contacts.normal_velocities(s.velocity, normal_velocity);
+        for (unsigned int c = 0; c < b.size(); ++c)
+          b[c] = b[c] / (h * theta) + (1. - theta) / theta * normal_velocity[c];
+      }
+
+      void
+      complete_step(const MechanicalState &old_state,
+                    MechanicalState       &new_state) const override
+      {
+        const double theta = parameters.theta;
+        new_state.displacement = old_state.displacement;
+        new_state.displacement.add(h * theta,
+                                   new_state.velocity,
+                                   h * (1. - theta),
+                                   old_state.velocity);
+      }
+
+    protected:
+      mutable std::vector<double> normal_velocity;
+    };
+
+
+
+    // @sect4{Modified theta-method}
+    // Same dynamics and displacement update as the theta-method; the gap is
+    // taken at the estimate u^ = u + h (1-theta) v, which moves with
+    // h V_N^{i+1} exactly: b_N = g(u^i + h (1-theta) v^i) / h. A gap that is
+    // closed and stays closed gives V_N^{i+1} = 0 (paper, section 4).
+    class ModifiedThetaMethod : public ThetaMethod
+    {
+    public:
+      using ThetaMethod::ThetaMethod;
+
+      void
+      gap_term(const ContactSet      &contacts,
+               const MechanicalState &s,
+               std::vector<double>   &b) const override
+      {
+        estimated_displacement = s.displacement;
+        estimated_displacement.add(h * (1. - parameters.theta), s.velocity);
+        contacts.gaps(estimated_displacement, b);
+        for (double &bc : b)
+          bc /= h;
+      }
+
+    private:
+      mutable BlockVector<double> estimated_displacement;
+    };
+
+
+
+    // @sect4{theta-Euler method}
+    // u^{i+1} = u^i + h v^{i+1}; the momentum balance keeps the theta
+    // weighting of the forces. Then g^{i+1} = g^i + h V_N^{i+1} and
+    // b_N = g^i / h.
+    class ThetaEulerMethod : public TimeIntegrator
+    {
+    public:
+      using TimeIntegrator::TimeIntegrator;
+
+      double
+      damping_coefficient() const override
+      {
+        return h * parameters.theta;
+      }
+
+      double
+      stiffness_coefficient() const override
+      {
+        return h * h * parameters.theta;
+      }
+
+      void
+      free_rhs(const MechanicalOperators &op,
+               const MechanicalState     &s,
+               BlockVector<double>       &rhs) const override
+      {
+        rhs = 0.;
+        add_vmult(rhs, 1., op.mass, s.velocity);
+        add_vmult(rhs, -h * (1. - parameters.theta), op.damping, s.velocity);
+        add_vmult(rhs, -h, op.stiffness, s.displacement);
+        rhs.add(h, op.external_force);
+      }
+
+      void
+      gap_term(const ContactSet      &contacts,
+               const MechanicalState &s,
+               std::vector<double>   &b) const override
+      {
+        contacts.gaps(s.displacement, b);
+        for (double &bc : b)
+          bc /= h;
+      }
+
+      void
+      complete_step(const MechanicalState &old_state,
+                    MechanicalState       &new_state) const override
+      {
+        new_state.displacement = old_state.displacement;
+        new_state.displacement.add(h, new_state.velocity);
+      }
+    };
+
+
+
+    // @sect4{Newmark}
+    // Predictors u~ = u + h v + h^2 (1/2 - beta) a, v~ = v + h (1-gamma) a;
+    // then u^{i+1} = u~ + h^2 beta a^{i+1}, v^{i+1} = v~ + h gamma a^{i+1}.
+    // Eliminating a^{i+1} = (v^{i+1} - v~)/(h gamma) gives the velocity
+    // form with M~ = M + h gamma C + h^2 beta K and the impulse P = h gamma
+    // r^{i+1}. Signorini holds on the displacement, g(u^{i+1}) >= 0, which
+    // is g(u~) + (h beta/gamma)(V_N^{i+1} - V~_N) >= 0, hence
+    // b_N = gamma g(u~) / (h beta) - V~_N.
+    class NewmarkMethod : public TimeIntegrator
+    {
+    public:
+      using TimeIntegrator::TimeIntegrator;
+
+      double
+      damping_coefficient() const override
+      {
+        return h * parameters.newmark_gamma;
+      }
+
+      double
+      stiffness_coefficient() const override
+      {
+        return h * h * parameters.newmark_beta;
+      }
+
+      void
+      free_rhs(const MechanicalOperators &op,
+               const MechanicalState     &s,
+               BlockVector<double>       &rhs) const override
+      {
+        predict(s);
+        rhs = 0.;
+        add_vmult(rhs, 1., op.mass, predicted_velocity);
+        add_vmult(rhs,
+                  h * h * parameters.newmark_beta,
+                  op.stiffness,
+                  predicted_velocity);
+        add_vmult(rhs,
+                  -h * parameters.newmark_gamma,
+                  op.stiffness,
+                  predicted_displacement);
+        rhs.add(h * parameters.newmark_gamma, op.external_force);
+      }
+
+      void
+      gap_term(const ContactSet      &contacts,
+               const MechanicalState &s,
+               std::vector<double>   &b) const override
+      {
+        predict(s);
+        contacts.gaps(predicted_displacement, b);
+        contacts.normal_velocities(predicted_velocity, normal_velocity);
+        const double factor =
+          parameters.newmark_gamma / (h * parameters.newmark_beta);
+        for (unsigned int c = 0; c < b.size(); ++c)
+          b[c] = factor * b[c] - normal_velocity[c];
+      }
+
+      void
+      complete_step(const MechanicalState &old_state,
+                    MechanicalState       &new_state) const override
+      {
+        predict(old_state);
+        new_state.acceleration = new_state.velocity;
+        new_state.acceleration -= predicted_velocity;
+        new_state.acceleration *= 1. / (h * parameters.newmark_gamma);
+        new_state.displacement = predicted_displacement;
+        new_state.displacement.add(h * h * parameters.newmark_beta,
+                                   new_state.acceleration);
+      }
+
+      double
+      force_per_impulse() const override
+      {
+        return 1. / (h * parameters.newmark_gamma);
+      }
+
+      bool
+      needs_initial_acceleration() const override
+      {
+        return true;
+      }
+
+    private:
+      mutable BlockVector<double> predicted_displacement;
+      mutable BlockVector<double> predicted_velocity;
+      mutable std::vector<double> normal_velocity;
+
+      void
+      predict(const MechanicalState &s) const
+      {
+        predicted_displacement = s.displacement;
+        predicted_displacement.add(h,
+                                   s.velocity,
+                                   h * h * (0.5 - parameters.newmark_beta),
+                                   s.acceleration);
+        predicted_velocity = s.velocity;
+        predicted_velocity.add(h * (1. - parameters.newmark_gamma),
+                               s.acceleration);
+      }
+    };
+  } // namespace
+
+
+
+  std::unique_ptr<TimeIntegrator>
+  create_time_integrator(const TimeSteppingParameters &parameters)
+  {
+    switch (parameters.scheme)
+      {
+        case Scheme::theta:
+          return std::make_unique<ThetaMethod>(parameters);
+        case Scheme::theta_euler:
+          return std::make_unique<ThetaEulerMethod>(parameters);
+        case Scheme::modified_theta:
+          return std::make_unique<ModifiedThetaMethod>(parameters);
+        case Scheme::newmark:
+          return std::make_unique<NewmarkMethod>(parameters);
+      }
+    AssertThrow(false, ExcInternalError());
+    return nullptr;
+  }
+} // namespace impactfe
