@@ -1,0 +1,148 @@
+// The condensed contact problem of one time step and its LCP forms:
+// frictionless, 2D Klarbring (size 3 n_c) and faceted Coulomb cone (size
+// (k + 2) n_c). See doc/lcp.md and the spec (schemes.md) for the equations.
+#ifndef impactfe_lcp_contact_problem_h
+#define impactfe_lcp_contact_problem_h
+
+#include <impactfe/lcp/dense_matrix.h>
+#include <impactfe/lcp/lemke.h>
+
+#include <string>
+#include <vector>
+
+namespace impactfe
+{
+  namespace lcp
+  {
+    /**
+     * V = free_velocity + W P in the local frames of the contacts, ordered per
+     * contact as [N, T1, (T2)]. Signorini: w_N = V_N + b_N >= 0, P_N >= 0,
+     * w_N P_N = 0 (P_N >= 0 pushes apart). Coulomb: |P_T| <= mu P_N, and
+     * P_T = -mu P_N V_T/|V_T| when V_T != 0.
+     */
+    struct ContactProblem
+    {
+      /// 1 (normal only), 2 (2D: n, t) or 3 (3D: n, t1, t2).
+      unsigned int n_directions = 1;
+      unsigned int n_contacts   = 0;
+      /// Delassus operator, (n_contacts n_directions)^2.
+      DenseMatrix W;
+      /// Local relative velocities without impulse, same ordering as W.
+      std::vector<double> free_velocity;
+      /// b_N per contact (e.g. g/h): w_N = V_N + b_N.
+      std::vector<double> gap_term;
+      /// Friction coefficient per contact (ignored when n_directions == 1).
+      std::vector<double> mu;
+    };
+
+    /// The LCP form of the contact problem.
+    enum class FrictionForm
+    {
+      /// Normal block only (n_c unknowns); tangential impulses are zero.
+      frictionless,
+      /// 2D only: z = (P_N, lambda1, lambda2), needs W_TT invertible.
+      klarbring,
+      /// Polygonal Coulomb cone with k facets: z = (P_N, beta, sigma).
+      facets,
+      /// frictionless if n_directions == 1 or all mu == 0; klarbring in 2D
+      /// (facets with k = 2 if W_TT is singular); facets in 3D.
+      automatic
+    };
+
+    /// "frictionless", "klarbring", "facets", "automatic".
+    std::string
+    to_string(FrictionForm form);
+
+    /// Options of solve_contact_problem().
+    struct ContactOptions
+    {
+      FrictionForm form = FrictionForm::automatic;
+      /// Facets of the polygonal cone in 3D (>= 3); in 2D k is always 2.
+      unsigned int n_facets = 8;
+      /// W_TT counts as singular if an LU pivot is below this times max|W_TT|.
+      double singularity_tolerance = 1e-10;
+      LemkeOptions lemke;
+    };
+
+    /// An assembled LCP w = M z + q and how to map z back to impulses.
+    struct ContactLCP
+    {
+      DenseMatrix         M;
+      std::vector<double> q;
+      FrictionForm        form     = FrictionForm::frictionless;
+      unsigned int        n_facets = 0;
+      /// W_TT^{-1} (Klarbring form only).
+      DenseMatrix W_TT_inverse;
+      /// Unit tangent directions of the facet form, per facet j the (d-1)
+      /// components of d_j (same for all contacts).
+      std::vector<std::vector<double>> directions;
+      /// Why the form is what it is (e.g. the fallback from Klarbring).
+      std::string message;
+    };
+
+    /// Throws std::invalid_argument if the sizes are inconsistent, data are
+    /// not finite or a friction coefficient is negative.
+    void
+    check_contact_problem(const ContactProblem &problem);
+
+    /// Assemble the LCP in the requested form (automatic resolved as above).
+    ContactLCP
+    assemble_contact_lcp(const ContactProblem &problem, const ContactOptions &options = {});
+
+    /// Local impulses P (ordering of W) from an LCP solution z.
+    std::vector<double>
+    impulses_from_lcp(const ContactProblem &problem, const ContactLCP &lcp, const std::vector<double> &z);
+
+    /// Result of solve_contact_problem().
+    struct ContactSolution
+    {
+      /// Local impulses, ordering of W; empty unless lcp.status == solved.
+      std::vector<double> P;
+      /// The LCP result (z in the variables of the form used).
+      Result       lcp;
+      FrictionForm form     = FrictionForm::frictionless;
+      unsigned int n_facets = 0;
+      std::string  message;
+    };
+
+    /**
+     * Assemble and solve with Lemke's method. With @p guess (in the LCP
+     * variables of the form that will be used, e.g. z_i > 0 of the previous
+     * step's lcp.z) the warm-started solver is used.
+     */
+    ContactSolution
+    solve_contact_problem(const ContactProblem    &problem,
+                          const ContactOptions    &options = {},
+                          const std::vector<bool> *guess   = nullptr);
+
+    /// Signorini and Coulomb checked on (P, V = V_free + W P) directly.
+    struct ContactVerification
+    {
+      /// max over contacts of -P_N, -w_N and |P_N w_N|, relative (see below).
+      double max_signorini_violation = 0.;
+      /// max over contacts of (|P_T| - mu P_N)^+, relative to s_P.
+      double max_cone_violation = 0.;
+      /// max over sliding contacts of |P_T + mu P_N V_T/|V_T||, relative to
+      /// s_P: the deviation from the exact Coulomb law (a faceted cone in
+      /// 3D does not reach zero here).
+      double       max_sliding_violation = 0.;
+      unsigned int n_separated           = 0;
+      unsigned int n_sticking            = 0;
+      unsigned int n_sliding             = 0;
+      bool         ok                    = false;
+    };
+
+    /**
+     * Velocities are measured relative to s_V = ||V_free||+||b_N||+||W|| ||P||,
+     * impulses relative to s_P = max(||P||, (||V_free|| + ||b_N||)/||W||)
+     * (all norms infinity norms). A contact is separated if P_N <= tol ||P||,
+     * sticking if |V_T| <= tol s_V, sliding otherwise. ok if all violations
+     * are <= tol.
+     */
+    ContactVerification
+    verify_contact_solution(const ContactProblem &problem, const std::vector<double> &P,
+                            double tolerance = 1e-8);
+  } // namespace lcp
+} // namespace impactfe
+
+#endif

@@ -1,0 +1,60 @@
+// Dense LU factorisation with partial pivoting, for the LCP module.
+#ifndef impactfe_lcp_lu_h
+#define impactfe_lcp_lu_h
+
+#include <impactfe/lcp/dense_matrix.h>
+
+#include <cstddef>
+#include <vector>
+
+namespace impactfe
+{
+  namespace lcp
+  {
+    /**
+     * LU factorisation with partial (row) pivoting of a square dense matrix,
+     * P A = L U. Used for the refactorisation of Lemke's basis and for
+     * inverting small blocks (W_TT) in the contact LCP assembly.
+     */
+    class LUFactorization
+    {
+    public:
+      /**
+       * Factorise @p A. Returns false (and leaves the object unusable) if a
+       * pivot is at most @p relative_pivot_tolerance times the largest
+       * absolute entry of A, i.e. if A is singular to that tolerance.
+       */
+      bool
+      factorize(const DenseMatrix &A, double relative_pivot_tolerance = 1e-13);
+
+      /// Solve A x = b in place (b becomes x).
+      void
+      solve(std::vector<double> &b) const;
+
+      /// The inverse of A (n solves).
+      DenseMatrix
+      inverse() const;
+
+      /// min |u_kk| / max |a_ij|: a cheap (and rough) indicator of singularity.
+      double
+      min_pivot_ratio() const
+      {
+        return pivot_ratio;
+      }
+
+      std::size_t
+      size() const
+      {
+        return n;
+      }
+
+    private:
+      std::size_t              n = 0;
+      DenseMatrix              lu;
+      std::vector<std::size_t> permutation;
+      double                   pivot_ratio = 0.;
+    };
+  } // namespace lcp
+} // namespace impactfe
+
+#endif

@@ -1,0 +1,180 @@
+// lcp-solve: solve LCP and frictional contact problem files (Siconos numerics
+// text formats, see doc/lcp.md) with impactfe's Lemke solver.
+//
+//   lcp-solve [--solution] [--warm] [--form klarbring|facets|auto] [--facets k] FILE...
+//
+// One line per problem: "file n status pivots relative_error seconds"
+// (relative_error: Verification::relative_error, complementarity, residual
+// and sign conditions in one scale-invariant number)
+// (n is the size of the LCP actually solved; "-" when not solved), then with
+// --solution the solution z (LCP files) or the impulses P (contact files).
+// Exit code: 0 if every problem was solved, 1 if one was not, 2 on a bad
+// command line or an unreadable/malformed file.
+#include <impactfe/lcp/contact_problem.h>
+#include <impactfe/lcp/lemke.h>
+#include <impactfe/lcp/problem_io.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <string>
+#include <vector>
+
+using namespace impactfe::lcp;
+
+namespace
+{
+  void
+  usage(std::ostream &out)
+  {
+    out << "usage: lcp-solve [--solution] [--warm] [--form klarbring|facets|auto] [--facets k] FILE...\n"
+           "  --solution   print the solution (z, or the contact impulses P) after each line\n"
+           "  --warm       warm start from the guess 'z_i > 0 where q_i < 0' (normal rows for\n"
+           "               contact files); the cold solver is the fall-back\n"
+           "  --form F     LCP form for friction-contact files (default auto)\n"
+           "  --facets k   facets of the friction cone in 3D (default 8)\n"
+           "Output per problem: file n status pivots relative_error seconds\n";
+  }
+
+  void
+  print_vector(const char *name, const std::vector<double> &v)
+  {
+    std::printf("%s", name);
+    for (const double x : v)
+      std::printf(" %.17g", x);
+    std::printf("\n");
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  bool                     solution = false, warm = false;
+  ContactOptions           options;
+  std::vector<std::string> files;
+  for (int i = 1; i < argc; ++i)
+    {
+      const std::string a = argv[i];
+      if (a == "--solution")
+        solution = true;
+      else if (a == "--warm")
+        warm = true;
+      else if (a == "--help" || a == "-h")
+        {
+          usage(std::cout);
+          return 0;
+        }
+      else if (a == "--form" && i + 1 < argc)
+        {
+          const std::string f = argv[++i];
+          if (f == "klarbring")
+            options.form = FrictionForm::klarbring;
+          else if (f == "facets")
+            options.form = FrictionForm::facets;
+          else if (f == "auto" || f == "automatic")
+            options.form = FrictionForm::automatic;
+          else
+            {
+              std::cerr << "lcp-solve: error: unknown form '" << f << "' (klarbring, facets or auto)\n";
+              return 2;
+            }
+        }
+      else if (a == "--facets" && i + 1 < argc)
+        {
+          char      *end = nullptr;
+          const long k   = std::strtol(argv[++i], &end, 10);
+          if (*end != '\0' || k < 2 || k > 10000)
+            {
+              std::cerr << "lcp-solve: error: --facets needs an integer >= 2\n";
+              return 2;
+            }
+          options.n_facets = static_cast<unsigned int>(k);
+        }
+      else if (!a.empty() && a[0] == '-')
+        {
+          std::cerr << "lcp-solve: error: unknown option '" << a << "'\n";
+          usage(std::cerr);
+          return 2;
+        }
+      else
+        files.push_back(a);
+    }
+  if (files.empty())
+    {
+      usage(std::cerr);
+      return 2;
+    }
+
+  int exit_code = 0;
+  for (const std::string &file : files)
+    {
+      try
+        {
+          const ProblemFile f = read_problem_file(file);
+          const auto        t0 = std::chrono::steady_clock::now();
+          Result            r;
+          std::size_t       n = 0;
+          std::vector<double> P;
+          if (f.type == ProblemType::lcp)
+            {
+              n = f.lcp.q.size();
+              if (warm)
+                {
+                  std::vector<bool> guess(n);
+                  for (std::size_t i = 0; i < n; ++i)
+                    guess[i] = f.lcp.q[i] < 0.;
+                  r = solve_lemke_warm(f.lcp.M, f.lcp.q, guess, options.lemke);
+                }
+              else
+                r = solve_lemke(f.lcp.M, f.lcp.q, options.lemke);
+            }
+          else
+            {
+              const ContactProblem &p = f.contact;
+              ContactSolution       s;
+              if (warm)
+                {
+                  const ContactLCP  lcp = assemble_contact_lcp(p, options);
+                  std::vector<bool> guess(lcp.q.size(), false);
+                  for (unsigned int c = 0; c < p.n_contacts; ++c)
+                    guess[c] = lcp.q[c] < 0.;
+                  s = solve_contact_problem(p, options, &guess);
+                }
+              else
+                s = solve_contact_problem(p, options);
+              n = s.lcp.z.size();
+              if (n == 0) // not solved: report the size of the assembled LCP
+                n = assemble_contact_lcp(p, options).q.size();
+              r = s.lcp;
+              P = s.P;
+            }
+          const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          if (r.status == Status::solved)
+            std::printf("%s %zu %s %u %.3e %.3e\n", file.c_str(), n, to_string(r.status).c_str(), r.pivots,
+                        r.verification.relative_error, seconds);
+          else
+            {
+              std::printf("%s %zu %s %u - %.3e\n", file.c_str(), n, to_string(r.status).c_str(), r.pivots,
+                          seconds);
+              std::fprintf(stderr, "lcp-solve: %s: %s\n", file.c_str(), r.message.c_str());
+              exit_code = std::max(exit_code, 1);
+            }
+          if (solution && r.status == Status::solved)
+            {
+              if (f.type == ProblemType::lcp)
+                print_vector("z", r.z);
+              else
+                print_vector("P", P);
+            }
+        }
+      catch (const std::exception &e)
+        {
+          std::fflush(stdout);
+          std::cerr << "lcp-solve: error: " << e.what() << std::endl;
+          exit_code = 2;
+        }
+    }
+  return exit_code;
+}

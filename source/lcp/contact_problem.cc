@@ -1,0 +1,417 @@
+#include <impactfe/lcp/contact_problem.h>
+#include <impactfe/lcp/lu.h>
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace impactfe
+{
+  namespace lcp
+  {
+    std::string
+    to_string(const FrictionForm form)
+    {
+      switch (form)
+        {
+          case FrictionForm::frictionless:
+            return "frictionless";
+          case FrictionForm::klarbring:
+            return "klarbring";
+          case FrictionForm::facets:
+            return "facets";
+          case FrictionForm::automatic:
+            return "automatic";
+        }
+      return "automatic";
+    }
+
+
+
+    void
+    check_contact_problem(const ContactProblem &p)
+    {
+      if (p.n_directions < 1 || p.n_directions > 3)
+        throw std::invalid_argument("contact problem: n_directions must be 1, 2 or 3");
+      const std::size_t m = static_cast<std::size_t>(p.n_contacts) * p.n_directions;
+      if (p.W.n_rows() != m || p.W.n_cols() != m)
+        throw std::invalid_argument("contact problem: W must be (n_contacts n_directions)^2");
+      if (p.free_velocity.size() != m)
+        throw std::invalid_argument("contact problem: free_velocity has the wrong size");
+      if (p.gap_term.size() != p.n_contacts)
+        throw std::invalid_argument("contact problem: gap_term must have n_contacts entries");
+      if (p.n_directions > 1 && p.mu.size() != p.n_contacts)
+        throw std::invalid_argument("contact problem: mu must have n_contacts entries");
+      for (const double v : p.W.data())
+        if (!std::isfinite(v))
+          throw std::invalid_argument("contact problem: W has a non-finite entry");
+      for (const auto *vec : {&p.free_velocity, &p.gap_term, &p.mu})
+        for (const double v : *vec)
+          if (!std::isfinite(v))
+            throw std::invalid_argument("contact problem: non-finite data");
+      for (const double v : p.mu)
+        if (v < 0.)
+          throw std::invalid_argument("contact problem: negative friction coefficient");
+    }
+
+
+
+    namespace
+    {
+      bool
+      all_zero(const std::vector<double> &v)
+      {
+        for (const double x : v)
+          if (x != 0.)
+            return false;
+        return true;
+      }
+
+      ContactLCP
+      assemble_frictionless(const ContactProblem &p)
+      {
+        const unsigned int nc = p.n_contacts, dim = p.n_directions;
+        ContactLCP         lcp;
+        lcp.form = FrictionForm::frictionless;
+        lcp.M.reinit(nc, nc);
+        lcp.q.resize(nc);
+        for (unsigned int a = 0; a < nc; ++a)
+          {
+            for (unsigned int b = 0; b < nc; ++b)
+              lcp.M(a, b) = p.W(a * dim, b * dim);
+            lcp.q[a] = p.free_velocity[a * dim] + p.gap_term[a];
+          }
+        return lcp;
+      }
+
+      std::vector<std::vector<double>>
+      facet_directions(const unsigned int dim, const unsigned int k)
+      {
+        std::vector<std::vector<double>> D;
+        if (dim == 2)
+          return {{1.}, {-1.}};
+        const double pi = std::acos(-1.);
+        for (unsigned int j = 0; j < k; ++j)
+          {
+            const double theta = 2. * pi * j / k;
+            D.push_back({std::cos(theta), std::sin(theta)});
+          }
+        return D;
+      }
+
+      ContactLCP
+      assemble_facets(const ContactProblem &p, const unsigned int k_requested)
+      {
+        const unsigned int nc = p.n_contacts, dim = p.n_directions;
+        const unsigned int k  = (dim == 2 ? 2 : k_requested);
+        if (dim == 3 && k < 3)
+          throw std::invalid_argument("facet form: need at least 3 facets in 3D");
+        ContactLCP lcp;
+        lcp.form       = FrictionForm::facets;
+        lcp.n_facets   = k;
+        lcp.directions = facet_directions(dim, k);
+        const auto        &D = lcp.directions;
+        const unsigned int n = (k + 2) * nc;
+        lcp.M.reinit(n, n);
+        lcp.q.assign(n, 0.);
+        auto N     = [&](unsigned int c) { return c * dim; };
+        auto T     = [&](unsigned int c, unsigned int a) { return c * dim + 1 + a; };
+        auto beta  = [&](unsigned int c, unsigned int j) { return nc + c * k + j; };
+        auto sigma = [&](unsigned int c) { return nc + nc * k + c; };
+
+        for (unsigned int c = 0; c < nc; ++c)
+          {
+            lcp.q[c] = p.free_velocity[N(c)] + p.gap_term[c];
+            for (unsigned int i = 0; i < k; ++i)
+              {
+                double s = 0.;
+                for (unsigned int a = 0; a + 1 < dim; ++a)
+                  s += D[i][a] * p.free_velocity[T(c, a)];
+                lcp.q[beta(c, i)] = s;
+              }
+            for (unsigned int e = 0; e < nc; ++e)
+              {
+                lcp.M(c, e) = p.W(N(c), N(e));
+                for (unsigned int j = 0; j < k; ++j)
+                  {
+                    double s1 = 0., s2 = 0.;
+                    for (unsigned int a = 0; a + 1 < dim; ++a)
+                      {
+                        s1 += p.W(N(c), T(e, a)) * D[j][a];
+                        s2 += D[j][a] * p.W(T(e, a), N(c));
+                      }
+                    lcp.M(c, beta(e, j)) = s1;
+                    lcp.M(beta(e, j), c) = s2;
+                  }
+                for (unsigned int i = 0; i < k; ++i)
+                  for (unsigned int j = 0; j < k; ++j)
+                    {
+                      double s = 0.;
+                      for (unsigned int a = 0; a + 1 < dim; ++a)
+                        for (unsigned int b = 0; b + 1 < dim; ++b)
+                          s += D[i][a] * p.W(T(c, a), T(e, b)) * D[j][b];
+                      lcp.M(beta(c, i), beta(e, j)) = s;
+                    }
+              }
+            for (unsigned int i = 0; i < k; ++i)
+              {
+                lcp.M(beta(c, i), sigma(c)) = 1.;
+                lcp.M(sigma(c), beta(c, i)) = -1.;
+              }
+            lcp.M(sigma(c), c) = p.mu[c];
+          }
+        return lcp;
+      }
+
+      /// Returns false if W_TT is singular.
+      bool
+      assemble_klarbring(const ContactProblem &p, const double tol, ContactLCP &lcp)
+      {
+        const unsigned int nc = p.n_contacts;
+        DenseMatrix        Wtt(nc, nc);
+        for (unsigned int a = 0; a < nc; ++a)
+          for (unsigned int b = 0; b < nc; ++b)
+            Wtt(a, b) = p.W(2 * a + 1, 2 * b + 1);
+        LUFactorization lu;
+        if (!lu.factorize(Wtt, tol))
+          return false;
+        const DenseMatrix A = lu.inverse();
+
+        // A W_TN, W_NT A, A V_T
+        DenseMatrix         AWtn(nc, nc), WntA(nc, nc);
+        std::vector<double> AVt(nc, 0.);
+        for (unsigned int a = 0; a < nc; ++a)
+          for (unsigned int b = 0; b < nc; ++b)
+            {
+              double s1 = 0., s2 = 0.;
+              for (unsigned int c = 0; c < nc; ++c)
+                {
+                  s1 += A(a, c) * p.W(2 * c + 1, 2 * b);
+                  s2 += p.W(2 * a, 2 * c + 1) * A(c, b);
+                }
+              AWtn(a, b) = s1;
+              WntA(a, b) = s2;
+              AVt[a] += A(a, b) * p.free_velocity[2 * b + 1];
+            }
+
+        lcp.form         = FrictionForm::klarbring;
+        lcp.n_facets     = 0;
+        lcp.W_TT_inverse = A;
+        lcp.M.reinit(3 * nc, 3 * nc);
+        lcp.q.assign(3 * nc, 0.);
+        for (unsigned int a = 0; a < nc; ++a)
+          {
+            double wntavt = 0.;
+            for (unsigned int b = 0; b < nc; ++b)
+              {
+                double wntawtn = 0.;
+                for (unsigned int c = 0; c < nc; ++c)
+                  wntawtn += p.W(2 * a, 2 * c + 1) * AWtn(c, b);
+                const double mu_ab = (a == b ? p.mu[a] : 0.);
+                lcp.M(a, b)               = p.W(2 * a, 2 * b) - wntawtn;
+                lcp.M(a, nc + b)          = WntA(a, b);
+                lcp.M(a, 2 * nc + b)      = -WntA(a, b);
+                lcp.M(nc + a, b)          = mu_ab - AWtn(a, b);
+                lcp.M(nc + a, nc + b)     = A(a, b);
+                lcp.M(nc + a, 2 * nc + b) = -A(a, b);
+                lcp.M(2 * nc + a, b)      = mu_ab + AWtn(a, b);
+                lcp.M(2 * nc + a, nc + b) = -A(a, b);
+                lcp.M(2 * nc + a, 2 * nc + b) = A(a, b);
+                wntavt += p.W(2 * a, 2 * b + 1) * AVt[b];
+              }
+            lcp.q[a]          = p.free_velocity[2 * a] - wntavt + p.gap_term[a];
+            lcp.q[nc + a]     = -AVt[a];
+            lcp.q[2 * nc + a] = AVt[a];
+          }
+        return true;
+      }
+    } // namespace
+
+
+
+    ContactLCP
+    assemble_contact_lcp(const ContactProblem &p, const ContactOptions &options)
+    {
+      check_contact_problem(p);
+      FrictionForm form = options.form;
+      std::string  why;
+      if (form == FrictionForm::automatic)
+        {
+          if (p.n_directions == 1 || all_zero(p.mu))
+            {
+              form = FrictionForm::frictionless;
+              why  = (p.n_directions == 1 ? "normal directions only" : "all friction coefficients are 0");
+            }
+          else if (p.n_directions == 2)
+            form = FrictionForm::klarbring;
+          else
+            form = FrictionForm::facets;
+        }
+      if (p.n_directions == 1 && form != FrictionForm::frictionless)
+        throw std::invalid_argument("contact problem with normal directions only: use the frictionless form");
+      if (form == FrictionForm::klarbring && p.n_directions != 2)
+        throw std::invalid_argument("the Klarbring form is for 2D contact (n_directions == 2)");
+
+      ContactLCP lcp;
+      if (form == FrictionForm::frictionless)
+        {
+          lcp         = assemble_frictionless(p);
+          lcp.message = "frictionless form" + (why.empty() ? std::string() : " (" + why + ")");
+        }
+      else if (form == FrictionForm::klarbring)
+        {
+          if (assemble_klarbring(p, options.singularity_tolerance, lcp))
+            lcp.message = "Klarbring form";
+          else
+            {
+              lcp = assemble_facets(p, 2);
+              lcp.message =
+                "W_TT is singular (rank-deficient tangential block): facet form with k = 2 instead of Klarbring";
+            }
+        }
+      else
+        {
+          lcp = assemble_facets(p, options.n_facets);
+          std::ostringstream s;
+          s << "facet form, k = " << lcp.n_facets;
+          if (p.n_directions == 2 && options.n_facets != 2)
+            s << " (in 2D the cone has the two facets +t, -t)";
+          lcp.message = s.str();
+        }
+      return lcp;
+    }
+
+
+
+    std::vector<double>
+    impulses_from_lcp(const ContactProblem &p, const ContactLCP &lcp, const std::vector<double> &z)
+    {
+      const unsigned int  nc = p.n_contacts, dim = p.n_directions;
+      std::vector<double> P(static_cast<std::size_t>(nc) * dim, 0.);
+      if (z.size() != lcp.q.size())
+        throw std::invalid_argument("impulses_from_lcp: z has the wrong size");
+      for (unsigned int c = 0; c < nc; ++c)
+        P[c * dim] = z[c];
+      if (lcp.form == FrictionForm::klarbring)
+        {
+          // P_T = A (lambda1 - lambda2 - V_free,T - W_TN P_N)
+          std::vector<double> r(nc);
+          for (unsigned int a = 0; a < nc; ++a)
+            {
+              double s = z[nc + a] - z[2 * nc + a] - p.free_velocity[2 * a + 1];
+              for (unsigned int b = 0; b < nc; ++b)
+                s -= p.W(2 * a + 1, 2 * b) * z[b];
+              r[a] = s;
+            }
+          for (unsigned int a = 0; a < nc; ++a)
+            {
+              double s = 0.;
+              for (unsigned int b = 0; b < nc; ++b)
+                s += lcp.W_TT_inverse(a, b) * r[b];
+              P[2 * a + 1] = s;
+            }
+        }
+      else if (lcp.form == FrictionForm::facets)
+        {
+          const unsigned int k = lcp.n_facets;
+          for (unsigned int c = 0; c < nc; ++c)
+            for (unsigned int j = 0; j < k; ++j)
+              for (unsigned int a = 0; a + 1 < dim; ++a)
+                P[c * dim + 1 + a] += lcp.directions[j][a] * z[nc + c * k + j];
+        }
+      return P;
+    }
+
+
+
+    ContactSolution
+    solve_contact_problem(const ContactProblem &p, const ContactOptions &options, const std::vector<bool> *guess)
+    {
+      const ContactLCP lcp = assemble_contact_lcp(p, options);
+      ContactSolution  s;
+      s.form     = lcp.form;
+      s.n_facets = lcp.n_facets;
+      if (guess != nullptr && guess->size() == lcp.q.size())
+        s.lcp = solve_lemke_warm(lcp.M, lcp.q, *guess, options.lemke);
+      else
+        s.lcp = solve_lemke(lcp.M, lcp.q, options.lemke);
+      std::string warm_note;
+      if (guess != nullptr && guess->size() != lcp.q.size())
+        warm_note = "; guess ignored (wrong size for this form)";
+      if (s.lcp.status == Status::solved)
+        s.P = impulses_from_lcp(p, lcp, s.lcp.z);
+      s.message = lcp.message + "; " + s.lcp.message + warm_note;
+      return s;
+    }
+
+
+
+    ContactVerification
+    verify_contact_solution(const ContactProblem &p, const std::vector<double> &P, const double tol)
+    {
+      check_contact_problem(p);
+      const unsigned int nc = p.n_contacts, dim = p.n_directions;
+      if (P.size() != static_cast<std::size_t>(nc) * dim)
+        throw std::invalid_argument("verify_contact_solution: P has the wrong size");
+      std::vector<double> V;
+      p.W.vmult(V, P);
+      double pmax = 0., vfree = 0., bmax = 0.;
+      for (std::size_t i = 0; i < P.size(); ++i)
+        {
+          V[i] += p.free_velocity[i];
+          pmax  = std::max(pmax, std::abs(P[i]));
+          vfree = std::max(vfree, std::abs(p.free_velocity[i]));
+        }
+      for (const double b : p.gap_term)
+        bmax = std::max(bmax, std::abs(b));
+      const double normW = p.W.linfty_norm();
+      const double sV    = vfree + bmax + normW * pmax;
+      // impulse scale: ||P||, or the impulse that the free velocities call
+      // for when P is (nearly) zero
+      const double sP = std::max(pmax, normW > 0. ? (vfree + bmax) / normW : 0.);
+      auto rel = [](const double v, const double s) { return s > 0. ? v / s : (v > 0. ? v * 1e300 : 0.); };
+
+      ContactVerification r;
+      for (unsigned int c = 0; c < nc; ++c)
+        {
+          const double PN = P[c * dim];
+          const double wN = V[c * dim] + p.gap_term[c];
+          r.max_signorini_violation =
+            std::max({r.max_signorini_violation, rel(-PN, sP), rel(-wN, sV), rel(std::abs(PN * wN), sP * sV)});
+          if (dim == 1)
+            {
+              if (PN <= tol * sP)
+                ++r.n_separated;
+              else
+                ++r.n_sticking;
+              continue;
+            }
+          double PT2 = 0., VT2 = 0.;
+          for (unsigned int a = 1; a < dim; ++a)
+            {
+              PT2 += P[c * dim + a] * P[c * dim + a];
+              VT2 += V[c * dim + a] * V[c * dim + a];
+            }
+          const double PT = std::sqrt(PT2), VT = std::sqrt(VT2);
+          r.max_cone_violation = std::max(r.max_cone_violation, rel(PT - p.mu[c] * PN, sP));
+          if (PN <= tol * sP)
+            ++r.n_separated;
+          else if (VT <= tol * sV)
+            ++r.n_sticking;
+          else
+            {
+              ++r.n_sliding;
+              double dev2 = 0.;
+              for (unsigned int a = 1; a < dim; ++a)
+                {
+                  const double e = P[c * dim + a] + p.mu[c] * PN * V[c * dim + a] / VT;
+                  dev2 += e * e;
+                }
+              r.max_sliding_violation = std::max(r.max_sliding_violation, rel(std::sqrt(dev2), sP));
+            }
+        }
+      r.ok = r.max_signorini_violation <= tol && r.max_cone_violation <= tol && r.max_sliding_violation <= tol;
+      return r;
+    }
+  } // namespace lcp
+} // namespace impactfe

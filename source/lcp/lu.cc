@@ -1,0 +1,144 @@
+#include <impactfe/lcp/lu.h>
+
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace impactfe
+{
+  namespace lcp
+  {
+    bool
+    LUFactorization::factorize(const DenseMatrix &A, const double relative_pivot_tolerance)
+    {
+      n  = A.n_rows();
+      lu = A;
+      permutation.resize(n);
+      for (std::size_t i = 0; i < n; ++i)
+        permutation[i] = i;
+
+      const double amax = A.max_abs();
+      pivot_ratio       = (n == 0 ? 1. : std::numeric_limits<double>::infinity());
+      if (n == 0)
+        return true;
+      if (!(amax > 0.) || !std::isfinite(amax))
+        {
+          pivot_ratio = 0.;
+          return false;
+        }
+
+      for (std::size_t k = 0; k < n; ++k)
+        {
+          // partial pivoting: the largest entry of column k at or below row k
+          std::size_t p    = k;
+          double      pmax = std::abs(lu(k, k));
+          for (std::size_t i = k + 1; i < n; ++i)
+            if (std::abs(lu(i, k)) > pmax)
+              {
+                pmax = std::abs(lu(i, k));
+                p    = i;
+              }
+          pivot_ratio = std::min(pivot_ratio, pmax / amax);
+          if (!(pmax > relative_pivot_tolerance * amax))
+            return false;
+          if (p != k)
+            {
+              std::swap(permutation[p], permutation[k]);
+              double *rp = lu.row(p);
+              double *rk = lu.row(k);
+              for (std::size_t j = 0; j < n; ++j)
+                std::swap(rp[j], rk[j]);
+            }
+          const double *rk    = lu.row(k);
+          const double  pivot = rk[k];
+          for (std::size_t i = k + 1; i < n; ++i)
+            {
+              double *ri = lu.row(i);
+              if (ri[k] == 0.)
+                continue;
+              const double l = ri[k] / pivot;
+              ri[k]          = l;
+              for (std::size_t j = k + 1; j < n; ++j)
+                ri[j] -= l * rk[j];
+            }
+        }
+      return true;
+    }
+
+
+
+    void
+    LUFactorization::solve(std::vector<double> &b) const
+    {
+      std::vector<double> x(n);
+      for (std::size_t i = 0; i < n; ++i)
+        x[i] = b[permutation[i]];
+      // forward substitution with unit lower triangle
+      for (std::size_t i = 0; i < n; ++i)
+        {
+          const double *ri = lu.row(i);
+          double        s  = x[i];
+          for (std::size_t j = 0; j < i; ++j)
+            s -= ri[j] * x[j];
+          x[i] = s;
+        }
+      // back substitution
+      for (std::size_t ii = n; ii-- > 0;)
+        {
+          const double *ri = lu.row(ii);
+          double        s  = x[ii];
+          for (std::size_t j = ii + 1; j < n; ++j)
+            s -= ri[j] * x[j];
+          x[ii] = s / ri[ii];
+        }
+      b = std::move(x);
+    }
+
+
+
+    DenseMatrix
+    LUFactorization::inverse() const
+    {
+      // Solve for all columns at once, row-oriented for cache efficiency:
+      // X = U^{-1} L^{-1} P.
+      DenseMatrix X(n, n, 0.);
+      for (std::size_t i = 0; i < n; ++i)
+        X(i, 0) = 0.;
+      // P: row i of P I is e_{permutation[i]}^T
+      for (std::size_t i = 0; i < n; ++i)
+        X(i, permutation[i]) = 1.;
+      // forward: row i -= sum_j<i l_ij row j
+      for (std::size_t i = 0; i < n; ++i)
+        {
+          const double *ri = lu.row(i);
+          double       *xi = X.row(i);
+          for (std::size_t j = 0; j < i; ++j)
+            if (ri[j] != 0.)
+              {
+                const double  l  = ri[j];
+                const double *xj = X.row(j);
+                for (std::size_t c = 0; c < n; ++c)
+                  xi[c] -= l * xj[c];
+              }
+        }
+      // backward
+      for (std::size_t ii = n; ii-- > 0;)
+        {
+          const double *ri = lu.row(ii);
+          double       *xi = X.row(ii);
+          for (std::size_t j = ii + 1; j < n; ++j)
+            if (ri[j] != 0.)
+              {
+                const double  u  = ri[j];
+                const double *xj = X.row(j);
+                for (std::size_t c = 0; c < n; ++c)
+                  xi[c] -= u * xj[c];
+              }
+          const double inv = 1. / ri[ii];
+          for (std::size_t c = 0; c < n; ++c)
+            xi[c] *= inv;
+        }
+      return X;
+    }
+  } // namespace lcp
+} // namespace impactfe
