@@ -140,6 +140,47 @@ namespace TwoBars1D
 
 
 
+  // @sect3{Acceptance bounds}
+  //
+  // Optional bounds on the errors and the energy ratio: the program says
+  // whether each holds and exits with a non-zero code if one does not. The
+  // tests use them; a user can use them for regression runs.
+  struct VerificationParameters
+  {
+    double max_err_v = -1., max_err_f = -1.;
+    double min_energy_ratio = -1., max_energy_ratio = -1.;
+
+    static void
+    declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Verification");
+      prm.declare_entry("Maximum err_v", "-1", Patterns::Double(),
+                        "Fail the run if err_v exceeds this [-]. -1: no check.");
+      prm.declare_entry("Maximum err_f", "-1", Patterns::Double(),
+                        "Fail the run if err_f exceeds this [-]. -1: no check.");
+      prm.declare_entry("Minimum energy ratio", "-1", Patterns::Double(),
+                        "Fail the run if the final/initial energy is below "
+                        "this [-]. -1: no check.");
+      prm.declare_entry("Maximum energy ratio", "-1", Patterns::Double(),
+                        "Fail the run if the final/initial energy exceeds "
+                        "this [-]. -1: no check.");
+      prm.leave_subsection();
+    }
+
+    void
+    parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Verification");
+      max_err_v        = prm.get_double("Maximum err_v");
+      max_err_f        = prm.get_double("Maximum err_f");
+      min_energy_ratio = prm.get_double("Minimum energy ratio");
+      max_energy_ratio = prm.get_double("Maximum energy ratio");
+      prm.leave_subsection();
+    }
+  };
+
+
+
   // @sect3{The exact solution}
   //
   // Piecewise constant in time at the contact nodes; used for the errors,
@@ -196,7 +237,9 @@ namespace TwoBars1D
     TimeSteppingParameters   time_stepping;
     ContactSolverParameters  solver_parameters;
     OutputParameters         output;
+    VerificationParameters   verification;
     std::string              parameter_file_name;
+    bool                     verification_failed = false;
 
     std::unique_ptr<ElasticBody<1>>     bar_1, bar_2;
     std::unique_ptr<MultibodySystem<1>> system;
@@ -234,6 +277,7 @@ namespace TwoBars1D
     TimeSteppingParameters::declare_parameters(prm);
     ContactSolverParameters::declare_parameters(prm);
     OutputParameters::declare_parameters(prm, "results/two_bars_1d");
+    VerificationParameters::declare_parameters(prm);
 
     AssertThrow(std::filesystem::exists(parameter_file),
                 ExcMessage("The parameter file '" + parameter_file +
@@ -247,6 +291,7 @@ namespace TwoBars1D
     time_stepping.parse_parameters(prm);
     solver_parameters.parse_parameters(prm);
     output.parse_parameters(prm);
+    verification.parse_parameters(prm);
   }
 
 
@@ -408,6 +453,23 @@ namespace TwoBars1D
     std::cout << "  err_v = " << err_v << ", err_f = " << err_f
               << ", energy_ratio = " << energy_ratio << std::endl;
 
+    const auto check = [this](const std::string &what,
+                              const double       value,
+                              const std::string &relation,
+                              const double       bound) {
+      if (bound < 0.)
+        return;
+      const bool ok = relation == "<=" ? value <= bound : value >= bound;
+      std::cout << "  Check " << what << " " << relation << " "
+                << std::setprecision(12) << bound << std::setprecision(6)
+                << ": " << (ok ? "OK" : "FAILED") << std::endl;
+      verification_failed = verification_failed || !ok;
+    };
+    check("err_v", err_v, "<=", verification.max_err_v);
+    check("err_f", err_f, "<=", verification.max_err_f);
+    check("energy_ratio", energy_ratio, ">=", verification.min_energy_ratio);
+    check("energy_ratio", energy_ratio, "<=", verification.max_energy_ratio);
+
     JsonObject lcp;
     lcp.add("total_pivots", double(system->total_pivots()))
       .add("largest_lcp", double(system->largest_lcp()))
@@ -498,6 +560,9 @@ namespace TwoBars1D
     loop_cpu_time = loop_timer.cpu_time();
     history.reset();
     report_results();
+    AssertThrow(!verification_failed,
+                ExcMessage("Verification: at least one bound of subsection "
+                           "'Verification' does not hold (see above)."));
   }
 } // namespace TwoBars1D
 

@@ -1,6 +1,7 @@
 #include <deal.II/base/exceptions.h>
 
 #include <impactfe/dynamics/multibody_system.h>
+#include <impactfe/lcp/problem_io.h>
 
 #include <algorithm>
 #include <cmath>
@@ -202,26 +203,35 @@ namespace impactfe
 
 
   // @sect3{The LCP of one step}
-  // Frictionless: w_N = W_NN P_N + (V_free,N + b_N), the n_c x n_c normal
-  // block on the candidates that can touch.
+  // The condensed contact problem on the candidates that can touch: their
+  // block of W, their free local velocities and gap terms, and mu. The LCP
+  // module assembles the form the scene needs (the n_c x n_c normal block
+  // when frictionless, Klarbring's 3 n_c form in 2D, the facet form in 3D).
   template <int dim>
   void
-  MultibodySystem<dim>::build_lcp(lcp::DenseMatrix    &M,
-                                  std::vector<double> &q) const
+  MultibodySystem<dim>::build_contact_problem(lcp::ContactProblem &problem) const
   {
     const unsigned int nd = contact_set.n_directions();
     const unsigned int n  = lcp_candidates.size();
-    AssertThrow(nd == 1,
-                ExcMessage("Frictional contact is not available in this "
-                           "build yet."));
-    M.reinit(n, n);
-    q.resize(n);
+    problem.n_directions  = nd;
+    problem.n_contacts    = n;
+    problem.W.reinit(n * nd, n * nd);
+    problem.free_velocity.resize(n * nd);
+    problem.gap_term.resize(n);
+    problem.mu.resize(n);
     for (unsigned int a = 0; a < n; ++a)
       {
         const unsigned int ca = lcp_candidates[a];
-        q[a] = local_free_velocity[ca * nd] + gap_terms[ca];
-        for (unsigned int b = 0; b < n; ++b)
-          M(a, b) = delassus(ca * nd, lcp_candidates[b] * nd);
+        problem.gap_term[a]   = gap_terms[ca];
+        problem.mu[a]         = contact_set.candidate(ca).friction_coefficient;
+        for (unsigned int k = 0; k < nd; ++k)
+          {
+            problem.free_velocity[a * nd + k] = local_free_velocity[ca * nd + k];
+            for (unsigned int b = 0; b < n; ++b)
+              for (unsigned int l = 0; l < nd; ++l)
+                problem.W(a * nd + k, b * nd + l) =
+                  delassus(ca * nd + k, lcp_candidates[b] * nd + l);
+          }
       }
   }
 
@@ -231,22 +241,24 @@ namespace impactfe
   lcp::Result
   MultibodySystem<dim>::solve_contact_lcp()
   {
-    lcp::DenseMatrix    M;
-    std::vector<double> q;
-    build_lcp(M, q);
-    std::vector<bool> guess(lcp_candidates.size());
-    for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
-      guess[a] = active[lcp_candidates[a]];
-
-    const lcp::Result result =
-      solver_parameters.warm_start ? lcp::solve_lemke_warm(M, q, guess) :
-                                     lcp::solve_lemke(M, q);
+    build_contact_problem(problem);
     const unsigned int nd = contact_set.n_directions();
+    // Warm start from the previous active set (its LCP variables are the
+    // normal impulses when frictionless; frictional LCPs start cold).
+    std::vector<bool> guess;
+    if (nd == 1 && solver_parameters.warm_start)
+      for (const unsigned int c : lcp_candidates)
+        guess.push_back(active[c]);
+    const lcp::ContactSolution solution =
+      lcp::solve_contact_problem(problem, {}, guess.empty() ? nullptr : &guess);
+    last_lcp_size = solution.lcp.z.empty() ? lcp_candidates.size() * nd :
+                                             solution.lcp.z.size();
     std::fill(local_impulses.begin(), local_impulses.end(), 0.);
-    if (result.status == lcp::Status::solved)
+    if (solution.lcp.status == lcp::Status::solved)
       for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
-        local_impulses[lcp_candidates[a] * nd] = result.z[a];
-    return result;
+        for (unsigned int k = 0; k < nd; ++k)
+          local_impulses[lcp_candidates[a] * nd + k] = solution.P[a * nd + k];
+    return solution.lcp;
   }
 
 
@@ -255,19 +267,9 @@ namespace impactfe
   void
   MultibodySystem<dim>::dump_lcp(const std::string &file_name) const
   {
-    lcp::DenseMatrix    M;
-    std::vector<double> q;
-    build_lcp(M, q);
-    std::ofstream out(file_name);
-    out << std::setprecision(17);
-    // Siconos numerics' dense LCP text format: size, then M (storage 0 =
-    // dense, sizes, entries column by column), then q.
-    out << M.n_rows() << "\n0\n" << M.n_rows() << " " << M.n_cols() << "\n";
-    for (unsigned int j = 0; j < M.n_cols(); ++j)
-      for (unsigned int i = 0; i < M.n_rows(); ++i)
-        out << M(i, j) << (i + 1 == M.n_rows() ? "\n" : " ");
-    for (unsigned int i = 0; i < q.size(); ++i)
-      out << q[i] << (i + 1 == q.size() ? "\n" : " ");
+    // The frictional-contact text format of Siconos numerics: W, q with the
+    // gap term folded into the normal rows, mu (see doc/lcp.md).
+    lcp::write_friction_contact_file(file_name, problem);
   }
 
 
@@ -319,7 +321,7 @@ namespace impactfe
           break;
 
         const lcp::Result result = solve_contact_lcp();
-        report.lcp_size   = lcp_candidates.size() * (nd == 1 ? 1 : 3);
+        report.lcp_size   = last_lcp_size;
         report.lcp_pivots += result.pivots;
         if (result.status != lcp::Status::solved)
           {

@@ -10,6 +10,7 @@
 #include <impactfe/contact/contact_parameters.h>
 #include <impactfe/contact/contact_set.h>
 #include <impactfe/lcp/dense_matrix.h>
+#include <impactfe/lcp/contact_problem.h>
 #include <impactfe/lcp/lemke.h>
 #include <impactfe/time_integration/time_integrator.h>
 
@@ -185,6 +186,8 @@ namespace impactfe
     std::vector<double>       local_impulses;
     std::vector<bool>         active;
     std::vector<unsigned int> lcp_candidates;
+    lcp::ContactProblem       problem;
+    unsigned int              last_lcp_size = 0;
 
     unsigned long long pivot_count  = 0;
     unsigned int       lcp_max_size = 0;
@@ -196,9 +199,9 @@ namespace impactfe
     /** Solve the LCP on lcp_candidates; fills local_impulses. */
     lcp::Result
     solve_contact_lcp();
-    /** The LCP of the current candidate set, as solved. */
+    /** The condensed contact problem on the current candidate set. */
     void
-    build_lcp(lcp::DenseMatrix &M, std::vector<double> &q) const;
+    build_contact_problem(lcp::ContactProblem &problem) const;
     void
     dump_lcp(const std::string &file_name) const;
   };

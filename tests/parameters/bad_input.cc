@@ -1,0 +1,81 @@
+// Bad input gets one clear message naming the entry or value, and a
+// non-zero exit: run the two_bars_1d program on broken parameter files and
+// record its exit status and the message it prints.
+
+#include "../tests.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace
+{
+  // The message between "Exception on processing:" and "Aborting!".
+  std::string
+  message_of(const std::string &file)
+  {
+    std::ifstream in(file);
+    std::string   line, message;
+    bool          inside = false;
+    while (std::getline(in, line))
+      {
+        if (line.find("Aborting!") != std::string::npos)
+          break;
+        if (inside && !line.empty())
+          message += "  " + line + "\n";
+        if (line.find("Exception on processing:") != std::string::npos)
+          inside = true;
+      }
+    return message;
+  }
+
+  void
+  run_case(const std::string &name, const std::string &prm_text)
+  {
+    const std::string prm = name + ".prm";
+    if (!prm_text.empty())
+      std::ofstream(prm) << prm_text;
+    const std::string command = std::string(TWO_BARS_1D_EXECUTABLE) + " " +
+                                prm + " > " + name + ".log 2>&1";
+    const int status = std::system(command.c_str());
+    const int code   = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    const std::string message = message_of(name + ".log");
+    dealii::deallog << name << ": exit code " << code << "\n"
+                    << message;
+    impactfe_tests::check(code == 1 && !message.empty(),
+                          name + ": non-zero exit with a message");
+  }
+
+  // A valid, small run with one entry replaced.
+  std::string
+  with(const std::string &subsection, const std::string &entry)
+  {
+    std::ostringstream s;
+    s << "subsection Output\n  set Output directory = results\n"
+      << "  set VTU output = false\n  set Plot = false\nend\n"
+      << "subsection " << subsection << "\n  set " << entry << "\nend\n";
+    return s.str();
+  }
+} // namespace
+
+int
+main()
+{
+  impactfe_tests::initlog();
+  run_case("unknown_scheme", with("Time stepping", "Scheme = runge-kutta"));
+  run_case("theta_zero", with("Time stepping", "Theta = 0"));
+  run_case("theta_above_one", with("Time stepping", "Theta = 1.5"));
+  run_case("theta_not_a_number", with("Time stepping", "Theta = abc"));
+  run_case("negative_time_step", with("Time stepping", "Time step = -1e-6"));
+  run_case("zero_end_time", with("Time stepping", "End time = 0"));
+  run_case("newmark_beta_zero", with("Time stepping", "Newmark beta = 0"));
+  run_case("zero_modulus", with("Material", "Young's modulus = 0"));
+  run_case("negative_density", with("Material", "Density = -7800"));
+  run_case("negative_gap", with("Geometry", "Initial gap = -0.01"));
+  run_case("misspelt_entry", with("Time stepping", "Tme step = 1e-6"));
+  run_case("misspelt_subsection", with("Time steping", "Time step = 1e-6"));
+  run_case("missing_file", "");
+  return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
+}
