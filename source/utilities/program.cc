@@ -2,6 +2,7 @@
 
 #include <impactfe/utilities/program.h>
 
+#include <ctime>
 #include <iostream>
 #include <sstream>
 
@@ -32,6 +33,39 @@ namespace impactfe
               << "----------------------------------------------------"
               << std::endl;
     return 1;
+  }
+
+
+
+  namespace
+  {
+    double
+    process_cpu_seconds()
+    {
+      timespec now;
+      clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+      return now.tv_sec + 1e-9 * now.tv_nsec;
+    }
+  } // namespace
+
+  void
+  CpuStopwatch::start()
+  {
+    started_at = process_cpu_seconds();
+  }
+
+  void
+  CpuStopwatch::stop()
+  {
+    if (started_at >= 0.)
+      accumulated += process_cpu_seconds() - started_at;
+    started_at = -1.;
+  }
+
+  double
+  CpuStopwatch::seconds() const
+  {
+    return accumulated;
   }
 
 

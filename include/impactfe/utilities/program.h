@@ -18,6 +18,27 @@ namespace impactfe
   int
   report_exception(const std::exception &exc);
 
+  /**
+   * Accumulating stopwatch of the process's CPU time, with nanosecond
+   * resolution (CLOCK_PROCESS_CPUTIME_ID): time loops that take
+   * milliseconds are measured, not rounded to zero.
+   */
+  class CpuStopwatch
+  {
+  public:
+    void
+    start();
+    void
+    stop();
+    /** Accumulated CPU seconds over all start/stop intervals. */
+    double
+    seconds() const;
+
+  private:
+    double accumulated = 0.;
+    double started_at  = -1.;
+  };
+
   /** The same for an exception of unknown type. */
   int
   report_unknown_exception();
