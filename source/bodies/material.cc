@@ -11,7 +11,6 @@ namespace impactfe
   MaterialParameters::declare_parameters(ParameterHandler  &prm,
                                          const unsigned int dim)
   {
-    const bool with_poisson     = dim > 1;
     const bool with_plane_model = dim == 2;
     prm.enter_subsection("Material");
     prm.declare_entry("Young's modulus",
@@ -22,11 +21,12 @@ namespace impactfe
                       "1",
                       Patterns::Double(),
                       "Mass density rho [kg/m^3]. Must be > 0.");
-    if (with_poisson)
-      prm.declare_entry("Poisson's ratio",
-                        "0",
-                        Patterns::Double(),
-                        "Poisson's ratio nu [-], in [0, 0.5).");
+    prm.declare_entry("Poisson's ratio",
+                      "0",
+                      Patterns::Double(),
+                      dim == 1 ? "Poisson's ratio nu [-], in [0, 0.5). No "
+                                 "effect in 1D (uniaxial stress)." :
+                                 "Poisson's ratio nu [-], in [0, 0.5).");
     prm.declare_entry(
       "Viscosity",
       "0",
@@ -61,8 +61,7 @@ namespace impactfe
     prm.enter_subsection("Material");
     youngs_modulus = prm.get_double("Young's modulus");
     density        = prm.get_double("Density");
-    if (dim > 1)
-      poissons_ratio = prm.get_double("Poisson's ratio");
+    poissons_ratio = prm.get_double("Poisson's ratio");
     if (dim == 2)
       plane_model = (prm.get("Plane model") == "plane stress") ?
                       PlaneModel::plane_stress :

@@ -37,9 +37,9 @@ namespace impactfe
     PlaneModel plane_model     = PlaneModel::plane_strain;
 
     /**
-     * Declare the entries for a model of dimension @p dim. Poisson's ratio
-     * exists from 2D on and the plane model only in 2D, so that a parameter
-     * file never carries entries that do nothing.
+     * Declare the entries for a model of dimension @p dim. The plane model
+     * exists only in 2D; Poisson's ratio is declared everywhere (in 1D it
+     * has no effect, and its help text says so).
      */
     static void
     declare_parameters(ParameterHandler &prm, const unsigned int dim);
