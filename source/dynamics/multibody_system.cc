@@ -300,8 +300,8 @@ namespace impactfe
     // velocity would close the gap within the step, plus the previous
     // active set. If the impulses push an excluded candidate into
     // penetration, it joins and the LCP is solved again.
-    std::vector<bool> in_lcp(n_candidates, false);
-    double            scale = 0.;
+    in_lcp.assign(n_candidates, false);
+    double scale = 0.;
     for (unsigned int c = 0; c < n_candidates; ++c)
       {
         const double w_free = local_free_velocity[c * nd] + gap_terms[c];

@@ -36,15 +36,7 @@ main()
           for (unsigned int i = 0; i < m; ++i)
             for (unsigned int j = 0; j < m; ++j)
               B(i, j) = rng.uniform(-1., 1.);
-          p.W.reinit(m, m);
-          for (unsigned int i = 0; i < m; ++i)
-            for (unsigned int j = 0; j < m; ++j)
-              {
-                double s = (i == j ? 0.5 : 0.);
-                for (unsigned int k = 0; k < m; ++k)
-                  s += B(i, k) * B(j, k);
-                p.W(i, j) = s;
-              }
+          p.W = lcp_test::gram_plus_shift(B);
           p.free_velocity.resize(m);
           for (auto &v : p.free_velocity)
             v = rng.uniform(-1., 1.);

@@ -189,6 +189,22 @@ namespace lcp_test
         M(i, j) = rows[i][j];
     return M;
   }
+  /// W = B B^T + shift I: symmetric positive definite for any square B.
+  inline DenseMatrix
+  gram_plus_shift(const DenseMatrix &B, const double shift = 0.5)
+  {
+    const std::size_t m = B.n_rows();
+    DenseMatrix       W(m, m);
+    for (std::size_t i = 0; i < m; ++i)
+      for (std::size_t j = 0; j < m; ++j)
+        {
+          double s = (i == j ? shift : 0.);
+          for (std::size_t k = 0; k < B.n_cols(); ++k)
+            s += B(i, k) * B(j, k);
+          W(i, j) = s;
+        }
+    return W;
+  }
 } // namespace lcp_test
 
 #endif

@@ -34,15 +34,7 @@ main()
   ContactProblem p;
   p.n_directions = 2;
   p.n_contacts   = nc;
-  p.W.reinit(m, m);
-  for (unsigned int i = 0; i < m; ++i)
-    for (unsigned int j = 0; j < m; ++j)
-      {
-        double s = (i == j ? 0.5 : 0.);
-        for (unsigned int k = 0; k < m; ++k)
-          s += B(i, k) * B(j, k);
-        p.W(i, j) = s;
-      }
+  p.W = lcp_test::gram_plus_shift(B);
   p.free_velocity.assign(m, 0.);
   p.gap_term.assign(nc, 0.);
   p.mu.assign(nc, 0.3);

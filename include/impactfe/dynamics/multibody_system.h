@@ -185,6 +185,7 @@ namespace impactfe
     std::vector<double>       gap_terms;
     std::vector<double>       local_impulses;
     std::vector<bool>         active;
+    std::vector<bool>         in_lcp;
     std::vector<unsigned int> lcp_candidates;
     lcp::ContactProblem       problem;
     unsigned int              last_lcp_size = 0;
