@@ -2,6 +2,7 @@
 
 #include <impactfe/contact/contact_set.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -123,6 +124,24 @@ namespace impactfe
                                 const Tensor<1, dim>    &plane_normal,
                                 const double             friction_coefficient)
   {
+    return add_node_to_obstacle(bodies,
+                                body_index,
+                                boundary_id,
+                                PlaneObstacle<dim>(plane_point, plane_normal),
+                                friction_coefficient);
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  ContactSet::add_node_to_obstacle(
+    const std::vector<const ElasticBody<dim> *> &bodies,
+    const unsigned int                            body_index,
+    const types::boundary_id                      boundary_id,
+    const RigidObstacle<dim>                     &obstacle,
+    const double                                  friction_coefficient)
+  {
     AssertThrow(body_index < bodies.size(),
                 ExcMessage("Contact: body index out of range."));
     AssertThrow(friction_coefficient >= 0.,
@@ -134,7 +153,6 @@ namespace impactfe
                            "' has no vertex on boundary id " +
                            std::to_string(boundary_id) +
                            ", so the contact boundary is empty."));
-    const Tensor<1, dim> n = plane_normal / plane_normal.norm();
     for (const unsigned int v : vertices)
       {
         ContactCandidate candidate;
@@ -143,12 +161,116 @@ namespace impactfe
         const Point<dim> x = vertex_position(body, v);
         for (unsigned int d = 0; d < dim; ++d)
           candidate.position[d] = x[d];
-        set_frame(candidate, n);
-        candidate.initial_gap          = (x - plane_point) * n;
+        set_frame(candidate, obstacle.normal(x));
+        candidate.initial_gap          = obstacle.signed_distance(x);
         candidate.friction_coefficient = friction_coefficient;
         candidate_list.push_back(candidate);
       }
     return vertices.size();
+  }
+
+
+
+  // @sect3{Node-to-segment}
+  // Each slave node is projected on the master segments; the nearest
+  // segment whose parameter xi lies in [0, 1] (up to a small tolerance,
+  // then clamped) wins. The outward normal of the master segment is taken
+  // away from its cell's centre.
+  template <int dim>
+  unsigned int
+  ContactSet::add_node_to_segment(const std::vector<const ElasticBody<dim> *> &bodies,
+                                  const unsigned int       body_a,
+                                  const types::boundary_id boundary_a,
+                                  const unsigned int       body_b,
+                                  const types::boundary_id boundary_b,
+                                  const double             friction_coefficient)
+  {
+    AssertThrow(dim == 2,
+                ExcMessage("Contact: node-to-segment candidates are "
+                           "implemented in 2D only."));
+    AssertThrow(body_a < bodies.size() && body_b < bodies.size() &&
+                  body_a != body_b,
+                ExcMessage("Contact: node-to-segment needs two distinct bodies."));
+    AssertThrow(friction_coefficient >= 0.,
+                ExcMessage("Contact: the friction coefficient must be >= 0."));
+    const auto &A          = *bodies[body_a];
+    const auto &B          = *bodies[body_b];
+    const auto  vertices_a = boundary_vertices(A, boundary_a);
+    AssertThrow(!vertices_a.empty(),
+                ExcMessage("Contact: body '" + A.name() +
+                           "' has no vertex on boundary id " +
+                           std::to_string(boundary_a) + "."));
+
+    struct Segment
+    {
+      unsigned int   v1, v2;
+      Point<dim>     p1, p2;
+      Tensor<1, dim> normal;
+    };
+    std::vector<Segment> segments;
+    for (const auto &cell : B.dof_handler().active_cell_iterators())
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary() &&
+            cell->face(f)->boundary_id() == boundary_b)
+          {
+            Segment s;
+            s.v1 = cell->face(f)->vertex_index(0);
+            s.v2 = cell->face(f)->vertex_index(1);
+            s.p1 = vertex_position(B, s.v1);
+            s.p2 = vertex_position(B, s.v2);
+            const Tensor<1, dim> t = s.p2 - s.p1;
+            if constexpr (dim == 2)
+              s.normal = Tensor<1, dim>({-t[1], t[0]}) / t.norm();
+            if ((cell->center() - s.p1) * s.normal > 0.)
+              s.normal *= -1.;
+            segments.push_back(s);
+          }
+    AssertThrow(!segments.empty(),
+                ExcMessage("Contact: body '" + B.name() +
+                           "' has no boundary segment with id " +
+                           std::to_string(boundary_b) + "."));
+
+    for (const unsigned int va : vertices_a)
+      {
+        const Point<dim> x       = vertex_position(A, va);
+        const Segment   *best    = nullptr;
+        double           best_xi = 0., best_distance = 0.;
+        for (const Segment &s : segments)
+          {
+            const Tensor<1, dim> t  = s.p2 - s.p1;
+            const double         xi = ((x - s.p1) * t) / t.norm_square();
+            if (xi < -1e-8 || xi > 1. + 1e-8)
+              continue;
+            const double distance = std::abs((x - s.p1) * s.normal);
+            if (best == nullptr || distance < best_distance)
+              {
+                best          = &s;
+                best_xi       = std::clamp(xi, 0., 1.);
+                best_distance = distance;
+              }
+          }
+        AssertThrow(best != nullptr,
+                    ExcMessage("Contact: the node of body '" + A.name() +
+                               "' at boundary id " + std::to_string(boundary_a) +
+                               " projects on no segment of body '" + B.name() +
+                               "' (boundary id " + std::to_string(boundary_b) +
+                               ")."));
+        ContactCandidate candidate;
+        candidate.body_a    = body_a;
+        candidate.vertex_a  = va;
+        candidate.body_b    = body_b;
+        candidate.vertex_b  = best->v1;
+        candidate.vertex_b2 = best->v2;
+        candidate.weight_b2 = best_xi;
+        for (unsigned int d = 0; d < dim; ++d)
+          candidate.position[d] = x[d];
+        set_frame(candidate, best->normal);
+        const Point<dim> projection = best->p1 + best_xi * (best->p2 - best->p1);
+        candidate.initial_gap          = (x - projection) * best->normal;
+        candidate.friction_coefficient = friction_coefficient;
+        candidate_list.push_back(candidate);
+      }
+    return vertices_a.size();
   }
 
 
@@ -227,7 +349,8 @@ namespace impactfe
 
   // @sect3{The H operator}
   // Column (c, k) of H holds +e_k on the DoFs of node A and -e_k on those of
-  // node B, e_k being direction k of the candidate's frame.
+  // node B (split as -(1 - xi) e_k, -xi e_k over a master segment's two
+  // nodes), e_k being direction k of the candidate's frame.
   template <int dim>
   void
   ContactSet::build_operator(const std::vector<const ElasticBody<dim> *> &bodies)
@@ -249,10 +372,18 @@ namespace impactfe
                   continue;
                 column.push_back(
                   {cand.body_a, bodies[cand.body_a]->vertex_dof(cand.vertex_a, d), e});
-                if (!cand.against_rigid_obstacle())
+                if (cand.against_rigid_obstacle())
+                  continue;
+                const double w2 = cand.weight_b2;
+                if (w2 < 1.)
                   column.push_back({cand.body_b,
                                     bodies[cand.body_b]->vertex_dof(cand.vertex_b, d),
-                                    -e});
+                                    -(1. - w2) * e});
+                if (w2 > 0.)
+                  column.push_back(
+                    {cand.body_b,
+                     bodies[cand.body_b]->vertex_dof(cand.vertex_b2, d),
+                     -w2 * e});
               }
           }
       }
@@ -321,6 +452,19 @@ namespace impactfe
     const types::boundary_id,                                                  \
     const Point<dim> &,                                                        \
     const Tensor<1, dim> &,                                                    \
+    const double);                                                             \
+  template unsigned int ContactSet::add_node_to_obstacle<dim>(                 \
+    const std::vector<const ElasticBody<dim> *> &,                             \
+    const unsigned int,                                                        \
+    const types::boundary_id,                                                  \
+    const RigidObstacle<dim> &,                                                \
+    const double);                                                             \
+  template unsigned int ContactSet::add_node_to_segment<dim>(                  \
+    const std::vector<const ElasticBody<dim> *> &,                             \
+    const unsigned int,                                                        \
+    const types::boundary_id,                                                  \
+    const unsigned int,                                                        \
+    const types::boundary_id,                                                  \
     const double);                                                             \
   template unsigned int ContactSet::add_node_to_node<dim>(                     \
     const std::vector<const ElasticBody<dim> *> &,                             \

@@ -14,9 +14,11 @@ namespace impactfe
   template <int dim>
   MultibodySystem<dim>::MultibodySystem(
     const TimeSteppingParameters  &time_stepping,
-    const ContactSolverParameters &solver_parameters)
+    const ContactSolverParameters &solver_parameters,
+    const unsigned int             contact_directions)
     : time_stepping(time_stepping)
     , solver_parameters(solver_parameters)
+    , contact_set(contact_directions)
     , scheme(create_time_integrator(time_stepping))
   {}
 

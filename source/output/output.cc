@@ -7,6 +7,7 @@
 
 #include <impactfe/output/output.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -47,6 +48,12 @@ namespace impactfe
                       "Print CPU times and LCP pivot counts on the screen (they "
                       "are always in summary.json). Tests set this to false so "
                       "that the screen output is reproducible.");
+    prm.declare_entry("Shape snapshot times",
+                      "",
+                      Patterns::Anything(),
+                      "Comma-separated times at which the deformed mesh of "
+                      "each body is written to shapes.csv for figures (2D) "
+                      "[s]. Empty: none.");
     prm.leave_subsection();
   }
 
@@ -61,6 +68,8 @@ namespace impactfe
     output_interval = prm.get_integer("Output interval");
     plot            = prm.get_bool("Plot");
     print_performance = prm.get_bool("Print performance data");
+    shape_times =
+      parse_time_list(prm.get("Shape snapshot times"), "Shape snapshot times");
     prm.leave_subsection();
     AssertThrow(!directory.empty(),
                 ExcMessage("Output: 'Output directory' must not be empty."));
@@ -276,6 +285,93 @@ namespace impactfe
 
 
 
+  template <int dim>
+  ShapeWriter<dim>::ShapeWriter(const std::string         &file_name,
+                                const std::vector<double> &times)
+    : out(file_name)
+    , times(times)
+  {
+    AssertThrow(out, ExcMessage("Output: cannot write " + file_name));
+    AssertThrow(std::is_sorted(times.begin(), times.end()),
+                ExcMessage("Output: the snapshot times must be increasing."));
+    out << "time,body,x0,y0,x1,y1\n" << std::setprecision(10);
+  }
+
+
+
+  template <int dim>
+  void
+  ShapeWriter<dim>::write_if_due(const MultibodySystem<dim> &system,
+                                 const double                time_step)
+  {
+    if (dim != 2)
+      return;
+    const double t = system.state().time;
+    bool         due = false;
+    while (next < times.size() && t >= times[next] - 0.5 * time_step)
+      {
+        due = true;
+        ++next;
+      }
+    if (!due)
+      return;
+    for (unsigned int b = 0; b < system.bodies().size(); ++b)
+      {
+        const ElasticBody<dim> &body = *system.bodies()[b];
+        const Vector<double>   &u    = system.state().displacement.block(b);
+        const auto deformed = [&](const unsigned int vertex) {
+          Point<dim> x = body.dof_handler().get_triangulation().get_vertices()[vertex];
+          for (unsigned int d = 0; d < dim; ++d)
+            x[d] += body.nodal_value(u, vertex, d);
+          return x;
+        };
+        // Each edge once: boundary faces, and interior faces seen from the
+        // cell with the smaller index.
+        for (const auto &cell : body.dof_handler().active_cell_iterators())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary() ||
+                cell->active_cell_index() <
+                  cell->neighbor(f)->active_cell_index())
+              {
+                const Point<dim> x0 = deformed(cell->face(f)->vertex_index(0));
+                const Point<dim> x1 = deformed(cell->face(f)->vertex_index(1));
+                out << t << "," << b << "," << x0[0] << "," << x0[1] << ","
+                    << x1[0] << "," << x1[1] << "\n";
+              }
+      }
+    out.flush();
+  }
+
+
+
+  std::vector<double>
+  parse_time_list(const std::string &text, const std::string &entry_name)
+  {
+    std::vector<double> times;
+    for (const std::string &item : Utilities::split_string_list(text))
+      {
+        double value = 0.;
+        try
+          {
+            value = Utilities::string_to_double(item);
+          }
+        catch (...)
+          {
+            AssertThrow(false,
+                        ExcMessage("'" + entry_name + "': '" + item +
+                                   "' is not a number."));
+          }
+        AssertThrow(value >= 0. && std::isfinite(value),
+                    ExcMessage("'" + entry_name + "': times must be >= 0, got " +
+                               item + "."));
+        times.push_back(value);
+      }
+    std::sort(times.begin(), times.end());
+    return times;
+  }
+
+
+
   std::string
   plot_history(const std::string              &history,
                const std::string              &png,
@@ -310,6 +406,9 @@ namespace impactfe
 
 
 
+  template class ShapeWriter<1>;
+  template class ShapeWriter<2>;
+  template class ShapeWriter<3>;
   template class SolutionWriter<1>;
   template class SolutionWriter<2>;
   template class SolutionWriter<3>;

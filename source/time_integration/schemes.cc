@@ -141,6 +141,12 @@ namespace impactfe
     return 1. / h;
   }
 
+  double
+  TimeIntegrator::contact_force_weight() const
+  {
+    return 1.;
+  }
+
   bool
   TimeIntegrator::needs_initial_acceleration() const
   {
@@ -397,6 +403,12 @@ namespace impactfe
       force_per_impulse() const override
       {
         return 1. / (h * parameters.newmark_gamma);
+      }
+
+      double
+      contact_force_weight() const override
+      {
+        return parameters.newmark_gamma;
       }
 
       bool

@@ -8,6 +8,7 @@
 #include <deal.II/lac/block_vector.h>
 
 #include <impactfe/bodies/elastic_body.h>
+#include <impactfe/contact/rigid_obstacle.h>
 
 #include <array>
 #include <string>
@@ -18,8 +19,10 @@ namespace impactfe
   using namespace dealii;
 
   /**
-   * One contact candidate: a node of a body (side A) against either a node
-   * of another body (side B) or a rigid obstacle. The local frame is
+   * One contact candidate: a node of a body (side A) against a node of
+   * another body (node-to-node), a point of a boundary segment of another
+   * body (node-to-segment: two nodes of side B with linear interpolation
+   * weights), or a rigid obstacle. The local frame is
    * (n, t1, t2) with n pointing from side B towards side A, so that
    *   g = (x_A - x_B) . n >= 0 when open,
    *   V_N = (v_A - v_B) . n, and the impulse P_N n acts on A, -P_N n on B.
@@ -31,6 +34,10 @@ namespace impactfe
     /// numbers::invalid_unsigned_int for a rigid obstacle.
     unsigned int body_b   = numbers::invalid_unsigned_int;
     unsigned int vertex_b = numbers::invalid_unsigned_int;
+    /// Node-to-segment only: the segment's second node and its weight
+    /// (vertex_b has weight 1 - weight_b2).
+    unsigned int vertex_b2 = numbers::invalid_unsigned_int;
+    double       weight_b2 = 0.;
     /// Reference position of the node of side A (3 coordinates, padded).
     std::array<double, 3> position{{0., 0., 0.}};
     /// Frame: direction 0 is the normal, then the tangents.
@@ -90,6 +97,39 @@ namespace impactfe
                       const Point<dim>                             &plane_point,
                       const Tensor<1, dim>                         &plane_normal,
                       const double friction_coefficient = 0.);
+
+    /**
+     * Node-to-obstacle candidates: every vertex of body @p body_index on the
+     * boundary with id @p boundary_id, against a rigid obstacle. The gap and
+     * the normal are the obstacle's at the node's reference position.
+     * Returns how many candidates were added; throws if the boundary has no
+     * vertex.
+     */
+    template <int dim>
+    unsigned int
+    add_node_to_obstacle(const std::vector<const ElasticBody<dim> *> &bodies,
+                         const unsigned int                            body_index,
+                         const types::boundary_id                      boundary_id,
+                         const RigidObstacle<dim>                     &obstacle,
+                         const double friction_coefficient = 0.);
+
+    /**
+     * Node-to-segment candidates (2D) between two bodies whose interface
+     * meshes need not match: each vertex of body A on @p boundary_a is
+     * projected on the nearest boundary segment of body B on
+     * @p boundary_b; the normal is that segment's, pointing from B towards
+     * A, and the relative motion of the projection point interpolates the
+     * segment's two nodes linearly. A is the "slave" side, B the "master".
+     * Throws if a node projects on no segment.
+     */
+    template <int dim>
+    unsigned int
+    add_node_to_segment(const std::vector<const ElasticBody<dim> *> &bodies,
+                        const unsigned int                            body_a,
+                        const types::boundary_id                      boundary_a,
+                        const unsigned int                            body_b,
+                        const types::boundary_id                      boundary_b,
+                        const double friction_coefficient = 0.);
 
     /**
      * Node-to-node candidates between two bodies with matching interface

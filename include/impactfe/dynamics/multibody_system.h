@@ -82,8 +82,13 @@ namespace impactfe
   class MultibodySystem
   {
   public:
+    /**
+     * @p contact_directions: local directions per contact candidate, 1 for
+     * a frictionless scene (normal only) or dim with friction.
+     */
     MultibodySystem(const TimeSteppingParameters  &time_stepping,
-                    const ContactSolverParameters &solver_parameters);
+                    const ContactSolverParameters &solver_parameters,
+                    const unsigned int             contact_directions = 1);
 
     /** Register a body (set up already). Returns its index. */
     unsigned int

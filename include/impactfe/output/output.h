@@ -25,6 +25,8 @@ namespace impactfe
     unsigned int output_interval = 1;
     bool        plot            = true;
     bool        print_performance = true;
+    /// Times of the deformed shapes written to shapes.csv (2D).
+    std::vector<double> shape_times;
 
     static void
     declare_parameters(ParameterHandler &prm,
@@ -102,6 +104,32 @@ namespace impactfe
     std::string directory;
     std::vector<std::tuple<double, unsigned int, std::string>> records;
   };
+
+
+
+  /**
+   * `shapes.csv`: the deformed mesh (every cell edge of every body, 2D) at
+   * chosen times, for figures of deformed shapes: rows
+   * `time,body,x0,y0,x1,y1`. write_if_due() writes the state when its time
+   * has reached the next requested time (within half a step).
+   */
+  template <int dim>
+  class ShapeWriter
+  {
+  public:
+    ShapeWriter(const std::string &file_name, const std::vector<double> &times);
+    void
+    write_if_due(const MultibodySystem<dim> &system, const double time_step);
+
+  private:
+    std::ofstream       out;
+    std::vector<double> times;
+    unsigned int        next = 0;
+  };
+
+  /** Parse a comma-separated list of times (seconds), e.g. "0, 2.1, 3.3". */
+  std::vector<double>
+  parse_time_list(const std::string &text, const std::string &entry_name);
 
 
 

@@ -131,6 +131,15 @@ namespace impactfe
     virtual double
     force_per_impulse() const;
 
+    /**
+     * How the step's contact impulse follows from the contact forces:
+     * impulse = h (w F^{i+1} + (1 - w) F^i). The theta-schemes report
+     * F = P / h, so w = 1; Newmark's r enters the velocity update with
+     * weights gamma and 1 - gamma.
+     */
+    virtual double
+    contact_force_weight() const;
+
     /** Whether the state needs a^0 (M a^0 = F - K u^0 - C v^0). */
     virtual bool
     needs_initial_acceleration() const;

@@ -1,0 +1,54 @@
+#ifndef impactfe_bodies_mesh_input_h
+#define impactfe_bodies_mesh_input_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/types.h>
+
+#include <deal.II/grid/tria.h>
+
+#include <string>
+
+namespace impactfe
+{
+  using namespace dealii;
+
+  /**
+   * Where a body's mesh comes from, and which boundary id carries its
+   * contact candidates. One subsection per body (e.g. `Mesh`, or
+   * `Mesh of bar 1`): an empty `Mesh file` means the program's built-in
+   * geometry; otherwise deal.II's GridIn reads the file (Gmsh `.msh`, UCD
+   * `.ucd`/`.inp`, Abaqus `.inp`, VTK `.vtk`), boundary ids included.
+   */
+  struct MeshParameters
+  {
+    std::string         file_name;
+    std::string         format = "auto";
+    types::boundary_id  contact_boundary_id = 0;
+
+    static void
+    declare_parameters(ParameterHandler  &prm,
+                       const std::string &subsection,
+                       const unsigned int default_contact_boundary_id);
+    void
+    parse_parameters(ParameterHandler &prm, const std::string &subsection);
+
+    bool
+    from_file() const
+    {
+      return !file_name.empty();
+    }
+
+    /**
+     * Read the mesh file into @p triangulation (which must be empty). A
+     * relative file name is taken relative to the directory of
+     * @p parameter_file. Throws with the file name if it does not exist or
+     * cannot be read.
+     */
+    template <int dim>
+    void
+    read(Triangulation<dim> &triangulation,
+         const std::string  &parameter_file) const;
+  };
+} // namespace impactfe
+
+#endif

@@ -1,0 +1,175 @@
+#ifndef impactfe_dynamics_contact_monitor_h
+#define impactfe_dynamics_contact_monitor_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+
+#include <impactfe/dynamics/multibody_system.h>
+
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace impactfe
+{
+  using namespace dealii;
+
+  /** State of a contact candidate after a step. */
+  enum class ContactState
+  {
+    open  = 0,
+    stick = 1,
+    slip  = 2
+  };
+
+
+
+  /**
+   * What the checks of a whole run found. All quantities are measured, not
+   * assumed; the tolerances they are compared with are the program's.
+   */
+  struct ContactRunSummary
+  {
+    /// max over bodies and components of |p(T) - p(0) - impulses| divided
+    /// by the largest |p| of that body during the run.
+    double impulse_balance_error = 0.;
+    bool   impulse_balance_checked = true;
+    /// max over steps and candidates of -g (0 if no node ever penetrated).
+    double max_penetration = 0.;
+    /// max over steps and nodes of (|P_T| - mu P_N) / max P_N (<= 0 holds).
+    double coulomb_excess = 0.;
+    /// Sliding nodes whose P_T is not opposite to V_T, or is below mu P_N.
+    unsigned int wrong_slip_count = 0;
+    /// max over steps of (E^{i+1} - E^i) / E^0.
+    double max_energy_increase = 0.;
+    double energy_ratio        = 1.;
+    /// First and last step end times with a non-zero contact force (-1:
+    /// never).
+    double first_contact = -1., last_contact = -1.;
+    double peak_normal_force = 0.;
+    /// Time integrals of the total normal and tangential force magnitudes.
+    double normal_impulse = 0., tangential_impulse = 0.;
+    /// Changes of candidate states (open/stick/slip) summed over the run,
+    /// and the number of steps.
+    unsigned long long state_changes = 0;
+    unsigned int       n_steps       = 0;
+  };
+
+
+
+  /**
+   * Parameter subsection `Verification` of the 2D/3D programs: optional
+   * bounds on the run's checks. A bound of -1 is not checked. The program
+   * prints each check with OK or FAILED and exits with code 1 if one fails,
+   * so that tests and regression runs can use them.
+   */
+  struct ContactVerificationParameters
+  {
+    double max_impulse_balance_error = -1.;
+    double max_penetration           = -1.;
+    double max_coulomb_excess        = -1.;
+    double max_energy_increase       = -1.;
+    double min_energy_ratio          = -1.;
+    double max_energy_ratio          = -1.;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
+  /**
+   * Print `Check <what> <relation> <bound>: OK|FAILED` (nothing if the bound
+   * is negative) and return false if it failed.
+   */
+  bool
+  print_check(std::ostream      &out,
+              const std::string &what,
+              const double       value,
+              const std::string &relation,
+              const double       bound);
+
+  /**
+   * Print the run's contact summary (contact interval, peak force,
+   * impulses, impulse balance, penetration, Coulomb, energy, state changes)
+   * and the checks of @p bounds. Returns false if a check failed; a sliding
+   * node with a wrong friction force always fails.
+   */
+  bool
+  print_contact_summary(std::ostream                        &out,
+                        const ContactRunSummary             &summary,
+                        const ContactVerificationParameters &bounds,
+                        const bool                           frictional);
+
+
+
+  /**
+   * Watches a MultibodySystem during a run: the history columns every 2D
+   * and 3D program writes (total contact force and momentum of the bodies,
+   * per body when there are several; energies; gap; stick and slip counts),
+   * an optional per-node file (`contact_nodes.csv`), and the physical
+   * checks of the run:
+   *  - impulse balance: p(T) - p(0) equals the sum of the contact and
+   *    external impulses of every step, for each body and component (the
+   *    scheme's own rule for the impulse of a step, see
+   *    TimeIntegrator::contact_force_weight());
+   *  - Signorini: the largest penetration max(-g) over steps and nodes;
+   *  - Coulomb: |P_T| <= mu P_N at every node and step, and a sliding node
+   *    (|V_T^{i+1}| > 0) has P_T = -mu P_N V_T / |V_T|;
+   *  - energy: the largest increase of kinetic plus elastic energy in a
+   *    step, relative to the initial energy.
+   *
+   * Call record() after every MultibodySystem::do_time_step().
+   */
+  template <int dim>
+  class ContactMonitor
+  {
+  public:
+    /**
+     * @p system must be set up. If @p node_file is not empty, one row per
+     * step and candidate goes there.
+     */
+    ContactMonitor(const MultibodySystem<dim> &system,
+                   const std::string          &node_file = "");
+
+    /** Column names of history_values(). */
+    std::vector<std::string>
+    history_columns() const;
+    /** The row of the current state (after record(), or the initial one). */
+    std::vector<double>
+    history_values(const StepReport &report) const;
+
+    /** Account for the step just done. */
+    void
+    record(const StepReport &report);
+
+    /** State of candidate @p c after the last step. */
+    ContactState
+    state(const unsigned int c) const;
+
+    const ContactRunSummary &
+    summary() const;
+
+    /** Total contact force on all bodies, and total momentum. */
+    Tensor<1, dim>
+    total_contact_force() const;
+    Tensor<1, dim>
+    total_momentum() const;
+
+  private:
+    const MultibodySystem<dim> &system;
+    std::unique_ptr<std::ofstream> node_output;
+
+    ContactRunSummary          run;
+    double                     initial_energy = 0., last_energy = 0.;
+    std::vector<Tensor<1, dim>> initial_momentum, external_force,
+      previous_contact_force, accumulated_impulse;
+    std::vector<double>        largest_momentum;
+    std::vector<ContactState>  states;
+    std::vector<double>        gaps, local_velocity;
+    double                     velocity_scale = 0., impulse_scale = 0.;
+  };
+} // namespace impactfe
+
+#endif

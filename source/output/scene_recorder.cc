@@ -1,0 +1,122 @@
+#include <impactfe/output/scene_recorder.h>
+
+namespace impactfe
+{
+  template <int dim>
+  SceneRecorder<dim>::SceneRecorder(const MultibodySystem<dim>     &system,
+                                    const OutputParameters         &output,
+                                    const std::vector<std::string> &extra_columns)
+    : system(system)
+    , output(output)
+    , contact_monitor(system, output.directory + "/contact_nodes.csv")
+    , solution_writer(output.directory)
+  {
+    std::vector<std::string> columns = contact_monitor.history_columns();
+    columns.insert(columns.end(), extra_columns.begin(), extra_columns.end());
+    history =
+      std::make_unique<HistoryWriter>(output.directory + "/history.csv", columns);
+    if (!output.shape_times.empty())
+      shape_writer = std::make_unique<ShapeWriter<dim>>(output.directory +
+                                                          "/shapes.csv",
+                                                        output.shape_times);
+  }
+
+
+
+  template <int dim>
+  void
+  SceneRecorder<dim>::record(const StepReport          &report,
+                             const std::vector<double> &extra_values)
+  {
+    if (report.step > 0)
+      contact_monitor.record(report);
+    std::vector<double> row = contact_monitor.history_values(report);
+    row.insert(row.end(), extra_values.begin(), extra_values.end());
+    history->add_row(row);
+    if (output.vtu_output && report.step % output.output_interval == 0)
+      solution_writer.write(system, report.step);
+    if (shape_writer)
+      shape_writer->write_if_due(system, system.integrator().time_step());
+  }
+
+
+
+  template <int dim>
+  void
+  SceneRecorder<dim>::finish()
+  {
+    history.reset();
+  }
+
+
+
+  template <int dim>
+  const ContactMonitor<dim> &
+  SceneRecorder<dim>::monitor() const
+  {
+    return contact_monitor;
+  }
+
+
+
+  template <int dim>
+  void
+  SceneRecorder<dim>::add_summary(JsonObject &summary) const
+  {
+    const ContactRunSummary &s = contact_monitor.summary();
+    JsonObject               lcp;
+    lcp.add("total_pivots", double(system.total_pivots()))
+      .add("largest_lcp", double(system.largest_lcp()));
+    JsonObject checks;
+    checks.add("impulse_balance_error", s.impulse_balance_error)
+      .add("max_penetration", s.max_penetration)
+      .add("coulomb_excess", s.coulomb_excess)
+      .add("wrong_slip_count", double(s.wrong_slip_count))
+      .add("max_energy_increase", s.max_energy_increase);
+    summary.add("n_steps", double(s.n_steps))
+      .add("contact_candidates", double(system.contacts().n_candidates()))
+      .add("lcp", lcp)
+      .add("first_contact", s.first_contact)
+      .add("last_contact", s.last_contact)
+      .add("peak_normal_force", s.peak_normal_force)
+      .add("normal_impulse", s.normal_impulse)
+      .add("tangential_impulse", s.tangential_impulse)
+      .add("energy_ratio", s.energy_ratio)
+      .add("state_changes", double(s.state_changes))
+      .add("checks", checks);
+  }
+
+
+
+  template <int dim>
+  void
+  SceneRecorder<dim>::report_files(std::ostream                   &out,
+                                   const std::vector<std::string> &columns,
+                                   const std::string              &title) const
+  {
+    out << "Results in " << output.directory
+        << "/: history.csv, contact_nodes.csv, summary.json";
+    if (output.vtu_output)
+      out << ", solution.pvd (VTU files)";
+    if (shape_writer)
+      out << ", shapes.csv";
+    out << std::endl;
+    if (output.plot)
+      {
+        std::string       why_not;
+        const std::string png = plot_history(output.directory + "/history.csv",
+                                             output.directory + "/history.png",
+                                             columns,
+                                             title,
+                                             why_not);
+        out << (png.empty() ? "No plot: " + why_not : "Plot: " + png)
+            << std::endl;
+      }
+  }
+
+
+
+  template class SceneRecorder<1>;
+  template class SceneRecorder<2>;
+  template class SceneRecorder<3>;
+} // namespace impactfe

@@ -1,0 +1,81 @@
+#!/usr/bin/python3
+"""Write a Gmsh (format 2.2) file of the O-grid disc used by the coarse
+cylinder tests: radius 10, centre (0, 10), 4 x 4 core cells, 3 rings.
+
+An independent construction of the mesh that impactfe::Geometry::disc
+builds (same vertex positions, own numbering), so that reading the file
+through deal.II's GridIn must reproduce the built-in mesh's results.
+The segments of the lower half of the circle get the physical tag 1 (the
+contact boundary id); the rest of the boundary is untagged (id 0).
+
+usage: make_disc_msh.py > disc_4x3.msh
+"""
+import math
+
+R, CX, CY, N, M = 10.0, 0.0, 10.0, 4, 3
+A = 0.37 * R
+
+points = {}  # (kind, a, b) -> (x, y)
+for j in range(N + 1):
+    for i in range(N + 1):
+        points[("core", i, j)] = (-A + 2 * A * i / N, -A + 2 * A * j / N)
+
+
+def square_key(k):
+    if k < N:
+        return ("core", N, k)
+    if k < 2 * N:
+        return ("core", N - (k - N), N)
+    if k < 3 * N:
+        return ("core", 0, N - (k - 2 * N))
+    return ("core", k - 3 * N, 0)
+
+
+def ring_key(level, k):
+    k %= 4 * N
+    return square_key(k) if level == 0 else ("ring", level, k)
+
+
+for level in range(1, M + 1):
+    s = level / M
+    for k in range(4 * N):
+        angle = -math.pi / 4 + (math.pi / 2) * k / N
+        sx, sy = points[square_key(k)]
+        points[("ring", level, k)] = ((1 - s) * sx + s * R * math.cos(angle),
+                                      (1 - s) * sy + s * R * math.sin(angle))
+
+keys = list(points)
+number = {key: n + 1 for n, key in enumerate(keys)}
+
+quads = []
+for j in range(N):
+    for i in range(N):
+        # counter-clockwise
+        quads.append([("core", i, j), ("core", i + 1, j),
+                      ("core", i + 1, j + 1), ("core", i, j + 1)])
+for level in range(M):
+    for k in range(4 * N):
+        quads.append([ring_key(level, k), ring_key(level + 1, k),
+                      ring_key(level + 1, k + 1), ring_key(level, k + 1)])
+
+lines = []
+for k in range(4 * N):
+    a, b = ring_key(M, k), ring_key(M, k + 1)
+    if 0.5 * (points[a][1] + points[b][1]) < 0.0:  # below the centre
+        lines.append((a, b))
+
+print("$MeshFormat\n2.2 0 8\n$EndMeshFormat")
+print("$Nodes\n%d" % len(keys))
+for key in keys:
+    x, y = points[key]
+    print("%d %.17g %.17g 0" % (number[key], x + CX, y + CY))
+print("$EndNodes")
+print("$Elements\n%d" % (len(lines) + len(quads)))
+n = 0
+for a, b in lines:
+    n += 1
+    print("%d 1 2 1 1 %d %d" % (n, number[a], number[b]))
+for q in quads:
+    n += 1
+    print("%d 3 2 0 2 %s" % (n, " ".join(str(number[v]) for v in q)))
+print("$EndElements")
