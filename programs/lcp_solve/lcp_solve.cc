@@ -30,8 +30,9 @@ namespace
   {
     out << "usage: lcp-solve [--solution] [--warm] [--form klarbring|facets|auto] [--facets k] FILE...\n"
            "  --solution   print the solution (z, or the contact impulses P) after each line\n"
-           "  --warm       warm start from the guess 'z_i > 0 where q_i < 0' (normal rows for\n"
-           "               contact files); the cold solver is the fall-back\n"
+           "  --warm       warm start: LCP files from the guess 'z_i > 0 where q_i < 0';\n"
+           "               contact files from the states 'closed (stick) where V_N + b_N < 0,\n"
+           "               open elsewhere' (2D friction: block pivoting, then Lemke)\n"
            "  --form F     LCP form for friction-contact files (default auto)\n"
            "  --facets k   facets of the friction cone in 3D (default 8)\n"
            "Output per problem: file n status pivots relative_error seconds\n";
@@ -135,11 +136,11 @@ main(int argc, char **argv)
               ContactSolution       s;
               if (warm)
                 {
-                  const ContactLCP  lcp = assemble_contact_lcp(p, options);
-                  std::vector<bool> guess(lcp.q.size(), false);
+                  std::vector<ContactState> guess(p.n_contacts, ContactState::open);
                   for (unsigned int c = 0; c < p.n_contacts; ++c)
-                    guess[c] = lcp.q[c] < 0.;
-                  s = solve_contact_problem(p, options, &guess);
+                    if (p.free_velocity[c * p.n_directions] + p.gap_term[c] < 0.)
+                      guess[c] = ContactState::stick;
+                  s = solve_contact_problem(p, options, guess);
                 }
               else
                 s = solve_contact_problem(p, options);

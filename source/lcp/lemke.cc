@@ -10,6 +10,8 @@
 #include <impactfe/lcp/lemke.h>
 #include <impactfe/lcp/lu.h>
 
+#include "floating_point_mode.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -52,6 +54,8 @@ namespace impactfe
             return "guess-lemke";
           case StartPath::guess_fallback_cold:
             return "guess-fallback-cold";
+          case StartPath::block_pivoting:
+            return "block-pivoting";
         }
       return "cold";
     }
@@ -725,24 +729,45 @@ namespace impactfe
       const std::size_t n = q.size();
       if (M.n_rows() != n || M.n_cols() != n || z.size() != n || w.size() != n)
         throw std::invalid_argument("verify: inconsistent sizes");
+      std::vector<double> residual(n);
+      for (std::size_t i = 0; i < n; ++i)
+        {
+          double        r  = w[i] - q[i];
+          const double *mi = M.row(i);
+          for (std::size_t j = 0; j < n; ++j)
+            r -= mi[j] * z[j];
+          residual[i] = r;
+        }
+      return verify_with_residual(M.linfty_norm(), q, z, w, residual, tolerance_factor);
+    }
+
+
+
+    Verification
+    verify_with_residual(const double               norm_M,
+                         const std::vector<double> &q,
+                         const std::vector<double> &z,
+                         const std::vector<double> &w,
+                         const std::vector<double> &residual,
+                         const double               tolerance_factor)
+    {
+      const std::size_t n = q.size();
+      if (z.size() != n || w.size() != n || residual.size() != n)
+        throw std::invalid_argument("verify: inconsistent sizes");
       Verification v;
       v.tolerance = tolerance_factor * eps * std::max<std::size_t>(n, 1);
       v.min_z     = n > 0 ? *std::min_element(z.begin(), z.end()) : 0.;
       v.min_w     = n > 0 ? *std::min_element(w.begin(), w.end()) : 0.;
 
       const double zmax = linfty(z);
-      const double s    = linfty(q) + M.linfty_norm() * zmax;
+      const double s    = linfty(q) + norm_M * zmax;
       double       sum  = 0.;
       for (std::size_t i = 0; i < n; ++i)
         {
-          const double zw         = std::abs(z[i] * w[i]);
-          v.max_complementarity   = std::max(v.max_complementarity, zw);
+          const double zw       = std::abs(z[i] * w[i]);
+          v.max_complementarity = std::max(v.max_complementarity, zw);
           sum += zw;
-          double r = w[i] - q[i];
-          const double *mi = M.row(i);
-          for (std::size_t j = 0; j < n; ++j)
-            r -= mi[j] * z[j];
-          v.residual = std::max(v.residual, std::abs(r));
+          v.residual = std::max(v.residual, std::abs(residual[i]));
         }
       v.relative_complementarity = (sum == 0. ? 0. : sum / (zmax * s));
       auto rel                   = [](const double a, const double b) {
@@ -762,6 +787,7 @@ namespace impactfe
     Result
     solve_lemke(const DenseMatrix &M, const std::vector<double> &q, const LemkeOptions &options)
     {
+      const internal::FlushSubnormalsScope flush_subnormals; // see floating_point_mode.h
       check_input(M, q, options);
       Result result;
       result.start_path = StartPath::cold;
@@ -779,6 +805,7 @@ namespace impactfe
                      const std::vector<bool>   &guess,
                      const LemkeOptions        &options)
     {
+      const internal::FlushSubnormalsScope flush_subnormals; // see floating_point_mode.h
       check_input(M, q, options);
       if (guess.size() != q.size())
         throw std::invalid_argument("LCP: the guess has the wrong size");

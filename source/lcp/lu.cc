@@ -1,5 +1,6 @@
 #include <impactfe/lcp/lu.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -27,39 +28,91 @@ namespace impactfe
           return false;
         }
 
-      for (std::size_t k = 0; k < n; ++k)
+      // Right-looking LU in panels of `panel` columns. Each panel is factorised
+      // column by column (pivot search, row exchange over whole rows,
+      // elimination inside the panel); then its rows of U to the right are
+      // finished and the trailing matrix receives the panel's update row by
+      // row. A trailing row is thus read once per panel instead of once per
+      // column, while every entry receives the same updates in the same order
+      // as in the unblocked algorithm: same pivots, same rounding.
+      constexpr std::size_t panel = 48;
+      for (std::size_t kb = 0; kb < n; kb += panel)
         {
-          // partial pivoting: the largest entry of column k at or below row k
-          std::size_t p    = k;
-          double      pmax = std::abs(lu(k, k));
-          for (std::size_t i = k + 1; i < n; ++i)
-            if (std::abs(lu(i, k)) > pmax)
-              {
-                pmax = std::abs(lu(i, k));
-                p    = i;
-              }
-          pivot_ratio = std::min(pivot_ratio, pmax / amax);
-          if (!(pmax > relative_pivot_tolerance * amax))
-            return false;
-          if (p != k)
+          const std::size_t ke = std::min(n, kb + panel);
+          for (std::size_t k = kb; k < ke; ++k)
             {
-              std::swap(permutation[p], permutation[k]);
-              double *rp = lu.row(p);
-              double *rk = lu.row(k);
-              for (std::size_t j = 0; j < n; ++j)
-                std::swap(rp[j], rk[j]);
+              // partial pivoting: the largest entry of column k at or below row k
+              std::size_t p    = k;
+              double      pmax = std::abs(lu(k, k));
+              for (std::size_t i = k + 1; i < n; ++i)
+                if (std::abs(lu(i, k)) > pmax)
+                  {
+                    pmax = std::abs(lu(i, k));
+                    p    = i;
+                  }
+              pivot_ratio = std::min(pivot_ratio, pmax / amax);
+              if (!(pmax > relative_pivot_tolerance * amax))
+                return false;
+              if (p != k)
+                {
+                  std::swap(permutation[p], permutation[k]);
+                  double *rp = lu.row(p);
+                  double *rk = lu.row(k);
+                  for (std::size_t j = 0; j < n; ++j)
+                    std::swap(rp[j], rk[j]);
+                }
+              const double *rk    = lu.row(k);
+              const double  pivot = rk[k];
+              for (std::size_t i = k + 1; i < n; ++i)
+                {
+                  double *ri = lu.row(i);
+                  if (ri[k] == 0.)
+                    continue;
+                  const double l = ri[k] / pivot;
+                  ri[k]          = l;
+                  for (std::size_t j = k + 1; j < ke; ++j)
+                    ri[j] -= l * rk[j];
+                }
             }
-          const double *rk    = lu.row(k);
-          const double  pivot = rk[k];
-          for (std::size_t i = k + 1; i < n; ++i)
+          if (ke == n)
+            break;
+          // rows kb..ke-1 of U right of the panel
+          for (std::size_t k = kb; k < ke; ++k)
             {
-              double *ri = lu.row(i);
-              if (ri[k] == 0.)
-                continue;
-              const double l = ri[k] / pivot;
-              ri[k]          = l;
-              for (std::size_t j = k + 1; j < n; ++j)
-                ri[j] -= l * rk[j];
+              const double *rk = lu.row(k);
+              for (std::size_t i = k + 1; i < ke; ++i)
+                {
+                  double      *ri = lu.row(i);
+                  const double l  = ri[k];
+                  if (l == 0.)
+                    continue;
+                  for (std::size_t j = ke; j < n; ++j)
+                    ri[j] -= l * rk[j];
+                }
+            }
+          // the trailing matrix, four pivot rows per pass over row i (the
+          // subtractions are still made one after the other, in order)
+          for (std::size_t i = ke; i < n; ++i)
+            {
+              double     *ri = lu.row(i);
+              std::size_t k  = kb;
+              for (; k + 4 <= ke; k += 4)
+                {
+                  const double  l0 = ri[k], l1 = ri[k + 1], l2 = ri[k + 2], l3 = ri[k + 3];
+                  const double *r0 = lu.row(k), *r1 = lu.row(k + 1), *r2 = lu.row(k + 2),
+                               *r3 = lu.row(k + 3);
+                  for (std::size_t j = ke; j < n; ++j)
+                    ri[j] = (((ri[j] - l0 * r0[j]) - l1 * r1[j]) - l2 * r2[j]) - l3 * r3[j];
+                }
+              for (; k < ke; ++k)
+                {
+                  const double l = ri[k];
+                  if (l == 0.)
+                    continue;
+                  const double *rk = lu.row(k);
+                  for (std::size_t j = ke; j < n; ++j)
+                    ri[j] -= l * rk[j];
+                }
             }
         }
       return true;

@@ -53,6 +53,29 @@ namespace impactfe
     std::string
     to_string(FrictionForm form);
 
+    /**
+     * The state of one contact at a solution, or a guess of it. In 2D with
+     * friction the four states are the four complementary bases of one
+     * contact (in the facet form with k = 2: which of P_N, beta_+, beta_-,
+     * sigma are basic). Frictionless and 3D problems use open and stick
+     * only (stick meaning "closed": P_N > 0 expected).
+     */
+    enum class ContactState : unsigned char
+    {
+      /// P = 0: the contact separates (or grazes).
+      open,
+      /// Closed and sticking: V_N + b_N = 0, V_T = 0, |P_T| <= mu P_N.
+      stick,
+      /// Closed and sliding with V_T > 0: P_T = -mu P_N.
+      slip_positive,
+      /// Closed and sliding with V_T < 0: P_T = +mu P_N.
+      slip_negative
+    };
+
+    /// "open", "stick", "slip+", "slip-".
+    std::string
+    to_string(ContactState state);
+
     /// Options of solve_contact_problem().
     struct ContactOptions
     {
@@ -61,6 +84,10 @@ namespace impactfe
       unsigned int n_facets = 8;
       /// W_TT counts as singular if an LU pivot is below this times max|W_TT|.
       double singularity_tolerance = 1e-10;
+      /// Block principal pivoting on contact states (2D friction with a
+      /// state guess): at most this many linear solves before Lemke's method
+      /// takes over.
+      unsigned int max_block_pivoting_iterations = 25;
       LemkeOptions lemke;
     };
 
@@ -102,6 +129,11 @@ namespace impactfe
       Result       lcp;
       FrictionForm form     = FrictionForm::frictionless;
       unsigned int n_facets = 0;
+      /// The state of every contact at P (see contact_states()); the guess
+      /// for the next time step. Empty unless solved.
+      std::vector<ContactState> states;
+      /// Linear solves of the block pivoting method (0 if it was not used).
+      unsigned int block_pivoting_iterations = 0;
       std::string  message;
     };
 
@@ -114,6 +146,55 @@ namespace impactfe
     solve_contact_problem(const ContactProblem    &problem,
                           const ContactOptions    &options = {},
                           const std::vector<bool> *guess   = nullptr);
+
+    /**
+     * Solve with a guess of the contact states, e.g. the states of the
+     * previous time step (ContactSolution::states); @p state_guess has one
+     * entry per contact.
+     *
+     * 2D with friction: block principal pivoting on the contact states. For
+     * given states the impulses solve one linear system taken directly from W
+     * (rows V_N + b_N = 0 of the closed contacts and V_T = 0 of the sticking
+     * ones; unknowns P_N of the closed and P_T of the sticking contacts,
+     * P_T = -+mu P_N for the sliding ones): no W_TT^{-1}, no LCP matrix. The
+     * point is written in the variables of the facet form with k = 2
+     * (z = (P_N, beta, sigma)) and accepted only if it passes the same
+     * verify() as a Lemke solution of that form (residual computed with W,
+     * without forming M). Otherwise the states of the violating contacts are
+     * changed (open contact penetrating: stick; P_N < 0: open; |P_T| > mu P_N:
+     * slip; sliding against its velocity: stick), all at once, and the
+     * system is solved again. After max_block_pivoting_iterations solves, a
+     * repeated set of states or a singular system, Lemke's method solves the
+     * problem in the requested form, warm-started from @p state_guess
+     * (guess_from_states()). The block pivoting result has
+     * lcp.start_path == StartPath::block_pivoting and lcp.pivots == 0.
+     *
+     * Frictionless and 3D problems: Lemke's method warm-started from the
+     * guess mapped by guess_from_states().
+     */
+    ContactSolution
+    solve_contact_problem(const ContactProblem            &problem,
+                          const ContactOptions            &options,
+                          const std::vector<ContactState> &state_guess);
+
+    /**
+     * The states at the impulses @p P (V = V_free + W P), with the scales of
+     * verify_contact_solution(): open if P_N <= tol s_P; otherwise, in 2D
+     * with friction, slip_positive / slip_negative if V_T > tol s_V / V_T <
+     * -tol s_V, stick if not; frictionless and 3D: stick (closed).
+     */
+    std::vector<ContactState>
+    contact_states(const ContactProblem &problem, const std::vector<double> &P, double tolerance = 1e-8);
+
+    /**
+     * The LCP guess ("z_i > 0 expected") of @p lcp that corresponds to the
+     * contact states: P_N for closed contacts; Klarbring: lambda_1 for
+     * slip_positive, lambda_2 for slip_negative; facets: sigma for open and
+     * sliding contacts and, in 2D, the facet opposite to the sliding
+     * velocity.
+     */
+    std::vector<bool>
+    guess_from_states(const ContactLCP &lcp, const std::vector<ContactState> &states);
 
     /// Signorini and Coulomb checked on (P, V = V_free + W P) directly.
     struct ContactVerification

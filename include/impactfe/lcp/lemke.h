@@ -46,10 +46,15 @@ namespace impactfe
       /// Lemke's method started from the guessed complementary basis.
       guess_lemke,
       /// The guess was rejected (singular or Lemke failed from it): cold Lemke.
-      guess_fallback_cold
+      guess_fallback_cold,
+      /// Not Lemke: block principal pivoting on the contact states (see
+      /// solve_contact_problem() with a ContactState guess) found the
+      /// complementary basis; its point passed verify().
+      block_pivoting
     };
 
-    /// "cold", "guess-solved", "guess-lemke", "guess-fallback-cold".
+    /// "cold", "guess-solved", "guess-lemke", "guess-fallback-cold",
+    /// "block-pivoting".
     std::string
     to_string(StartPath path);
 
@@ -90,6 +95,20 @@ namespace impactfe
            const std::vector<double> &z,
            const std::vector<double> &w,
            double                     tolerance_factor = 1e3);
+
+    /**
+     * The checks of verify() for a point whose residual r = w - M z - q and
+     * ||M||_inf were computed elsewhere, e.g. without forming M (the contact
+     * LCP forms in contact_problem.cc). Same tolerance and same numbers as
+     * verify(M, q, z, w) would give with that M.
+     */
+    Verification
+    verify_with_residual(double                     norm_M,
+                         const std::vector<double> &q,
+                         const std::vector<double> &z,
+                         const std::vector<double> &w,
+                         const std::vector<double> &residual,
+                         double                     tolerance_factor = 1e3);
 
     /// Options of the Lemke solver; the defaults suit the contact LCPs.
     struct LemkeOptions
