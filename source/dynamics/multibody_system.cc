@@ -245,14 +245,32 @@ namespace impactfe
   {
     build_contact_problem(problem);
     const unsigned int nd = contact_set.n_directions();
-    // Warm start from the previous active set (its LCP variables are the
-    // normal impulses when frictionless; frictional LCPs start cold).
-    std::vector<bool> guess;
-    if (nd == 1 && solver_parameters.warm_start)
-      for (const unsigned int c : lcp_candidates)
-        guess.push_back(active[c]);
-    const lcp::ContactSolution solution =
-      lcp::solve_contact_problem(problem, {}, guess.empty() ? nullptr : &guess);
+    // Warm start from the contact states (open, stick, slip+, slip-) that
+    // the candidates had at the last solve: the previous step's answer, or
+    // this step's first answer when the candidate set has grown. The LCP
+    // module turns them into a guess for any form (block pivoting on the
+    // states in 2D with friction, Lemke from the guessed basis otherwise);
+    // the answer is verified like a cold one.
+    if (last_contact_states.size() != contact_set.n_candidates())
+      last_contact_states.assign(contact_set.n_candidates(),
+                                 lcp::ContactState::open);
+    lcp::ContactSolution solution;
+    if (solver_parameters.warm_start)
+      {
+        std::vector<lcp::ContactState> guess(lcp_candidates.size());
+        for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
+          guess[a] = last_contact_states[lcp_candidates[a]];
+        solution = lcp::solve_contact_problem(problem, {}, guess);
+      }
+    else
+      solution = lcp::solve_contact_problem(problem);
+    if (solution.lcp.status == lcp::Status::solved)
+      {
+        std::fill(last_contact_states.begin(), last_contact_states.end(),
+                  lcp::ContactState::open);
+        for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
+          last_contact_states[lcp_candidates[a]] = solution.states[a];
+      }
     last_lcp_size = solution.lcp.z.empty() ? lcp_candidates.size() * nd :
                                              solution.lcp.z.size();
     std::fill(local_impulses.begin(), local_impulses.end(), 0.);
