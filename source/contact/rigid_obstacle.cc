@@ -4,6 +4,7 @@
 #include <impactfe/utilities/program.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -109,17 +110,31 @@ namespace impactfe
     , step(1e-6 * length_scale)
   {
     const std::string variables = dim == 1 ? "x" : (dim == 2 ? "x,y" : "x,y,z");
+    // The parser may only complain at the first evaluation: do one here,
+    // so that a bad expression is reported with the entry's name.
+    std::string problem;
     try
       {
         phi.initialize(variables, expression, std::map<std::string, double>());
+        phi.value(Point<dim>());
       }
-    catch (...)
+    catch (const ExceptionBase &error)
       {
-        AssertThrow(false,
-                    ExcMessage("Obstacle: the level set '" + expression +
-                               "' is not a valid expression in " + variables +
-                               "."));
+        std::ostringstream message;
+        error.print_info(message);
+        problem = message.str();
       }
+    catch (const std::exception &error)
+      {
+        problem = error.what();
+      }
+    while (!problem.empty() && std::isspace(problem.back()))
+      problem.pop_back();
+    problem.erase(0, problem.find_first_not_of(" \t\n"));
+    AssertThrow(problem.empty(),
+                ExcMessage("Obstacle: 'Level set' = '" + expression +
+                           "' is not a valid expression in " + variables +
+                           ": " + problem));
   }
 
   template <int dim>
@@ -194,7 +209,7 @@ namespace impactfe
                       "Normal of the plane, pointing towards the bodies [-]. "
                       "Need not be unit.");
     prm.declare_entry("Center",
-                      "0, 0, 0",
+                      default_point,
                       Patterns::List(Patterns::Double(), 1, 3),
                       "Centre of the disc or ball [m].");
     prm.declare_entry("Radius",

@@ -1,6 +1,6 @@
 // Bad input gets one clear message naming the entry or value, and a
-// non-zero exit: run the two_bars_1d program on broken parameter files and
-// record its exit status and the message it prints.
+// non-zero exit: run the programs on broken parameter files and record
+// their exit status and the message they print.
 
 #include "../tests.h"
 
@@ -32,13 +32,15 @@ namespace
   }
 
   void
-  run_case(const std::string &name, const std::string &prm_text)
+  run_case(const std::string &name,
+           const std::string &prm_text,
+           const std::string &executable = TWO_BARS_1D_EXECUTABLE)
   {
     const std::string prm = name + ".prm";
     if (!prm_text.empty())
       std::ofstream(prm) << prm_text;
-    const std::string command = std::string(TWO_BARS_1D_EXECUTABLE) + " " +
-                                prm + " > " + name + ".log 2>&1";
+    const std::string command =
+      executable + " " + prm + " > " + name + ".log 2>&1";
     const int status = std::system(command.c_str());
     const int code   = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     const std::string message = message_of(name + ".log");
@@ -77,5 +79,31 @@ main()
   run_case("misspelt_entry", with("Time stepping", "Tme step = 1e-6"));
   run_case("misspelt_subsection", with("Time steping", "Time step = 1e-6"));
   run_case("missing_file", "");
+
+  // The 2D programs: meshes, obstacles, friction, contact boundaries.
+  const std::string cylinder = CYLINDER_IMPACT_EXECUTABLE;
+  const std::string plate    = OBLIQUE_PLATE_EXECUTABLE;
+  const std::string bars_2d  = TWO_BARS_2D_EXECUTABLE;
+  run_case("missing_mesh_file",
+           with("Mesh", "Mesh file = no_such_mesh.msh"), cylinder);
+  run_case("empty_contact_boundary",
+           with("Mesh", "Contact boundary id = 7"), cylinder);
+  run_case("negative_friction",
+           with("Obstacle", "Friction coefficient = -0.1"), cylinder);
+  run_case("negative_ball_radius",
+           with("Obstacle", "Type = ball\n  set Radius = -1"), cylinder);
+  run_case("bad_level_set",
+           with("Obstacle", "Type = level set\n  set Level set = y+*2"),
+           cylinder);
+  run_case("odd_core_cells",
+           with("Geometry", "Number of core cells = 5"), cylinder);
+  run_case("upward_plate_velocity",
+           with("Initial conditions", "Vertical velocity = 5"), plate);
+  run_case("plate_below_obstacle",
+           with("Obstacle", "Point on plane = 0, 0.001"), plate);
+  run_case("offset_needs_node_to_segment",
+           with("Geometry", "Interface mesh offset = 0.5"), bars_2d);
+  run_case("plane_normal_with_three_coordinates",
+           with("Obstacle", "Normal = 0, 1, 0"), plate);
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
 }
