@@ -613,6 +613,111 @@ namespace impactfe
         return verify_with_residual(norm_M, q, z, w, residual, tolerance_factor);
       }
 
+      /// -(V_free + b_N) on normal rows, -V_free on tangential rows.
+      double
+      right_hand_side(const ContactProblem &p, const unsigned int row)
+      {
+        return -p.free_velocity[row] - (row % 2 == 0 ? p.gap_term[row / 2] : 0.);
+      }
+
+      /**
+       * The impulses of given states for a symmetric positive definite W. The
+       * unknowns split into those of the sticking contacts, x_S = (P_N, P_T)
+       * with the rows S = (N, T) of these contacts, and the normal impulses
+       * x_L of the sliding contacts (P_T = slip_factor P_N):
+       *   [W_SS  B] [x_S]   [r_S]     B(i, l) = W(S_i, N_l) + s_l W(S_i, T_l),
+       *   [C     D] [x_L] = [r_L],    C = W(N_L, S), D likewise.
+       * W_SS is a principal block of W: Cholesky, (1/3) |S|^3 flops; then
+       * Z = W_SS^{-1} [B r_S], the Schur complement D - C Z_B (|L| x |L|, LU)
+       * for x_L, and x_S = Z_r - Z_B x_L. (Only the upper triangle of W_SS is
+       * read.) False if W_SS is not numerically positive definite or the
+       * Schur complement is singular: the caller then uses one LU.
+       */
+      bool
+      impulses_by_cholesky(const ContactProblem            &p,
+                           const std::vector<ContactState> &states,
+                           const std::vector<double>       &slip_factor,
+                           std::vector<double>             &P)
+      {
+        std::vector<unsigned int> S, L;
+        for (unsigned int c = 0; c < p.n_contacts; ++c)
+          if (states[c] == ContactState::stick)
+            {
+              S.push_back(2 * c);
+              S.push_back(2 * c + 1);
+            }
+          else if (closed(states[c]))
+            L.push_back(c);
+        const std::size_t ns = S.size(), nl = L.size();
+        if (ns == 0)
+          return false;
+
+        DenseMatrix Wss(ns, ns);
+        for (std::size_t i = 0; i < ns; ++i)
+          {
+            const double *wi = p.W.row(S[i]);
+            double       *ri = Wss.row(i);
+            for (std::size_t j = i; j < ns; ++j)
+              ri[j] = wi[S[j]];
+          }
+        CholeskyFactorization cholesky;
+        if (!cholesky.factorize(Wss))
+          return false;
+
+        DenseMatrix Z(ns, nl + 1);
+        for (std::size_t i = 0; i < ns; ++i)
+          {
+            const double *wi = p.W.row(S[i]);
+            double       *zi = Z.row(i);
+            for (std::size_t k = 0; k < nl; ++k)
+              zi[k] = wi[2 * L[k]] + slip_factor[L[k]] * wi[2 * L[k] + 1];
+            zi[nl] = right_hand_side(p, S[i]);
+          }
+        cholesky.solve(Z);
+
+        std::vector<double> x_slip(nl);
+        if (nl > 0)
+          {
+            DenseMatrix Schur(nl, nl);
+            for (std::size_t a = 0; a < nl; ++a)
+              {
+                const double *wa = p.W.row(2 * L[a]);
+                double       *ta = Schur.row(a);
+                for (std::size_t b = 0; b < nl; ++b)
+                  ta[b] = wa[2 * L[b]] + slip_factor[L[b]] * wa[2 * L[b] + 1];
+                x_slip[a] = right_hand_side(p, 2 * L[a]);
+                for (std::size_t i = 0; i < ns; ++i)
+                  {
+                    const double c = wa[S[i]];
+                    if (c == 0.)
+                      continue;
+                    const double *zi = Z.row(i);
+                    for (std::size_t b = 0; b < nl; ++b)
+                      ta[b] -= c * zi[b];
+                    x_slip[a] -= c * zi[nl];
+                  }
+              }
+            LUFactorization lu;
+            if (!lu.factorize(Schur))
+              return false;
+            lu.solve(x_slip);
+          }
+        for (std::size_t i = 0; i < ns; ++i)
+          {
+            const double *zi = Z.row(i);
+            double        v  = zi[nl];
+            for (std::size_t k = 0; k < nl; ++k)
+              v -= zi[k] * x_slip[k];
+            P[S[i]] = v;
+          }
+        for (std::size_t k = 0; k < nl; ++k)
+          {
+            P[2 * L[k]]     = x_slip[k];
+            P[2 * L[k] + 1] = slip_factor[L[k]] * x_slip[k];
+          }
+        return true;
+      }
+
       /**
        * Block principal pivoting for 2D friction, from @p states (updated in
        * place). On success P, V, z, w, verification are those of the
@@ -636,6 +741,16 @@ namespace impactfe
         std::vector<unsigned int>          rows, unknown_column, unknown_contact;
         std::vector<double>                rhs, slip_factor(nc, 0.);
         iterations = 0;
+
+        // W symmetric up to rounding (a Delassus operator computed column by
+        // column is symmetric only to rounding): the systems are solved by
+        // Cholesky on the sticking block (impulses_by_cholesky()); whatever
+        // comes out is verified against W itself.
+        double max_asymmetry = 0.;
+        for (std::size_t i = 0; i < p.W.n_rows(); ++i)
+          for (std::size_t j = 0; j < i; ++j)
+            max_asymmetry = std::max(max_asymmetry, std::abs(p.W(i, j) - p.W(j, i)));
+        const bool symmetric = max_asymmetry <= 1e3 * eps * p.W.max_abs();
 
         for (;;)
           {
@@ -677,7 +792,10 @@ namespace impactfe
               }
             const std::size_t m = rows.size();
             P.assign(2 * static_cast<std::size_t>(nc), 0.);
-            if (m > 0)
+            bool solved = (m == 0);
+            if (!solved && symmetric)
+              solved = impulses_by_cholesky(p, states, slip_factor, P);
+            if (!solved)
               {
                 DenseMatrix G(m, m);
                 rhs.resize(m);
@@ -690,7 +808,7 @@ namespace impactfe
                         const unsigned int j = unknown_column[u];
                         gr[u] = (j % 2 == 0) ? wi[j] + slip_factor[unknown_contact[u]] * wi[j + 1] : wi[j];
                       }
-                    rhs[r] = -p.free_velocity[rows[r]] - (rows[r] % 2 == 0 ? p.gap_term[rows[r] / 2] : 0.);
+                    rhs[r] = right_hand_side(p, rows[r]);
                   }
                 LUFactorization lu;
                 if (!lu.factorize(G))

@@ -101,7 +101,11 @@ namespace impactfe
           char       *e = nullptr;
           errno         = 0;
           const double v = std::strtod(b, &e);
-          ok             = (e != b && *e == '\0' && errno != ERANGE && std::isfinite(v));
+          // ERANGE on underflow (a subnormal or a value that rounds to 0,
+          // e.g. far-field entries of an FE Delassus operator) is fine: the
+          // value is the closest double. Overflow is not.
+          const bool overflow = (errno == ERANGE && std::abs(v) > 1.);
+          ok                  = (e != b && *e == '\0' && !overflow && std::isfinite(v));
           return v;
         }
 

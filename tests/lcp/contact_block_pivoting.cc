@@ -14,12 +14,15 @@
 //    coupling the frictional problem can have several solutions, so P is
 //    compared with cold Lemke's only in a second set where it is unique
 //    enough in practice: mu in [0, 0.2], W = B B^T / (2 n_c) + I.
+//    Then W made non-symmetric (the LU path instead of Cholesky): verified;
+//    and CholeskyFactorization against LUFactorization.
 // 3. The fallback: max_block_pivoting_iterations = 1 with a wrong guess.
 // 4. Frictionless problems: Lemke from the guessed basis, same P as cold.
 // 5. guess_from_states() for the three forms; verify_with_residual() equals
 //    verify() when given the residual of M.
 // No pivot counts or timings are printed.
 #include <impactfe/lcp/contact_problem.h>
+#include <impactfe/lcp/lu.h>
 
 #include "../tests.h"
 #include "lcp_test_tools.h"
@@ -194,6 +197,67 @@ main()
                       << n_exact_one_solve << std::endl;
       check(n_problems == 300 && n_ok == n_problems && n_exact_one_solve == n_problems, name);
     }
+
+  // 2b. W not symmetric (W + 0.01 K, K skew): one LU per block pivoting
+  //     solve instead of Cholesky; every answer verified.
+  {
+    lcp_test::Rng rng(99);
+    unsigned int  n_ok = 0;
+    for (unsigned int trial = 0; trial < 100; ++trial)
+      {
+        ContactProblem     p = random_problem(rng, 1 + rng.integer(20), 0.5);
+        const std::size_t  m = p.W.n_rows();
+        for (std::size_t i = 0; i < m; ++i)
+          for (std::size_t j = 0; j < i; ++j)
+            {
+              const double k = 0.01 * rng.uniform(-1., 1.);
+              p.W(i, j) += k;
+              p.W(j, i) -= k;
+            }
+        std::vector<ContactState> guess(p.n_contacts);
+        for (ContactState &s : guess)
+          s = all_states[rng.integer(4)];
+        const ContactSolution s = solve_contact_problem(p, {}, guess);
+        n_ok += (s.lcp.status == Status::solved && s.lcp.verification.ok && verify_contact_solution(p, s.P).ok);
+      }
+    check(n_ok == 100, "non-symmetric W: 100 problems verified");
+  }
+
+  // 2c. CholeskyFactorization::solve against LUFactorization::solve.
+  {
+    lcp_test::Rng rng(4);
+    DenseMatrix   B(60, 60);
+    for (unsigned int i = 0; i < 60; ++i)
+      for (unsigned int j = 0; j < 60; ++j)
+        B(i, j) = rng.uniform(-1., 1.);
+    const DenseMatrix A = lcp_test::gram_plus_shift(B, 0.1);
+    DenseMatrix       X(60, 3);
+    for (unsigned int i = 0; i < 60; ++i)
+      for (unsigned int c = 0; c < 3; ++c)
+        X(i, c) = rng.uniform(-1., 1.);
+    const DenseMatrix     R = X;
+    CholeskyFactorization cholesky;
+    LUFactorization       lu;
+    const bool            factorised = cholesky.factorize(A) && lu.factorize(A);
+    cholesky.solve(X);
+    double difference = 0., size = 0.;
+    for (unsigned int c = 0; c < 3; ++c)
+      {
+        std::vector<double> x(60);
+        for (unsigned int i = 0; i < 60; ++i)
+          x[i] = R(i, c);
+        lu.solve(x);
+        for (unsigned int i = 0; i < 60; ++i)
+          {
+            difference = std::max(difference, std::abs(x[i] - X(i, c)));
+            size       = std::max(size, std::abs(x[i]));
+          }
+      }
+    DenseMatrix not_definite = A;
+    not_definite(7, 7)       = -1.;
+    check(factorised && difference <= 1e-10 * size && !CholeskyFactorization().factorize(not_definite),
+          "Cholesky == LU on an SPD matrix; indefinite matrix refused");
+  }
 
   // 3. The fallback: one solve allowed, the guess "all open" is wrong.
   {

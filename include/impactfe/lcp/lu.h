@@ -54,6 +54,40 @@ namespace impactfe
       std::vector<std::size_t> permutation;
       double                   pivot_ratio = 0.;
     };
+
+    /**
+     * Cholesky factorisation A = U^T U of a symmetric positive definite
+     * matrix (only the upper triangle of A is read), U upper triangular and
+     * stored by rows, so that the factorisation and the solves run along
+     * contiguous rows. Used by the block pivoting of the contact problem on
+     * the sticking block of the Delassus operator, at (1/3) n^3 flops, half
+     * those of the LU.
+     */
+    class CholeskyFactorization
+    {
+    public:
+      /**
+       * Factorise @p A. Returns false (and leaves the object unusable) if a
+       * pivot U_kk^2 is at most @p relative_pivot_tolerance times the largest
+       * diagonal entry of A, i.e. A is not (numerically) positive definite.
+       */
+      bool
+      factorize(const DenseMatrix &A, double relative_pivot_tolerance = 1e-13);
+
+      /// Solve A X = B in place for all columns of B (n x r, by rows).
+      void
+      solve(DenseMatrix &B) const;
+
+      std::size_t
+      size() const
+      {
+        return n;
+      }
+
+    private:
+      std::size_t n = 0;
+      DenseMatrix u;
+    };
   } // namespace lcp
 } // namespace impactfe
 
