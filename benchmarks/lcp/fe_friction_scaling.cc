@@ -26,7 +26,9 @@
 // difference <= 1e-8, checked; the program exits with 1 otherwise).
 //
 // Output: one CSV row per (n_c, step) on stdout (or the file given with
-// --csv), and a summary on stderr. Not a test: timings depend on the machine.
+// --csv), and a summary on stderr. Seconds are CPU seconds of the (single)
+// thread, so that other processes on the machine do not inflate them. Not a
+// test: timings depend on the machine.
 //
 //   fe_friction_scaling [--steps S] [--cold-steps C] [--csv FILE] [--dump DIR]
 //                       [--youngs-modulus E] [--tangential-speed v_t]
@@ -49,7 +51,7 @@
 #include <impactfe/lcp/contact_problem.h>
 #include <impactfe/lcp/problem_io.h>
 
-#include <chrono>
+#include <ctime>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -62,10 +64,20 @@ using namespace impactfe;
 
 namespace
 {
+  /// CPU seconds of this thread: on a shared machine the wall clock also
+  /// counts the time other processes had the core.
   double
-  seconds_since(const std::chrono::steady_clock::time_point start)
+  cpu_seconds()
   {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+  }
+
+  double
+  seconds_since(const double start)
+  {
+    return cpu_seconds() - start;
   }
 
   double
@@ -139,7 +151,7 @@ namespace
     material.plane_model    = PlaneModel::plane_strain;
     DiscretizationParameters discretization;
 
-    const auto    setup_start = std::chrono::steady_clock::now();
+    const auto    setup_start = cpu_seconds();
     ElasticBody<2> block("block", material, discretization, /*thickness=*/1.);
     // colorize: the face y = 0 gets boundary id 2
     GridGenerator::subdivided_hyper_rectangle(block.triangulation(),
@@ -210,7 +222,7 @@ namespace
         row.setup_seconds = setup_seconds;
 
         // warm: the states of the previous step
-        auto                       start = std::chrono::steady_clock::now();
+        auto                       start = cpu_seconds();
         const lcp::ContactSolution warm  = lcp::solve_contact_problem(problem, {}, states);
         row.warm_seconds                 = seconds_since(start);
         row.warm_path                    = lcp::to_string(warm.lcp.start_path);
@@ -231,7 +243,7 @@ namespace
         row.system_difference = relative_difference(problem, P_system, warm.P);
 
         // no history: block pivoting from "all open"
-        start = std::chrono::steady_clock::now();
+        start = cpu_seconds();
         const lcp::ContactSolution from_open =
           lcp::solve_contact_problem(problem, {}, std::vector<lcp::ContactState>(n_contacts, lcp::ContactState::open));
         row.open_seconds          = seconds_since(start);
@@ -256,11 +268,11 @@ namespace
         row.lcp_size = 3 * n_contacts;
         if (step >= 2 && step <= 1 + cold_steps)
           {
-            start = std::chrono::steady_clock::now();
+            start = cpu_seconds();
             lcp::assemble_contact_lcp(problem);
             row.cold_assembly_seconds = seconds_since(start);
 
-            start                     = std::chrono::steady_clock::now();
+            start                     = cpu_seconds();
             const lcp::ContactSolution cold = lcp::solve_contact_problem(problem);
             row.cold_seconds          = seconds_since(start);
             row.cold_done             = true;
