@@ -5,12 +5,50 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
 
 namespace impactfe
 {
+  namespace
+  {
+    /// CPU seconds of the calling thread (not inflated by other processes).
+    double
+    thread_cpu_seconds()
+    {
+      timespec t;
+      clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+      return t.tv_sec + 1e-9 * t.tv_nsec;
+    }
+
+    /// Adds the time since the last call to one of the cost counters.
+    class CostClock
+    {
+    public:
+      explicit CostClock(const bool enabled)
+        : enabled(enabled)
+        , last(enabled ? thread_cpu_seconds() : 0.)
+      {}
+      void
+      charge(double &counter)
+      {
+        if (!enabled)
+          return;
+        const double now = thread_cpu_seconds();
+        counter += now - last;
+        last = now;
+      }
+
+    private:
+      const bool enabled;
+      double     last;
+    };
+  } // namespace
+
+
+
   template <int dim>
   MultibodySystem<dim>::MultibodySystem(
     const TimeSteppingParameters  &time_stepping,
@@ -113,16 +151,19 @@ namespace impactfe
 
 
 
-  // @sect3{Set-up: M~, its factorisation and the Delassus operator}
+  // @sect3{Set-up: M~ and its factorisation}
   // M~ = M + c_C C + c_K K depends only on the scheme and h, so it is
-  // factorised once per body. The columns M~^{-1} H_j are computed once too:
-  // they give W = H^T M~^{-1} H and the velocity correction of every step.
+  // factorised once per body. The Delassus operator is not built here: its
+  // columns are computed when their candidate first enters an LCP (see
+  // ensure_delassus_columns()).
   template <int dim>
   void
   MultibodySystem<dim>::setup()
   {
     AssertThrow(!body_list.empty(), ExcMessage("The scene has no body."));
     const unsigned int n_bodies = body_list.size();
+    costs = CostBreakdown();
+    CostClock clock(measure_costs);
 
     operators.mass.clear();
     operators.stiffness.clear();
@@ -162,16 +203,9 @@ namespace impactfe
 
     contact_set.build_operator(body_list);
     const unsigned int n_columns = contact_set.n_columns();
-    response_columns.assign(n_columns, make_block_vector());
     delassus.reinit(n_columns, n_columns);
-    for (unsigned int j = 0; j < n_columns; ++j)
-      {
-        contact_set.add_column(j, 1., response_columns[j]);
-        solve_step_matrix(response_columns[j]);
-      }
-    for (unsigned int i = 0; i < n_columns; ++i)
-      for (unsigned int j = 0; j < n_columns; ++j)
-        delassus(i, j) = contact_set.column_dot(i, response_columns[j]);
+    delassus_ready.assign(contact_set.n_candidates(), false);
+    column_work = make_block_vector();
 
     // Newmark starts from a^0 with M a^0 = F - K u^0 - C v^0 (no contact
     // force at t = 0).
@@ -197,9 +231,40 @@ namespace impactfe
     next                = current;
     free_velocity       = make_block_vector();
     contact_force_field = make_block_vector();
+    impulse_response    = make_block_vector();
     local_impulses.assign(n_columns, 0.);
     active.assign(contact_set.n_candidates(), false);
     step_number = 0;
+    clock.charge(costs.factorization);
+  }
+
+
+
+  // @sect3{The Delassus operator, column by column}
+  // The columns W(:, j) = H^T M~^{-1} H_j of the directions j of candidate
+  // c: one solve each, then a dot product with every (sparse) column of H.
+  // Done once per candidate, when it first can touch; W(i, j) for two
+  // candidates in an LCP is then always available, and so is W(i, j) for
+  // any i against a candidate j of the LCP (the check of excluded
+  // candidates).
+  template <int dim>
+  void
+  MultibodySystem<dim>::ensure_delassus_columns(const unsigned int c) const
+  {
+    if (delassus_ready[c])
+      return;
+    const unsigned int nd = contact_set.n_directions();
+    for (unsigned int k = 0; k < nd; ++k)
+      {
+        const unsigned int j = c * nd + k;
+        column_work          = 0.;
+        contact_set.add_column(j, 1., column_work);
+        solve_step_matrix(column_work);
+        for (unsigned int i = 0; i < contact_set.n_columns(); ++i)
+          delassus(i, j) = contact_set.column_dot(i, column_work);
+      }
+    delassus_ready[c] = true;
+    ++costs.delassus_candidates;
   }
 
 
@@ -307,6 +372,7 @@ namespace impactfe
     StepReport report;
     report.step = step_number;
     report.time = current.time + h;
+    CostClock clock(measure_costs);
 
     // 1. Free velocity.
     scheme->free_rhs(operators, current, free_velocity);
@@ -315,6 +381,7 @@ namespace impactfe
     // 2. Local free velocities and the scheme's gap terms.
     contact_set.local_velocities(free_velocity, local_free_velocity);
     scheme->gap_term(contact_set, current, gap_terms);
+    clock.charge(costs.free_velocity);
 
     // 3. The LCP on the candidates that can touch: those whose free normal
     // velocity would close the gap within the step, plus the previous
@@ -339,6 +406,11 @@ namespace impactfe
             lcp_candidates.push_back(c);
         if (lcp_candidates.empty())
           break;
+
+        clock.charge(costs.lcp);
+        for (const unsigned int c : lcp_candidates)
+          ensure_delassus_columns(c);
+        clock.charge(costs.delassus);
 
         const lcp::Result result = solve_contact_lcp();
         report.lcp_size   = last_lcp_size;
@@ -383,18 +455,25 @@ namespace impactfe
       }
     pivot_count += report.lcp_pivots;
     lcp_max_size = std::max(lcp_max_size, report.lcp_size);
+    clock.charge(costs.lcp);
 
-    // 4. v^{i+1} = v_free + sum_j (M~^{-1} H_j) P_j, and the nodal forces.
+    // 4. v^{i+1} = v_free + M~^{-1} (H P), and the nodal forces.
     next.velocity = free_velocity;
-    contact_force_field = 0.;
     const double force_factor = scheme->force_per_impulse();
+    impulse_response          = 0.;
+    bool any_impulse          = false;
     for (unsigned int j = 0; j < contact_set.n_columns(); ++j)
       if (local_impulses[j] != 0.)
         {
-          next.velocity.add(local_impulses[j], response_columns[j]);
-          contact_set.add_column(j, force_factor * local_impulses[j],
-                                 contact_force_field);
+          contact_set.add_column(j, local_impulses[j], impulse_response);
+          any_impulse = true;
         }
+    contact_force_field.equ(force_factor, impulse_response);
+    if (any_impulse)
+      {
+        solve_step_matrix(impulse_response);
+        next.velocity += impulse_response;
+      }
 
     // 5. Displacement (and acceleration) update.
     scheme->complete_step(current, next);
@@ -415,6 +494,7 @@ namespace impactfe
                              contact_set.candidate(c).frame[k][d];
       }
     report.tangential_force = tangential.norm();
+    clock.charge(costs.update);
     return report;
   }
 
@@ -503,7 +583,23 @@ namespace impactfe
   const lcp::DenseMatrix &
   MultibodySystem<dim>::delassus_operator() const
   {
+    for (unsigned int c = 0; c < contact_set.n_candidates(); ++c)
+      ensure_delassus_columns(c);
     return delassus;
+  }
+
+  template <int dim>
+  void
+  MultibodySystem<dim>::enable_cost_breakdown(const bool enable)
+  {
+    measure_costs = enable;
+  }
+
+  template <int dim>
+  const CostBreakdown &
+  MultibodySystem<dim>::cost_breakdown() const
+  {
+    return costs;
   }
 
   template <int dim>
