@@ -9,6 +9,7 @@
 #include <impactfe/bodies/elastic_body.h>
 #include <impactfe/contact/contact_parameters.h>
 #include <impactfe/contact/contact_set.h>
+#include <impactfe/dynamics/sparse_cholesky.h>
 #include <impactfe/lcp/dense_matrix.h>
 #include <impactfe/lcp/contact_problem.h>
 #include <impactfe/lcp/lemke.h>
@@ -101,14 +102,17 @@ namespace impactfe
    *     plus those active in the previous step; the set grows if an excluded
    *     candidate would be pushed into penetration), with the Delassus
    *     operator W = H^T M~^{-1} H;
-   *  4. v^{i+1} = v_free + M~^{-1} (H P): one more solve;
+   *  4. v^{i+1} = v_free + M~^{-1} (H P): a sum of stored columns
+   *     M~^{-1} H_j when they are stored and that is cheaper, else one
+   *     more solve;
    *  5. the scheme completes u^{i+1} (and a^{i+1}).
    *
    * The columns of W belonging to a candidate are computed (dim solves with
    * the factorisation) the first time the candidate enters an LCP, and
-   * kept; the vectors M~^{-1} H_j themselves are not stored. Memory is thus
-   * O(n_dofs + n_columns^2) instead of O(n_dofs n_columns), and candidates
-   * that never come close to touching cost nothing (doc/performance.md).
+   * kept. The vectors M~^{-1} H_j themselves are kept only within a memory
+   * budget (set_column_storage_budget()), so memory is O(n_dofs +
+   * n_columns^2) instead of O(n_dofs n_columns), and candidates that never
+   * come close to touching cost nothing (doc/performance.md).
    */
   template <int dim>
   class MultibodySystem
@@ -191,6 +195,13 @@ namespace impactfe
      */
     const lcp::DenseMatrix &
     delassus_operator() const;
+    /**
+     * Memory [bytes] for stored columns M~^{-1} H_j (default 64 MiB; 0
+     * stores none and always corrects the velocity with a solve). Call
+     * before setup().
+     */
+    void
+    set_column_storage_budget(const std::size_t bytes);
     /** Measure where the CPU time goes (a few clock reads per step). */
     void
     enable_cost_breakdown(const bool enable = true);
@@ -213,7 +224,15 @@ namespace impactfe
     MechanicalOperators operators;
     /// Step matrices M~ per body and their factorisations.
     std::vector<std::unique_ptr<SparseMatrix<double>>>  step_matrices;
-    std::vector<std::unique_ptr<SparseDirectUMFPACK>>   step_solvers;
+    std::vector<std::unique_ptr<SparseCholesky>>        step_solvers;
+    /// Flops of one solve with all step matrices (4 per factor entry).
+    double solve_cost = 0.;
+    /// Stored columns M~^{-1} H_j (slots allocated in setup()) and, per
+    /// column of H, its slot or -1.
+    std::size_t                              column_storage_budget = 64 << 20;
+    mutable std::vector<BlockVector<double>> stored_columns;
+    mutable std::vector<int>                 stored_column_slot;
+    mutable unsigned int                     n_stored_columns = 0;
     /// W, filled column block by column block as candidates enter an LCP.
     mutable lcp::DenseMatrix  delassus;
     mutable std::vector<bool> delassus_ready;
@@ -248,9 +267,12 @@ namespace impactfe
     make_block_vector() const;
     void
     solve_step_matrix(BlockVector<double> &rhs_and_solution) const;
-    /** Compute the W columns of candidate @p c if not done yet. */
+    /**
+     * Compute the W columns of the candidates in @p candidates that do not
+     * have them yet, with blocks of right-hand sides.
+     */
     void
-    ensure_delassus_columns(const unsigned int c) const;
+    ensure_delassus_columns(const std::vector<unsigned int> &candidates) const;
     /** Solve the LCP on lcp_candidates; fills local_impulses. */
     lcp::Result
     solve_contact_lcp();
