@@ -198,8 +198,13 @@ namespace impactfe
         unit_fields[d] = make_block_vector();
         Tensor<1, dim> e;
         e[d] = 1.;
+        mass_unit_fields[d] = make_block_vector();
         for (unsigned int b = 0; b < n_bodies; ++b)
-          body_list[b]->fill_uniform(unit_fields[d].block(b), e);
+          {
+            body_list[b]->fill_uniform(unit_fields[d].block(b), e);
+            body_list[b]->mass_matrix().vmult(mass_unit_fields[d].block(b),
+                                              unit_fields[d].block(b));
+          }
       }
 
     solve_cost = 0.;
@@ -617,8 +622,7 @@ namespace impactfe
   {
     Tensor<1, dim> p;
     for (unsigned int d = 0; d < dim; ++d)
-      p[d] = body_list[b]->mass_matrix().matrix_scalar_product(
-        unit_fields[d].block(b), current.velocity.block(b));
+      p[d] = mass_unit_fields[d].block(b) * current.velocity.block(b);
     return p;
   }
 

@@ -241,6 +241,8 @@ namespace impactfe
     bool                        measure_costs = false;
     /// Uniform unit fields e_d per component, for momenta and net forces.
     std::array<BlockVector<double>, dim> unit_fields;
+    /// M e_d: the momentum of a body is then one dot product.
+    std::array<BlockVector<double>, dim> mass_unit_fields;
 
     MechanicalState current, next;
     unsigned int    step_number = 0;
