@@ -56,6 +56,9 @@ namespace impactfe
     run.energy_scale      = initial_energy;
     run.energy_scale_is_initial = initial_energy > 0.;
     states.assign(system.contacts().n_candidates(), ContactState::open);
+    const lcp::DenseMatrix &W = system.delassus_operator();
+    for (std::size_t j = 0; j < W.n_rows(); ++j)
+      largest_delassus_diagonal = std::max(largest_delassus_diagonal, W(j, j));
 
     if (!node_file.empty())
       {
@@ -230,6 +233,15 @@ namespace impactfe
           velocity_scale =
             std::max(velocity_scale, std::abs(local_velocity[c * nd + k]));
       }
+    // A node is sliding if |V_T| is more than round-off of the velocities
+    // of the run: those of the contact nodes, of the bodies, and the
+    // velocity W P that the largest impulse makes. (The contact nodes of a
+    // body resting on a plane never move: their velocities alone would be
+    // a scale of round-off itself, and every sticking node would count as
+    // sliding.)
+    velocity_scale = std::max({velocity_scale,
+                               system.state().velocity.linfty_norm(),
+                               largest_delassus_diagonal * impulse_scale});
     const double impulse_tolerance  = 1e-9 * impulse_scale;
     const double velocity_tolerance = 1e-8 * velocity_scale;
     for (unsigned int c = 0; c < contacts.n_candidates(); ++c)

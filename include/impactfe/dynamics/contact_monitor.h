@@ -189,7 +189,8 @@ namespace impactfe
     std::vector<double>        largest_momentum;
     std::vector<ContactState>  states;
     std::vector<double>        gaps, local_velocity;
-    double                     velocity_scale = 0., impulse_scale = 0.;
+    double                     velocity_scale = 0., impulse_scale = 0.,
+                               largest_delassus_diagonal = 0.;
   };
 } // namespace impactfe
 
