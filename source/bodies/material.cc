@@ -9,10 +9,11 @@ namespace impactfe
 {
   void
   MaterialParameters::declare_parameters(ParameterHandler  &prm,
-                                         const unsigned int dim)
+                                         const unsigned int dim,
+                                         const std::string &subsection)
   {
     const bool with_plane_model = dim == 2;
-    prm.enter_subsection("Material");
+    prm.enter_subsection(subsection);
     prm.declare_entry("Young's modulus",
                       "1",
                       Patterns::Double(),
@@ -56,9 +57,10 @@ namespace impactfe
 
   void
   MaterialParameters::parse_parameters(ParameterHandler  &prm,
-                                       const unsigned int dim)
+                                       const unsigned int dim,
+                                       const std::string &subsection)
   {
-    prm.enter_subsection("Material");
+    prm.enter_subsection(subsection);
     youngs_modulus = prm.get_double("Young's modulus");
     density        = prm.get_double("Density");
     poissons_ratio = prm.get_double("Poisson's ratio");
@@ -72,20 +74,20 @@ namespace impactfe
     prm.leave_subsection();
 
     AssertThrow(youngs_modulus > 0. && std::isfinite(youngs_modulus),
-                ExcMessage("Material: 'Young's modulus' must be > 0, got " +
+                ExcMessage(subsection + ": 'Young's modulus' must be > 0, got " +
                            format_number(youngs_modulus) + "."));
     AssertThrow(density > 0. && std::isfinite(density),
-                ExcMessage("Material: 'Density' must be > 0, got " +
+                ExcMessage(subsection + ": 'Density' must be > 0, got " +
                            format_number(density) + "."));
     AssertThrow(poissons_ratio >= 0. && poissons_ratio < 0.5,
-                ExcMessage("Material: 'Poisson's ratio' must be in [0, 0.5), "
+                ExcMessage(subsection + ": 'Poisson's ratio' must be in [0, 0.5), "
                            "got " +
                            format_number(poissons_ratio) + "."));
     AssertThrow(viscosity >= 0.,
-                ExcMessage("Material: 'Viscosity' must be >= 0, got " +
+                ExcMessage(subsection + ": 'Viscosity' must be >= 0, got " +
                            format_number(viscosity) + "."));
     AssertThrow(rayleigh_mass >= 0. && rayleigh_stiffness >= 0.,
-                ExcMessage("Material: the Rayleigh coefficients must be >= 0."));
+                ExcMessage(subsection + ": the Rayleigh coefficients must be >= 0."));
   }
 
 

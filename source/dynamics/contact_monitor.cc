@@ -46,10 +46,19 @@ namespace impactfe
         // not a contact or external impulse, so the balance is not checked.
         if (bodies[b]->material().rayleigh_mass > 0.)
           run.impulse_balance_checked = false;
+        initial_load_term += bodies[b]->external_force() *
+                             system.state().displacement.block(b);
+        run.with_loads |= bodies[b]->external_force().linfty_norm() > 0.;
       }
-    initial_energy = system.kinetic_energy() + system.elastic_energy();
-    last_energy    = initial_energy;
+    initial_energy        = total_energy();
+    last_energy           = initial_energy;
+    largest_stored_energy = system.kinetic_energy() + system.elastic_energy();
+    run.energy_scale      = initial_energy;
+    run.energy_scale_is_initial = initial_energy > 0.;
     states.assign(system.contacts().n_candidates(), ContactState::open);
+    const lcp::DenseMatrix &W = system.delassus_operator();
+    for (std::size_t j = 0; j < W.n_rows(); ++j)
+      largest_delassus_diagonal = std::max(largest_delassus_diagonal, W(j, j));
 
     if (!node_file.empty())
       {
@@ -94,6 +103,19 @@ namespace impactfe
             columns.push_back(body->name() + "_momentum_" + axis_name[d]);
         }
     return columns;
+  }
+
+
+
+  template <int dim>
+  double
+  ContactMonitor<dim>::total_energy() const
+  {
+    double load_term = -initial_load_term;
+    for (unsigned int b = 0; b < system.bodies().size(); ++b)
+      load_term += system.bodies()[b]->external_force() *
+                   system.state().displacement.block(b);
+    return system.kinetic_energy() + system.elastic_energy() - load_term;
   }
 
 
@@ -211,6 +233,15 @@ namespace impactfe
           velocity_scale =
             std::max(velocity_scale, std::abs(local_velocity[c * nd + k]));
       }
+    // A node is sliding if |V_T| is more than round-off of the velocities
+    // of the run: those of the contact nodes, of the bodies, and the
+    // velocity W P that the largest impulse makes. (The contact nodes of a
+    // body resting on a plane never move: their velocities alone would be
+    // a scale of round-off itself, and every sticking node would count as
+    // sliding.)
+    velocity_scale = std::max({velocity_scale,
+                               system.state().velocity.linfty_norm(),
+                               largest_delassus_diagonal * impulse_scale});
     const double impulse_tolerance  = 1e-9 * impulse_scale;
     const double velocity_tolerance = 1e-8 * velocity_scale;
     for (unsigned int c = 0; c < contacts.n_candidates(); ++c)
@@ -264,13 +295,22 @@ namespace impactfe
           }
       }
 
-    // Energy.
-    const double energy = system.kinetic_energy() + system.elastic_energy();
-    if (initial_energy > 0.)
+    // Energy, relative to the initial energy, or to the largest kinetic
+    // plus elastic energy so far when the scene starts at rest.
+    const double energy = total_energy();
+    largest_increase    = std::max(largest_increase, energy - last_energy);
+    largest_stored_energy =
+      std::max(largest_stored_energy,
+               system.kinetic_energy() + system.elastic_energy());
+    if (!run.energy_scale_is_initial)
+      run.energy_scale = largest_stored_energy;
+    if (run.energy_scale > 0.)
       {
-        run.max_energy_increase =
-          std::max(run.max_energy_increase, (energy - last_energy) / initial_energy);
-        run.energy_ratio = energy / initial_energy;
+        run.max_energy_increase = largest_increase / run.energy_scale;
+        run.energy_ratio =
+          run.energy_scale_is_initial ?
+            energy / initial_energy :
+            1. + (energy - initial_energy) / run.energy_scale;
       }
     last_energy = energy;
 
@@ -325,19 +365,26 @@ namespace impactfe
     prm.declare_entry("Maximum energy increase",
                       "-1",
                       Patterns::Double(),
-                      "Fail the run if the kinetic plus elastic energy grows "
+                      "Fail the run if the energy (kinetic plus elastic, "
+                      "minus the work of the loads if there are any) grows "
                       "by more than this fraction of the initial energy in "
-                      "one step [-]. -1: no check.");
+                      "one step [-]; a scene that starts at rest takes the "
+                      "largest kinetic plus elastic energy instead. -1: no "
+                      "check.");
     prm.declare_entry("Minimum energy ratio",
                       "-1",
                       Patterns::Double(),
                       "Fail the run if final/initial energy is below this "
-                      "[-]. -1: no check.");
+                      "[-] (a scene that starts at rest: 1 + (final - "
+                      "initial) / largest kinetic plus elastic energy). -1: "
+                      "no check.");
     prm.declare_entry("Maximum energy ratio",
                       "-1",
                       Patterns::Double(),
                       "Fail the run if final/initial energy exceeds this "
-                      "[-]. -1: no check.");
+                      "[-] (a scene that starts at rest: 1 + (final - "
+                      "initial) / largest kinetic plus elastic energy). -1: "
+                      "no check.");
     prm.leave_subsection();
   }
 
@@ -414,9 +461,22 @@ namespace impactfe
       out << "  Coulomb: max (|P_T| - mu P_N) / max P_N = "
           << small(s.coulomb_excess) << ", sliding nodes with a wrong "
           << "friction force: " << s.wrong_slip_count << std::endl;
-    out << "  Energy: final / initial = " << s.energy_ratio
-        << ", largest increase in a step = " << small(s.max_energy_increase)
-        << " of the initial energy" << std::endl;
+    // Without loads the energy is kinetic plus elastic and the line reads
+    // as it always did.
+    const std::string reference = s.energy_scale_is_initial ?
+                                    "the initial energy" :
+                                    "the largest kinetic + elastic energy";
+    if (s.with_loads)
+      out << "  Energy (kinetic + elastic - work of the loads): ";
+    else
+      out << "  Energy: ";
+    if (s.energy_scale_is_initial)
+      out << "final / initial = " << s.energy_ratio;
+    else
+      out << "0 at t = 0; (final - initial) / (" << reference
+          << ") = " << small(s.energy_ratio - 1.);
+    out << ", largest increase in a step = " << small(s.max_energy_increase)
+        << " of " << reference << std::endl;
     out << "  Contact state changes (open/stick/slip): " << s.state_changes
         << " in " << s.n_steps << " steps" << std::endl;
 

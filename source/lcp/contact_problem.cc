@@ -737,6 +737,10 @@ namespace impactfe
       {
         const unsigned int nc = p.n_contacts;
         const double       tolerance_factor = options.lemke.verification_tolerance_factor;
+        // The tolerance of verify_facet_point() (see verify_with_residual()),
+        // at least 1e-10: a backward-stable solve meets it on any W.
+        const double physical_tolerance =
+          std::max(tolerance_factor * eps * 4. * std::max(nc, 1u), 1e-10);
         std::set<std::vector<ContactState>> visited;
         std::vector<unsigned int>          rows, unknown_column, unknown_contact;
         std::vector<double>                rhs, slip_factor(nc, 0.);
@@ -827,8 +831,18 @@ namespace impactfe
               }
             local_velocities(p, P, V);
 
+            // Accept the point only if it passes the facet form's
+            // verification and the contact conditions themselves. The facet
+            // form's scale s = ||q|| + ||M|| ||z|| mixes impulses (P_N, beta)
+            // and velocities (sigma = |V_T| of open and sliding contacts):
+            // where |V_T| is large against ||M|| ||P||, its tolerance on the
+            // impulse rows grows to the size of the impulses, and points
+            // with |P_T| > mu P_N, or sliding against their friction force,
+            // passed. verify_contact_solution() measures impulses and
+            // velocities on their own scales.
             verification = verify_facet_point(p, states, P, V, tolerance_factor, z, w);
-            if (verification.ok)
+            if (verification.ok &&
+                verify_contact_solution(p, P, physical_tolerance).ok)
               return true;
 
             // Change the state of every contact that violates its conditions.

@@ -105,5 +105,26 @@ main()
            with("Geometry", "Interface mesh offset = 0.5"), bars_2d);
   run_case("plane_normal_with_three_coordinates",
            with("Obstacle", "Normal = 0, 1, 0"), plate);
+
+  // block_on_plane: its geometry, loads, second body and final phase.
+  const std::string block = BLOCK_ON_PLANE_EXECUTABLE;
+  run_case("block_negative_height", with("Geometry", "Height = -0.05"), block);
+  run_case("block_negative_gap", with("Geometry", "Initial gap = -1e-3"),
+           block);
+  run_case("block_gravity_with_one_component", with("Loads", "Gravity = -9.81"),
+           block);
+  run_case("block_body_2_wider",
+           with("Body 2", "Enabled = true\n  set Width = 0.2"), block);
+  run_case("block_body_2_negative_gap",
+           with("Body 2", "Enabled = true\n  set Gap above body 1 = -0.01"),
+           block);
+  run_case("block_body_2_zero_density",
+           with("Material of body 2", "Density = 0"), block);
+  run_case("block_final_phase_after_end",
+           with("Verification", "Start of the final phase = 2"), block);
+  run_case("block_zero_normal",
+           with("Obstacle", "Type = ball\n  set Normal = 0, 0\n  set Center "
+                            "= 0, -1"),
+           block);
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
 }

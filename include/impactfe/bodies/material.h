@@ -4,6 +4,8 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/symmetric_tensor.h>
 
+#include <string>
+
 namespace impactfe
 {
   using namespace dealii;
@@ -39,12 +41,18 @@ namespace impactfe
     /**
      * Declare the entries for a model of dimension @p dim. The plane model
      * exists only in 2D; Poisson's ratio is declared everywhere (in 1D it
-     * has no effect, and its help text says so).
+     * has no effect, and its help text says so). A scene whose bodies are
+     * of different materials declares one subsection per material, e.g.
+     * `Material` and `Material of body 2`.
      */
     static void
-    declare_parameters(ParameterHandler &prm, const unsigned int dim);
+    declare_parameters(ParameterHandler  &prm,
+                       const unsigned int dim,
+                       const std::string &subsection = "Material");
     void
-    parse_parameters(ParameterHandler &prm, const unsigned int dim);
+    parse_parameters(ParameterHandler  &prm,
+                     const unsigned int dim,
+                     const std::string &subsection = "Material");
 
     /** Kelvin--Voigt relaxation time eta/E plus the Rayleigh stiffness term. */
     double

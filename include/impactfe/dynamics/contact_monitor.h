@@ -41,8 +41,17 @@ namespace impactfe
     double coulomb_excess = 0.;
     /// Sliding nodes whose P_T is not opposite to V_T, or is below mu P_N.
     unsigned int wrong_slip_count = 0;
-    /// max over steps of (E^{i+1} - E^i) / E^0.
+    /// Whether the bodies carry external loads: the energy then includes
+    /// their potential (minus their work since t = 0).
+    bool with_loads = false;
+    /// The energy E^0 at t = 0 if it is > 0; otherwise (a scene that starts
+    /// at rest and undeformed) the largest kinetic plus elastic energy of
+    /// the run. The energy figures below are relative to it.
+    double energy_scale = 0.;
+    bool   energy_scale_is_initial = true;
+    /// max over steps of (E^{i+1} - E^i) / energy_scale.
     double max_energy_increase = 0.;
+    /// E(T) / E^0, or 1 + (E(T) - E^0) / energy_scale if E^0 is not > 0.
     double energy_ratio        = 1.;
     /// First and last step end times with a non-zero contact force (-1:
     /// never).
@@ -117,8 +126,8 @@ namespace impactfe
    *  - Signorini: the largest penetration max(-g) over steps and nodes;
    *  - Coulomb: |P_T| <= mu P_N at every node and step, and a sliding node
    *    (|V_T^{i+1}| > 0) has P_T = -mu P_N V_T / |V_T|;
-   *  - energy: the largest increase of kinetic plus elastic energy in a
-   *    step, relative to the initial energy.
+   *  - energy: the largest increase of the total energy in a step,
+   *    relative to the initial energy (see total_energy()).
    *
    * Call record() after every MultibodySystem::do_time_step().
    */
@@ -151,6 +160,14 @@ namespace impactfe
     const ContactRunSummary &
     summary() const;
 
+    /**
+     * Kinetic plus elastic energy minus the work of the external loads
+     * since t = 0. The loads are constant, so their potential is -F.u and
+     * this is the energy that the dissipative schemes do not increase.
+     */
+    double
+    total_energy() const;
+
     /** Total contact force on all bodies, and total momentum. */
     Tensor<1, dim>
     total_contact_force() const;
@@ -163,12 +180,17 @@ namespace impactfe
 
     ContactRunSummary          run;
     double                     initial_energy = 0., last_energy = 0.;
+    /// F.u at t = 0, and the largest absolute energy increase in a step
+    /// and kinetic plus elastic energy so far.
+    double                     initial_load_term = 0., largest_increase = 0.,
+                               largest_stored_energy = 0.;
     std::vector<Tensor<1, dim>> initial_momentum, external_force,
       previous_contact_force, accumulated_impulse;
     std::vector<double>        largest_momentum;
     std::vector<ContactState>  states;
     std::vector<double>        gaps, local_velocity;
-    double                     velocity_scale = 0., impulse_scale = 0.;
+    double                     velocity_scale = 0., impulse_scale = 0.,
+                               largest_delassus_diagonal = 0.;
   };
 } // namespace impactfe
 
