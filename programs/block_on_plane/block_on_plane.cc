@@ -59,6 +59,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -81,6 +82,19 @@ namespace BlockOnPlane
     else
       text << std::setprecision(3) << x;
     return text.str();
+  }
+
+  // sum_ij |A_ij| |x_i| |x_j|: the round-off of x.Ax is at most a small
+  // multiple of eps times this (Higham, Accuracy and Stability of Numerical
+  // Algorithms, section 3.1), whatever cancels in x.Ax itself.
+  double
+  absolute_quadratic_form(const SparseMatrix<double> &A, const Vector<double> &x)
+  {
+    double sum = 0.;
+    for (unsigned int i = 0; i < A.m(); ++i)
+      for (auto entry = A.begin(i); entry != A.end(i); ++entry)
+        sum += std::abs(entry->value() * x(i) * x(entry->column()));
+    return sum;
   }
 
   // A vector as "(x, y)".
@@ -323,6 +337,7 @@ namespace BlockOnPlane
     double max_final_velocity_error = -1.;
     double max_compression_error    = -1.;
     double min_restitution = -1., max_restitution = -1.;
+    double max_energy_increase_in_round_offs = -1.;
 
     static void
     declare_parameters(ParameterHandler &prm)
@@ -377,6 +392,14 @@ namespace BlockOnPlane
                         "rho g H^2 / (2 E) by more than this fraction "
                         "(Poisson's ratio 0, block at rest) [-]. -1: no "
                         "check.");
+      prm.declare_entry("Maximum energy increase in round-offs", "-1",
+                        Patterns::Double(),
+                        "Fail the run if the largest energy increase in a "
+                        "step exceeds this many times the round-off of the "
+                        "energy, eps (|u|.|K||u| + |v|.|M||v| + |F|.|u|) "
+                        "(entry-wise absolute values, largest over the run) "
+                        "[-]. The bound for schemes that cannot increase the "
+                        "energy. -1: no check.");
       prm.declare_entry("Minimum restitution", "-1", Patterns::Double(),
                         "Fail the run if the apparent restitution of the "
                         "first impact (mean normal velocity after / before) "
@@ -400,6 +423,8 @@ namespace BlockOnPlane
       max_distance_error     = prm.get_double("Maximum sliding distance error");
       max_final_velocity_error = prm.get_double("Maximum final velocity error");
       max_compression_error  = prm.get_double("Maximum static compression error");
+      max_energy_increase_in_round_offs =
+        prm.get_double("Maximum energy increase in round-offs");
       min_restitution        = prm.get_double("Minimum restitution");
       max_restitution        = prm.get_double("Maximum restitution");
       prm.leave_subsection();
@@ -516,6 +541,11 @@ namespace BlockOnPlane
     double reaction_sum = 0., compression_sum = 0.;
     unsigned int final_contact_steps = 0;
     std::vector<double> gaps;
+    // Largest eps (|u|.|K||u| + |v|.|M||v| + |F|.|u|) of the run: the
+    // round-off with which the energy is computed. u.Ku sums terms of size
+    // |K| |u|^2 (u includes the rigid motion) that cancel down to twice the
+    // strain energy.
+    double energy_round_off = 0.;
     // First impact: normal velocity before touching and after leaving.
     double velocity_before_impact = 0., velocity_after_impact = 0.;
     // 0 before, 1 from the first contact on, 2 once no node touches the
@@ -877,6 +907,21 @@ namespace BlockOnPlane
               (previous_tangential_velocity - v_t);
         previous_tangential_velocity = v_t;
       }
+    {
+      double round_off = 0.;
+      for (unsigned int b = 0; b < blocks.size(); ++b)
+        {
+          const Vector<double> &u = system->state().displacement.block(b),
+                               &v = system->state().velocity.block(b);
+          round_off += absolute_quadratic_form(blocks[b]->stiffness_matrix(), u) +
+                       absolute_quadratic_form(blocks[b]->mass_matrix(), v);
+          for (unsigned int i = 0; i < u.size(); ++i)
+            round_off += std::abs(blocks[b]->external_force()(i) * u(i));
+        }
+      energy_round_off =
+        std::max(energy_round_off,
+                 std::numeric_limits<double>::epsilon() * round_off);
+    }
     recorder->record(report,
                      {mean_velocity()[0],
                       mean_velocity()[1],
@@ -956,6 +1001,20 @@ namespace BlockOnPlane
                                     s,
                                     verification,
                                     system->contacts().n_directions() > 1);
+
+    // The energy's round-off, in units of the energy scale of the summary.
+    const double round_off =
+      s.energy_scale > 0. ? energy_round_off / s.energy_scale : 0.;
+    const double increase_in_round_offs =
+      round_off > 0. ? s.max_energy_increase / round_off : 0.;
+    out << "  Round-off of the energy eps (|u|.|K||u| + |v|.|M||v| + "
+           "|F|.|u|) = "
+        << figure(round_off, 1e-300) << " of the same scale; largest increase "
+        << "in a step = " << figure(increase_in_round_offs, 100.)
+        << " round-offs" << std::endl;
+    ok &= print_check(out, "energy increase in a step in round-offs",
+                      increase_in_round_offs, "<=",
+                      bounds.max_energy_increase_in_round_offs);
 
     // The final phase.
     const double gap_drift = std::abs(mean_gap - mean_gap_at_phase_start);
@@ -1100,6 +1159,7 @@ namespace BlockOnPlane
       .add("max_penetration", s.max_penetration)
       .add("energy_change", s.energy_ratio - 1.)
       .add("max_energy_increase", s.max_energy_increase)
+      .add("energy_round_off", round_off)
       .add("active_set_changes", double(active_set_changes))
       .add("active_set_changes_per_step", changes_per_step)
       .add("final_phase_start", final_phase_start)
