@@ -495,6 +495,10 @@ namespace BlockOnPlane
     void
     output_results(const StepReport &report);
     void
+    measure_step(const unsigned int active_set_changes_of_step);
+    void
+    update_energy_round_off();
+    void
     report_results();
 
     GeometryParameters            geometry;
@@ -847,99 +851,115 @@ namespace BlockOnPlane
 
   // @sect4{BlockOnPlaneProblem::output_results}
   //
-  // The recorder's files and checks, and this program's measurements.
+  // The recorder's files and checks (history.csv gets this program's
+  // columns), then this program's measurements of the step.
   void
   BlockOnPlaneProblem::output_results(const StepReport &report)
   {
     unsigned int changes = 0;
     if (report.step > 0)
       {
-        const double              t        = system->state().time;
-        const bool                in_final = t >= final_phase_start - 1e-9 *
-                                                  time_stepping.time_step;
-        const std::vector<bool> &active    = system->active_set();
+        const std::vector<bool> &active = system->active_set();
         for (unsigned int c = 0; c < active.size(); ++c)
           changes += active[c] != previous_active[c] ? 1 : 0;
         previous_active = active;
-        active_set_changes += changes;
-
-        system->contacts().gaps(system->state().displacement, gaps);
-        mean_gap = 0.;
-        for (unsigned int c = 0; c < n_plane_candidates; ++c)
-          mean_gap += gaps[c] / n_plane_candidates;
-
-        if (in_final)
-          {
-            if (final_phase_steps == 0)
-              mean_gap_at_phase_start = mean_gap;
-            ++final_phase_steps;
-            final_active_set_changes += changes;
-            for (const double g : gaps)
-              final_penetration = std::max(final_penetration, -g);
-            reaction_sum += plane_reaction();
-            final_contact_steps += plane_reaction() > 0. ? 1 : 0;
-            compression_sum += top_sinking();
-          }
-
-        // First impact on the plane.
-        const double v_n        = mean_velocity() * normal;
-        bool         on_plane   = false;
-        for (unsigned int c = 0; c < n_plane_candidates; ++c)
-          on_plane |= active[c];
-        if (impact_phase == 0 && on_plane)
-          impact_phase = 1;
-        else if (impact_phase == 1 && !on_plane && v_n > 0.)
-          {
-            impact_phase          = 2;
-            velocity_after_impact = v_n;
-          }
-        if (impact_phase == 0)
-          velocity_before_impact = v_n;
-
-        // The first time the mean velocity along t reaches 0, between
-        // this step and the last (linear interpolation).
-        const double v_t = mean_velocity() * tangent;
-        if (measured_stick_time < 0. && previous_tangential_velocity != 0. &&
-            v_t * previous_tangential_velocity <= 0.)
-          measured_stick_time =
-            t - time_stepping.time_step +
-            time_stepping.time_step * previous_tangential_velocity /
-              (previous_tangential_velocity - v_t);
-        previous_tangential_velocity = v_t;
       }
-    {
-      double round_off = 0.;
-      for (unsigned int b = 0; b < blocks.size(); ++b)
-        {
-          const Vector<double> &u = system->state().displacement.block(b),
-                               &v = system->state().velocity.block(b);
-          round_off += absolute_quadratic_form(blocks[b]->stiffness_matrix(), u) +
-                       absolute_quadratic_form(blocks[b]->mass_matrix(), v);
-          for (unsigned int i = 0; i < u.size(); ++i)
-            round_off += std::abs(blocks[b]->external_force()(i) * u(i));
-        }
-      energy_round_off =
-        std::max(energy_round_off,
-                 std::numeric_limits<double>::epsilon() * round_off);
-    }
+    update_energy_round_off();
     recorder->record(report,
                      {mean_velocity()[0],
                       mean_velocity()[1],
                       plane_reaction(),
                       recorder->monitor().total_energy(),
                       double(changes)});
+    if (report.step > 0)
+      measure_step(changes);
+  }
 
-    if (report.step > 0 &&
-        system->state().time >= final_phase_start - 1e-9 * time_stepping.time_step)
-      for (unsigned int c = 0; c < previous_states.size(); ++c)
-        {
-          const ContactState s = recorder->monitor().state(c);
-          final_state_changes += s != previous_states[c] ? 1 : 0;
-          previous_states[c] = s;
-        }
-    else
-      for (unsigned int c = 0; c < previous_states.size(); ++c)
-        previous_states[c] = recorder->monitor().state(c);
+
+
+  // @sect4{BlockOnPlaneProblem::measure_step}
+  //
+  // Active-set and contact-state changes, the gap, penetration, reaction
+  // and top of the block in the final phase, the first impact, and the
+  // first time the mean velocity along the plane reaches 0. Called after
+  // the recorder, whose monitor classifies the contact states.
+  void
+  BlockOnPlaneProblem::measure_step(const unsigned int active_set_changes_of_step)
+  {
+    const double t        = system->state().time;
+    const bool   in_final = t >= final_phase_start - 1e-9 * time_stepping.time_step;
+    active_set_changes += active_set_changes_of_step;
+
+    system->contacts().gaps(system->state().displacement, gaps);
+    mean_gap = 0.;
+    for (unsigned int c = 0; c < n_plane_candidates; ++c)
+      mean_gap += gaps[c] / n_plane_candidates;
+
+    for (unsigned int c = 0; c < previous_states.size(); ++c)
+      {
+        const ContactState state = recorder->monitor().state(c);
+        final_state_changes += (in_final && state != previous_states[c]) ? 1 : 0;
+        previous_states[c] = state;
+      }
+    if (in_final)
+      {
+        if (final_phase_steps == 0)
+          mean_gap_at_phase_start = mean_gap;
+        ++final_phase_steps;
+        final_active_set_changes += active_set_changes_of_step;
+        for (const double g : gaps)
+          final_penetration = std::max(final_penetration, -g);
+        reaction_sum += plane_reaction();
+        final_contact_steps += plane_reaction() > 0. ? 1 : 0;
+        compression_sum += top_sinking();
+      }
+
+    // First impact on the plane.
+    const double v_n      = mean_velocity() * normal;
+    bool         on_plane = false;
+    for (unsigned int c = 0; c < n_plane_candidates; ++c)
+      on_plane |= system->active_set()[c];
+    if (impact_phase == 0 && on_plane)
+      impact_phase = 1;
+    else if (impact_phase == 1 && !on_plane && v_n > 0.)
+      {
+        impact_phase          = 2;
+        velocity_after_impact = v_n;
+      }
+    if (impact_phase == 0)
+      velocity_before_impact = v_n;
+
+    // The first time the mean velocity along t reaches 0, between this
+    // step and the last (linear interpolation).
+    const double v_t = mean_velocity() * tangent;
+    if (measured_stick_time < 0. && previous_tangential_velocity != 0. &&
+        v_t * previous_tangential_velocity <= 0.)
+      measured_stick_time =
+        t - time_stepping.time_step +
+        time_stepping.time_step * previous_tangential_velocity /
+          (previous_tangential_velocity - v_t);
+    previous_tangential_velocity = v_t;
+  }
+
+
+
+  // @sect4{BlockOnPlaneProblem::update_energy_round_off}
+  void
+  BlockOnPlaneProblem::update_energy_round_off()
+  {
+    double round_off = 0.;
+    for (unsigned int b = 0; b < blocks.size(); ++b)
+      {
+        const Vector<double> &u = system->state().displacement.block(b),
+                             &v = system->state().velocity.block(b);
+        round_off += absolute_quadratic_form(blocks[b]->stiffness_matrix(), u) +
+                     absolute_quadratic_form(blocks[b]->mass_matrix(), v);
+        for (unsigned int i = 0; i < u.size(); ++i)
+          round_off += std::abs(blocks[b]->external_force()(i) * u(i));
+      }
+    energy_round_off =
+      std::max(energy_round_off,
+               std::numeric_limits<double>::epsilon() * round_off);
   }
 
 
