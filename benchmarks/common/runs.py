@@ -61,3 +61,87 @@ def machine_and_commit():
     except OSError:
         commit = "?"
     return f"{model}, commit {commit or '?'}"
+
+
+# ---------------------------------------------------------------------------
+# Timed runs for the work-precision benchmark (benchmarks/work_precision/).
+
+def program_environment(build):
+    """The environment to run <build>/bin/<program> in: os.environ, plus
+    LD_LIBRARY_PATH=<build>/lib when that folder exists (so that a copy of a
+    build, e.g. a snapshot, uses its own libimpactfe.so and not the one its
+    RUNPATH names)."""
+    env = dict(os.environ)
+    lib = os.path.join(os.path.abspath(build), "lib")
+    if os.path.isdir(lib):
+        old = env.get("LD_LIBRARY_PATH")
+        env["LD_LIBRARY_PATH"] = lib + (":" + old if old else "")
+    return env
+
+
+def run_measured(build, program, base_prm, out_dir, overrides="",
+                 remove=("contact_nodes.csv",)):
+    """Run <build>/bin/<program> like run(), but do not stop on failure and
+    measure the CPU seconds (user + system) of the child process with
+    resource.getrusage(RUSAGE_CHILDREN) around it. Files named in <remove>
+    are deleted afterwards (they can be large).
+
+    Returns {"summary": dict or None, "cpu_run_seconds": float,
+    "returncode": int, "message": the exception text or "", "out_dir": ...}.
+    The 2D programs exit with 1 when one of their built-in checks fails but
+    still write summary.json and history.csv: the summary is returned then
+    too, and the caller decides."""
+    import resource
+    executable = os.path.join(build, "bin", program)
+    if not os.path.exists(executable):
+        sys.exit(f"{executable} not found: build first (see README.md)")
+    os.makedirs(out_dir, exist_ok=True)
+    summary_file = os.path.join(out_dir, "summary.json")
+    if os.path.exists(summary_file):
+        os.remove(summary_file)
+    wrapper = os.path.join(out_dir, "run.prm")
+    with open(wrapper, "w") as f:
+        f.write(f"include {base_prm}\n{overrides}\n"
+                "subsection Output\n"
+                f"  set Output directory = {out_dir}\n"
+                "  set VTU output = false\n  set Plot = false\n"
+                "  set Shape snapshot times =\nend\n")
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    proc = subprocess.run([executable, wrapper], env=program_environment(build),
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    with open(os.path.join(out_dir, "stdout.txt"), "w") as f:
+        f.write(proc.stdout + proc.stderr)
+    message = ""
+    if proc.returncode != 0:
+        text = proc.stderr.strip() or proc.stdout.strip()
+        lines = [l.strip() for l in text.splitlines()
+                 if l.strip() and not set(l.strip()) <= set("-")]
+        if "Exception on processing:" in lines:
+            lines = lines[lines.index("Exception on processing:") + 1:]
+        message = " ".join(l for l in lines if l != "Aborting!")
+        failed_checks = [l.strip() for l in proc.stdout.splitlines() if "FAILED" in l]
+        if failed_checks:
+            message = "; ".join(failed_checks) + " (" + message + ")"
+        message = message[:300]
+    for name in remove:
+        path = os.path.join(out_dir, name)
+        if os.path.exists(path):
+            os.remove(path)
+    summary = None
+    if os.path.exists(summary_file):
+        with open(summary_file) as f:
+            summary = json.load(f)
+    return {"summary": summary, "cpu_run_seconds": cpu,
+            "returncode": proc.returncode, "message": message, "out_dir": out_dir}
+
+
+def pareto_front(points):
+    """The lower-left envelope of (cost, error) pairs: sorted by cost, the
+    points whose error is below that of every cheaper point."""
+    front = []
+    for cost, error in sorted(points):
+        if not front or error < front[-1][1]:
+            front.append((cost, error))
+    return front

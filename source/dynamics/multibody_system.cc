@@ -5,12 +5,50 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
 
 namespace impactfe
 {
+  namespace
+  {
+    /// CPU seconds of the calling thread (not inflated by other processes).
+    double
+    thread_cpu_seconds()
+    {
+      timespec t;
+      clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+      return t.tv_sec + 1e-9 * t.tv_nsec;
+    }
+
+    /// Adds the time since the last call to one of the cost counters.
+    class CostClock
+    {
+    public:
+      explicit CostClock(const bool enabled)
+        : enabled(enabled)
+        , last(enabled ? thread_cpu_seconds() : 0.)
+      {}
+      void
+      charge(double &counter)
+      {
+        if (!enabled)
+          return;
+        const double now = thread_cpu_seconds();
+        counter += now - last;
+        last = now;
+      }
+
+    private:
+      const bool enabled;
+      double     last;
+    };
+  } // namespace
+
+
+
   template <int dim>
   MultibodySystem<dim>::MultibodySystem(
     const TimeSteppingParameters  &time_stepping,
@@ -113,16 +151,19 @@ namespace impactfe
 
 
 
-  // @sect3{Set-up: M~, its factorisation and the Delassus operator}
+  // @sect3{Set-up: M~ and its factorisation}
   // M~ = M + c_C C + c_K K depends only on the scheme and h, so it is
-  // factorised once per body. The columns M~^{-1} H_j are computed once too:
-  // they give W = H^T M~^{-1} H and the velocity correction of every step.
+  // factorised once per body. The Delassus operator is not built here: its
+  // columns are computed when their candidate first enters an LCP (see
+  // ensure_delassus_columns()).
   template <int dim>
   void
   MultibodySystem<dim>::setup()
   {
     AssertThrow(!body_list.empty(), ExcMessage("The scene has no body."));
     const unsigned int n_bodies = body_list.size();
+    costs = CostBreakdown();
+    CostClock clock(measure_costs);
 
     operators.mass.clear();
     operators.stiffness.clear();
@@ -145,8 +186,9 @@ namespace impactfe
         step_matrix->add(scheme->stiffness_coefficient(), body.stiffness_matrix());
         if (body.has_damping())
           step_matrix->add(scheme->damping_coefficient(), body.damping_matrix());
-        auto solver = std::make_unique<SparseDirectUMFPACK>();
-        solver->factorize(*step_matrix);
+        auto solver = std::make_unique<SparseCholesky>();
+        solver->factorize(*step_matrix, "the step matrix of body '" +
+                                          body.name() + "'");
         step_matrices.push_back(std::move(step_matrix));
         step_solvers.push_back(std::move(solver));
       }
@@ -156,22 +198,32 @@ namespace impactfe
         unit_fields[d] = make_block_vector();
         Tensor<1, dim> e;
         e[d] = 1.;
+        mass_unit_fields[d] = make_block_vector();
         for (unsigned int b = 0; b < n_bodies; ++b)
-          body_list[b]->fill_uniform(unit_fields[d].block(b), e);
+          {
+            body_list[b]->fill_uniform(unit_fields[d].block(b), e);
+            body_list[b]->mass_matrix().vmult(mass_unit_fields[d].block(b),
+                                              unit_fields[d].block(b));
+          }
       }
+
+    solve_cost = 0.;
+    for (const auto &solver : step_solvers)
+      solve_cost += 4. * solver->n_factor_entries();
 
     contact_set.build_operator(body_list);
     const unsigned int n_columns = contact_set.n_columns();
-    response_columns.assign(n_columns, make_block_vector());
     delassus.reinit(n_columns, n_columns);
-    for (unsigned int j = 0; j < n_columns; ++j)
-      {
-        contact_set.add_column(j, 1., response_columns[j]);
-        solve_step_matrix(response_columns[j]);
-      }
-    for (unsigned int i = 0; i < n_columns; ++i)
-      for (unsigned int j = 0; j < n_columns; ++j)
-        delassus(i, j) = contact_set.column_dot(i, response_columns[j]);
+    delassus_ready.assign(contact_set.n_candidates(), false);
+    column_work = make_block_vector();
+    const std::size_t n_dofs = column_work.size();
+    const std::size_t n_slots =
+      std::min<std::size_t>(n_columns,
+                            column_storage_budget / (8 * std::max<std::size_t>(
+                                                           n_dofs, 1)));
+    stored_columns.assign(n_slots, column_work);
+    stored_column_slot.assign(n_columns, -1);
+    n_stored_columns = 0;
 
     // Newmark starts from a^0 with M a^0 = F - K u^0 - C v^0 (no contact
     // force at t = 0).
@@ -188,8 +240,10 @@ namespace impactfe
               body.damping_matrix().vmult(tmp, current.velocity.block(b));
               rhs -= tmp;
             }
-          SparseDirectUMFPACK mass_solver;
-          mass_solver.factorize(body.mass_matrix());
+          SparseCholesky mass_solver;
+          mass_solver.factorize(body.mass_matrix(),
+                                "the mass matrix of body '" + body.name() +
+                                  "'");
           mass_solver.solve(rhs);
           current.acceleration.block(b) = rhs;
         }
@@ -197,9 +251,89 @@ namespace impactfe
     next                = current;
     free_velocity       = make_block_vector();
     contact_force_field = make_block_vector();
+    impulse_response    = make_block_vector();
     local_impulses.assign(n_columns, 0.);
     active.assign(contact_set.n_candidates(), false);
     step_number = 0;
+    clock.charge(costs.factorization);
+  }
+
+
+
+  // @sect3{The Delassus operator, column by column}
+  // The columns W(:, j) = H^T M~^{-1} H_j of the directions j of a
+  // candidate: a solve each, then a dot product with every (sparse) column
+  // of H. Done once per candidate, when it first can touch; W(i, j) for two
+  // candidates in an LCP is then always available, and so is W(i, j) for
+  // any i against a candidate j of the LCP (the check of excluded
+  // candidates). The solves are done in blocks of up to 128 right-hand
+  // sides (at most 256 MiB), which the supernodal Cholesky solve handles
+  // with dense block operations: several times faster per column than one
+  // solve per column on large meshes.
+  template <int dim>
+  void
+  MultibodySystem<dim>::ensure_delassus_columns(
+    const std::vector<unsigned int> &candidates) const
+  {
+    const unsigned int        nd = contact_set.n_directions();
+    std::vector<unsigned int> columns;
+    for (const unsigned int c : candidates)
+      if (!delassus_ready[c])
+        {
+          for (unsigned int k = 0; k < nd; ++k)
+            columns.push_back(c * nd + k);
+          delassus_ready[c] = true;
+          ++costs.delassus_candidates;
+        }
+    if (columns.empty())
+      return;
+
+    const std::size_t  n_dofs = column_work.size();
+    const unsigned int block_size =
+      std::max<std::size_t>(1,
+                            std::min<std::size_t>(128,
+                                                  (std::size_t(256) << 20) /
+                                                    (8 * n_dofs)));
+    const unsigned int n_bodies = body_list.size();
+    std::vector<std::vector<double>> rhs(n_bodies);
+    for (std::size_t first = 0; first < columns.size(); first += block_size)
+      {
+        const unsigned int n_block =
+          std::min<std::size_t>(block_size, columns.size() - first);
+        for (unsigned int b = 0; b < n_bodies; ++b)
+          rhs[b].assign(n_block * column_work.block(b).size(), 0.);
+        for (unsigned int r = 0; r < n_block; ++r)
+          {
+            column_work = 0.;
+            contact_set.add_column(columns[first + r], 1., column_work);
+            for (unsigned int b = 0; b < n_bodies; ++b)
+              {
+                const Vector<double> &block = column_work.block(b);
+                std::copy(block.begin(),
+                          block.end(),
+                          rhs[b].begin() + r * block.size());
+              }
+          }
+        for (unsigned int b = 0; b < n_bodies; ++b)
+          step_solvers[b]->solve(rhs[b].data(), n_block);
+        for (unsigned int r = 0; r < n_block; ++r)
+          {
+            const unsigned int j = columns[first + r];
+            for (unsigned int b = 0; b < n_bodies; ++b)
+              {
+                Vector<double> &block = column_work.block(b);
+                const auto start = rhs[b].begin() + r * block.size();
+                std::copy(start, start + block.size(), block.begin());
+              }
+            for (unsigned int i = 0; i < contact_set.n_columns(); ++i)
+              delassus(i, j) = contact_set.column_dot(i, column_work);
+            if (n_stored_columns < stored_columns.size())
+              {
+                stored_columns[n_stored_columns] = column_work;
+                stored_column_slot[j]            = n_stored_columns++;
+              }
+          }
+      }
   }
 
 
@@ -307,6 +441,7 @@ namespace impactfe
     StepReport report;
     report.step = step_number;
     report.time = current.time + h;
+    CostClock clock(measure_costs);
 
     // 1. Free velocity.
     scheme->free_rhs(operators, current, free_velocity);
@@ -315,6 +450,7 @@ namespace impactfe
     // 2. Local free velocities and the scheme's gap terms.
     contact_set.local_velocities(free_velocity, local_free_velocity);
     scheme->gap_term(contact_set, current, gap_terms);
+    clock.charge(costs.free_velocity);
 
     // 3. The LCP on the candidates that can touch: those whose free normal
     // velocity would close the gap within the step, plus the previous
@@ -339,6 +475,10 @@ namespace impactfe
             lcp_candidates.push_back(c);
         if (lcp_candidates.empty())
           break;
+
+        clock.charge(costs.lcp);
+        ensure_delassus_columns(lcp_candidates);
+        clock.charge(costs.delassus);
 
         const lcp::Result result = solve_contact_lcp();
         report.lcp_size   = last_lcp_size;
@@ -383,18 +523,36 @@ namespace impactfe
       }
     pivot_count += report.lcp_pivots;
     lcp_max_size = std::max(lcp_max_size, report.lcp_size);
+    clock.charge(costs.lcp);
 
-    // 4. v^{i+1} = v_free + sum_j (M~^{-1} H_j) P_j, and the nodal forces.
-    next.velocity = free_velocity;
-    contact_force_field = 0.;
+    // 4. v^{i+1} = v_free + M~^{-1} (H P), and the nodal forces. With few
+    // impulses whose columns M~^{-1} H_j are stored, their sum is cheaper
+    // than a solve; otherwise one solve with H P.
+    next.velocity             = free_velocity;
     const double force_factor = scheme->force_per_impulse();
+    impulse_response          = 0.;
+    unsigned int n_impulses   = 0;
+    bool         all_stored   = true;
     for (unsigned int j = 0; j < contact_set.n_columns(); ++j)
       if (local_impulses[j] != 0.)
         {
-          next.velocity.add(local_impulses[j], response_columns[j]);
-          contact_set.add_column(j, force_factor * local_impulses[j],
-                                 contact_force_field);
+          contact_set.add_column(j, local_impulses[j], impulse_response);
+          ++n_impulses;
+          all_stored = all_stored && stored_column_slot[j] >= 0;
         }
+    contact_force_field.equ(force_factor, impulse_response);
+    if (all_stored && 2. * n_impulses * free_velocity.size() < solve_cost)
+      {
+        for (unsigned int j = 0; j < contact_set.n_columns(); ++j)
+          if (local_impulses[j] != 0.)
+            next.velocity.add(local_impulses[j],
+                              stored_columns[stored_column_slot[j]]);
+      }
+    else if (n_impulses > 0)
+      {
+        solve_step_matrix(impulse_response);
+        next.velocity += impulse_response;
+      }
 
     // 5. Displacement (and acceleration) update.
     scheme->complete_step(current, next);
@@ -415,6 +573,7 @@ namespace impactfe
                              contact_set.candidate(c).frame[k][d];
       }
     report.tangential_force = tangential.norm();
+    clock.charge(costs.update);
     return report;
   }
 
@@ -463,8 +622,7 @@ namespace impactfe
   {
     Tensor<1, dim> p;
     for (unsigned int d = 0; d < dim; ++d)
-      p[d] = body_list[b]->mass_matrix().matrix_scalar_product(
-        unit_fields[d].block(b), current.velocity.block(b));
+      p[d] = mass_unit_fields[d].block(b) * current.velocity.block(b);
     return p;
   }
 
@@ -503,7 +661,32 @@ namespace impactfe
   const lcp::DenseMatrix &
   MultibodySystem<dim>::delassus_operator() const
   {
+    std::vector<unsigned int> all(contact_set.n_candidates());
+    for (unsigned int c = 0; c < all.size(); ++c)
+      all[c] = c;
+    ensure_delassus_columns(all);
     return delassus;
+  }
+
+  template <int dim>
+  void
+  MultibodySystem<dim>::set_column_storage_budget(const std::size_t bytes)
+  {
+    column_storage_budget = bytes;
+  }
+
+  template <int dim>
+  void
+  MultibodySystem<dim>::enable_cost_breakdown(const bool enable)
+  {
+    measure_costs = enable;
+  }
+
+  template <int dim>
+  const CostBreakdown &
+  MultibodySystem<dim>::cost_breakdown() const
+  {
+    return costs;
   }
 
   template <int dim>

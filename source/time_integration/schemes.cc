@@ -161,19 +161,20 @@ namespace impactfe
   {
     if (alpha == 0.)
       return;
+    // deal.II's vmult works on the raw CSR arrays (about 4x fewer
+    // instructions per entry than iterating over the entries). One work
+    // vector per block, allocated once, so the time loop does not allocate.
+    thread_local std::vector<Vector<double>> work;
+    if (work.size() < x.n_blocks())
+      work.resize(x.n_blocks());
     for (unsigned int b = 0; b < x.n_blocks(); ++b)
       {
         if (A[b] == nullptr)
           continue;
-        Vector<double> &o = out.block(b);
-        const auto     &m = *A[b];
-        for (unsigned int row = 0; row < m.m(); ++row)
-          {
-            double sum = 0.;
-            for (auto entry = m.begin(row); entry != m.end(row); ++entry)
-              sum += entry->value() * x.block(b)(entry->column());
-            o(row) += alpha * sum;
-          }
+        if (work[b].size() != x.block(b).size())
+          work[b].reinit(x.block(b).size(), true);
+        A[b]->vmult(work[b], x.block(b));
+        out.block(b).add(alpha, work[b]);
       }
   }
 

@@ -9,6 +9,7 @@
 #include <impactfe/bodies/elastic_body.h>
 #include <impactfe/contact/contact_parameters.h>
 #include <impactfe/contact/contact_set.h>
+#include <impactfe/dynamics/sparse_cholesky.h>
 #include <impactfe/lcp/dense_matrix.h>
 #include <impactfe/lcp/contact_problem.h>
 #include <impactfe/lcp/lemke.h>
@@ -38,6 +39,32 @@ namespace impactfe
     unsigned int lcp_pivots = 0;
     /// How many times the candidate set had to grow within the step.
     unsigned int lcp_resolves = 0;
+  };
+
+
+
+  /**
+   * Where the CPU time of a run goes (seconds of the calling thread,
+   * accumulated since setup(); only measured after
+   * MultibodySystem::enable_cost_breakdown()).
+   */
+  struct CostBreakdown
+  {
+    /// Building and factorising M~ (once, in setup()).
+    double factorization = 0.;
+    /// Solves for the Delassus columns M~^{-1} H_j and W = H^T M~^{-1} H,
+    /// done when a candidate first enters an LCP.
+    double delassus = 0.;
+    /// Right-hand side and solve of the free velocity, local velocities and
+    /// gap terms.
+    double free_velocity = 0.;
+    /// Candidate selection, assembly and solution of the LCPs.
+    double lcp = 0.;
+    /// Velocity correction (one solve), contact forces, completion of the
+    /// step and the step report.
+    double update = 0.;
+    /// Candidates whose Delassus columns have been computed.
+    unsigned int delassus_candidates = 0;
   };
 
 
@@ -74,9 +101,18 @@ namespace impactfe
    *  3. the LCP on the candidates that can touch in this step (w_N free < 0,
    *     plus those active in the previous step; the set grows if an excluded
    *     candidate would be pushed into penetration), with the Delassus
-   *     operator W = H^T M~^{-1} H computed once in setup();
-   *  4. v^{i+1} = v_free + (M~^{-1} H) P with the stored columns M~^{-1} H;
+   *     operator W = H^T M~^{-1} H;
+   *  4. v^{i+1} = v_free + M~^{-1} (H P): a sum of stored columns
+   *     M~^{-1} H_j when they are stored and that is cheaper, else one
+   *     more solve;
    *  5. the scheme completes u^{i+1} (and a^{i+1}).
+   *
+   * The columns of W belonging to a candidate are computed (dim solves with
+   * the factorisation) the first time the candidate enters an LCP, and
+   * kept. The vectors M~^{-1} H_j themselves are kept only within a memory
+   * budget (set_column_storage_budget()), so memory is O(n_dofs +
+   * n_columns^2) instead of O(n_dofs n_columns), and candidates that never
+   * come close to touching cost nothing (doc/performance.md).
    */
   template <int dim>
   class MultibodySystem
@@ -153,9 +189,24 @@ namespace impactfe
     /** Candidates with P_N > 0 in the last step. */
     const std::vector<bool> &
     active_set() const;
-    /** The Delassus operator W (n_columns x n_columns). */
+    /**
+     * The Delassus operator W (n_columns x n_columns). Completes the
+     * columns not computed yet (one solve each).
+     */
     const lcp::DenseMatrix &
     delassus_operator() const;
+    /**
+     * Memory [bytes] for stored columns M~^{-1} H_j (default 64 MiB; 0
+     * stores none and always corrects the velocity with a solve). Call
+     * before setup().
+     */
+    void
+    set_column_storage_budget(const std::size_t bytes);
+    /** Measure where the CPU time goes (a few clock reads per step). */
+    void
+    enable_cost_breakdown(const bool enable = true);
+    const CostBreakdown &
+    cost_breakdown() const;
     /** Total pivots, largest LCP, failures so far. */
     unsigned long long
     total_pivots() const;
@@ -173,12 +224,25 @@ namespace impactfe
     MechanicalOperators operators;
     /// Step matrices M~ per body and their factorisations.
     std::vector<std::unique_ptr<SparseMatrix<double>>>  step_matrices;
-    std::vector<std::unique_ptr<SparseDirectUMFPACK>>   step_solvers;
-    /// Columns M~^{-1} H_j.
-    std::vector<BlockVector<double>> response_columns;
-    lcp::DenseMatrix                 delassus;
+    std::vector<std::unique_ptr<SparseCholesky>>        step_solvers;
+    /// Flops of one solve with all step matrices (4 per factor entry).
+    double solve_cost = 0.;
+    /// Stored columns M~^{-1} H_j (slots allocated in setup()) and, per
+    /// column of H, its slot or -1.
+    std::size_t                              column_storage_budget = 64 << 20;
+    mutable std::vector<BlockVector<double>> stored_columns;
+    mutable std::vector<int>                 stored_column_slot;
+    mutable unsigned int                     n_stored_columns = 0;
+    /// W, filled column block by column block as candidates enter an LCP.
+    mutable lcp::DenseMatrix  delassus;
+    mutable std::vector<bool> delassus_ready;
+    mutable BlockVector<double> column_work;
+    mutable CostBreakdown       costs;
+    bool                        measure_costs = false;
     /// Uniform unit fields e_d per component, for momenta and net forces.
     std::array<BlockVector<double>, dim> unit_fields;
+    /// M e_d: the momentum of a body is then one dot product.
+    std::array<BlockVector<double>, dim> mass_unit_fields;
 
     MechanicalState current, next;
     unsigned int    step_number = 0;
@@ -186,6 +250,7 @@ namespace impactfe
     // Work space of a step, kept to avoid allocation in the time loop.
     BlockVector<double>       free_velocity;
     BlockVector<double>       contact_force_field;
+    BlockVector<double>       impulse_response;
     std::vector<double>       local_free_velocity;
     std::vector<double>       gap_terms;
     std::vector<double>       local_impulses;
@@ -204,6 +269,12 @@ namespace impactfe
     make_block_vector() const;
     void
     solve_step_matrix(BlockVector<double> &rhs_and_solution) const;
+    /**
+     * Compute the W columns of the candidates in @p candidates that do not
+     * have them yet, with blocks of right-hand sides.
+     */
+    void
+    ensure_delassus_columns(const std::vector<unsigned int> &candidates) const;
     /** Solve the LCP on lcp_candidates; fills local_impulses. */
     lcp::Result
     solve_contact_lcp();

@@ -1,0 +1,199 @@
+// Cost of a time step as the problem grows (issue 5, "Cost as problems
+// grow").
+//
+// The scene: an elastic block (plane strain, Q1, nx by ny square cells, 1 m
+// wide) thrown onto a rigid plane y = 0 with Coulomb friction (mu = 0.3),
+// down and sideways, with the velocity (v_t, -v_n (0.2 + 1.6 x / L)) and
+// pressed by a body force, so that the whole bottom face is in contact, part
+// sticking and part sliding. Every node of the bottom face is a contact
+// candidate; with --top-candidates the nodes of the top face are candidates
+// too (they never come near the plane: they show what candidates that cannot
+// touch cost). The theta-Euler scheme (theta = 0.55) runs a few steps.
+//
+// One size per process, so that the memory peak (getrusage's maximum
+// resident set size) belongs to that size. Prints one CSV line (with
+// --header, the header first):
+//   nx, ny, n_dofs, n_candidates, n_steps,
+//   assembly: mesh, DoFs, mass and stiffness matrices (ElasticBody::setup),
+//   factorization: M~ and its UMFPACK factorisation (once),
+//   delassus: the columns of W (one solve each, when a candidate first
+//             enters an LCP), in total, and how many candidates had them,
+//   free_per_step, lcp_per_step, update_per_step: means over the steps,
+//   max_active, max_lcp_size, peak_rss_mb,
+//   stored_columns_mb: what storing the vectors M~^{-1} H_j (as the code
+//             did before the columns were computed on demand) would take.
+// Seconds are CPU seconds of the thread. Not a test: timings depend on the
+// machine. benchmarks/scaling/run_scaling.py runs the sweeps and plots them.
+//
+//   block_scaling --nx NX --ny NY [--steps S] [--top-candidates] [--header]
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/grid/grid_generator.h>
+
+#include <impactfe/bodies/elastic_body.h>
+#include <impactfe/contact/contact_parameters.h>
+#include <impactfe/contact/contact_set.h>
+#include <impactfe/dynamics/multibody_system.h>
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <ctime>
+#include <iostream>
+#include <string>
+
+using namespace impactfe;
+
+namespace
+{
+  double
+  cpu_seconds()
+  {
+    timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+  }
+
+  double
+  peak_rss_megabytes()
+  {
+    rusage usage;
+    getrusage(RUSAGE_SELF, &usage);
+    return usage.ru_maxrss / 1024.; // ru_maxrss is in kB on Linux
+  }
+
+  void
+  run(const unsigned int nx,
+      const unsigned int ny,
+      const unsigned int n_steps,
+      const bool         top_candidates)
+  {
+    const double width     = 1.;           // [m]
+    const double cell_size = width / nx;   // [m]
+    const double mu        = 0.3;
+    const double v_n = 1., v_t = 0.3;      // [m/s]
+    const double body_force = 1e4;         // [N/m^3], presses the block down
+
+    MaterialParameters material;
+    material.youngs_modulus = 1e6;  // [Pa]; P-wave speed 37 m/s
+    material.density        = 1000.;
+    material.poissons_ratio = 0.3;
+    material.plane_model    = PlaneModel::plane_strain;
+    DiscretizationParameters discretization;
+
+    double         start = cpu_seconds();
+    ElasticBody<2> block("block", material, discretization, 1.);
+    // colorize: y = 0 gets boundary id 2, y = top id 3
+    GridGenerator::subdivided_hyper_rectangle(
+      block.triangulation(),
+      std::vector<unsigned int>{nx, ny},
+      Point<2>(0., 0.),
+      Point<2>(width, ny * cell_size),
+      true);
+    block.setup();
+    block.set_body_force(Tensor<1, 2>({0., -body_force}));
+    const double assembly_seconds = cpu_seconds() - start;
+
+    TimeSteppingParameters time_stepping;
+    time_stepping.scheme    = Scheme::theta_euler;
+    time_stepping.theta     = 0.55;
+    time_stepping.time_step = 1e-4; // [s]
+    time_stepping.end_time  = n_steps * time_stepping.time_step;
+    ContactSolverParameters solver_parameters;
+    solver_parameters.warm_start = true;
+
+    MultibodySystem<2> system(time_stepping, solver_parameters, 2);
+    system.add_body(block);
+    system.contacts().add_node_to_plane(
+      system.bodies(), 0, 2, Point<2>(0., 0.), Tensor<1, 2>({0., 1.}), mu);
+    if (top_candidates)
+      system.contacts().add_node_to_plane(
+        system.bodies(), 0, 3, Point<2>(0., 0.), Tensor<1, 2>({0., 1.}), mu);
+    {
+      Vector<double> &velocity = system.state().velocity.block(0);
+      const auto     &vertices = block.triangulation().get_vertices();
+      for (unsigned int v = 0; v < vertices.size(); ++v)
+        {
+          velocity(block.vertex_dof(v, 0)) = v_t;
+          velocity(block.vertex_dof(v, 1)) =
+            -v_n * (0.2 + 1.6 * vertices[v][0] / width);
+        }
+    }
+    system.enable_cost_breakdown();
+    system.setup();
+
+    unsigned int max_active = 0, max_lcp_size = 0;
+    for (unsigned int step = 0; step < n_steps; ++step)
+      {
+        const StepReport report = system.do_time_step();
+        max_active   = std::max(max_active, report.active_contacts);
+        max_lcp_size = std::max(max_lcp_size, report.lcp_size);
+      }
+
+    const CostBreakdown &costs     = system.cost_breakdown();
+    const unsigned int   n_columns = system.contacts().n_columns();
+    std::cout << nx << ',' << ny << ',' << block.n_dofs() << ','
+              << system.contacts().n_candidates() << ',' << n_steps << ','
+              << assembly_seconds << ',' << costs.factorization << ','
+              << costs.delassus << ',' << costs.delassus_candidates << ','
+              << costs.free_velocity / n_steps << ','
+              << costs.lcp / n_steps << ',' << costs.update / n_steps << ','
+              << max_active << ',' << max_lcp_size << ','
+              << peak_rss_megabytes() << ','
+              << 8. * n_columns * block.n_dofs() / (1024. * 1024.)
+              << std::endl;
+  }
+} // namespace
+
+
+
+int
+main(int argc, char **argv)
+{
+  try
+    {
+      unsigned int nx = 0, ny = 0, n_steps = 10;
+      bool         top_candidates = false, header = false;
+      for (int i = 1; i < argc; ++i)
+        {
+          const std::string a = argv[i];
+          if (a == "--nx" && i + 1 < argc)
+            nx = std::atoi(argv[++i]);
+          else if (a == "--ny" && i + 1 < argc)
+            ny = std::atoi(argv[++i]);
+          else if (a == "--steps" && i + 1 < argc)
+            n_steps = std::atoi(argv[++i]);
+          else if (a == "--top-candidates")
+            top_candidates = true;
+          else if (a == "--header")
+            header = true;
+          else
+            nx = 0;
+        }
+      if (nx < 1 || ny < 1 || n_steps < 1)
+        {
+          std::cerr << "usage: block_scaling --nx NX --ny NY [--steps S] "
+                       "[--top-candidates] [--header]   (NX, NY, S >= 1)\n";
+          return 1;
+        }
+      if (header)
+        std::cout << "nx,ny,n_dofs,n_candidates,n_steps,assembly_seconds,"
+                     "factorization_seconds,delassus_seconds,"
+                     "delassus_candidates,free_per_step,lcp_per_step,"
+                     "update_per_step,max_active,max_lcp_size,peak_rss_mb,"
+                     "stored_columns_mb\n";
+      run(nx, ny, n_steps, top_candidates);
+    }
+  catch (std::exception &exc)
+    {
+      std::cerr << "\n----------------------------------------------------\n"
+                << "Exception on processing: " << std::endl
+                << exc.what() << std::endl
+                << "Aborting!" << std::endl
+                << "----------------------------------------------------"
+                << std::endl;
+      return 1;
+    }
+  return 0;
+}

@@ -1,0 +1,130 @@
+"""Cost of a time step as the problem grows: runs build/bin/block_scaling
+(one process per size) over two sweeps and plots them.
+
+  dofs:     square blocks of n x n cells, n = 16 ... 707 (578 to 10^6 DOFs,
+            17 to 708 contact candidates, all touching);
+  contacts: thin slabs of nx x 4 cells, nx = 10 ... 2000, with the nodes of
+            the top face as candidates too (22 to 4002 candidates, half of
+            them never near the plane).
+
+Writes doc/scaling.csv, doc/scaling_dofs.png and doc/scaling_contacts.png,
+and prints the fitted exponents (least squares in log-log over the larger
+half of each sweep). Run from the repository top:
+
+  /usr/bin/python3 benchmarks/scaling/run_scaling.py [--build build] [--quick]
+"""
+import argparse
+import csv
+import io
+import math
+import os
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "common"))
+from runs import machine_and_commit  # noqa: E402
+
+PHASES = [("assembly_seconds", "assembly (once)"),
+          ("factorization_seconds", "factorisation (once)"),
+          ("delassus_seconds", "Delassus columns (once per candidate)"),
+          ("free_per_step", "free velocity, per step"),
+          ("lcp_per_step", "LCP, per step"),
+          ("update_per_step", "update, per step")]
+
+
+def run(build, nx, ny, steps, top):
+    cmd = [os.path.join(build, "bin", "block_scaling"), "--nx", str(nx),
+           "--ny", str(ny), "--steps", str(steps), "--header"]
+    if top:
+        cmd.append("--top-candidates")
+    out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
+    row = next(csv.DictReader(io.StringIO(out)))
+    print(", ".join(f"{k}={row[k]}" for k in
+                    ("n_dofs", "n_candidates", "delassus_seconds",
+                     "free_per_step", "lcp_per_step", "peak_rss_mb")),
+          flush=True)
+    return row
+
+
+def fit(xs, ys):
+    """Exponent p of y ~ x^p over the larger half of the points."""
+    pts = [(math.log(x), math.log(y)) for x, y in zip(xs, ys) if y > 0]
+    pts = pts[len(pts) // 2:]
+    if len(pts) < 2:
+        return float("nan")
+    mx = sum(p[0] for p in pts) / len(pts)
+    my = sum(p[1] for p in pts) / len(pts)
+    sxx = sum((p[0] - mx) ** 2 for p in pts)
+    return sum((p[0] - mx) * (p[1] - my) for p in pts) / sxx
+
+
+def plot(rows, xkey, xlabel, title, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    xs = [float(r[xkey]) for r in rows]
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    exponents = {}
+    for key, label in PHASES:
+        ys = [float(r[key]) for r in rows]
+        p = fit(xs, ys)
+        exponents[key] = p
+        ax.loglog(xs, ys, "o-", label=f"{label}  ~ {xlabel.split()[0]}^{p:.2f}")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel("CPU seconds")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(title + "\n" + machine_and_commit(), fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return exponents
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--build", default="build")
+    parser.add_argument("--quick", action="store_true",
+                        help="small sizes only (about a minute)")
+    args = parser.parse_args()
+
+    if args.quick:
+        squares, slabs = [16, 32, 64, 128], [10, 30, 100, 300]
+    else:
+        squares = [16, 32, 64, 128, 256, 512, 707]
+        slabs = [10, 30, 100, 300, 1000, 2000]
+    rows = []
+    for n in squares:
+        r = run(args.build, n, n, 10, False)
+        r["sweep"] = "dofs"
+        rows.append(r)
+    for nx in slabs:
+        r = run(args.build, nx, 4, 3, True)
+        r["sweep"] = "contacts"
+        rows.append(r)
+
+    os.makedirs("doc", exist_ok=True)
+    keys = ["sweep"] + [k for k in rows[0] if k != "sweep"]
+    with open("doc/scaling.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=keys)
+        w.writeheader()
+        w.writerows(rows)
+    dofs = [r for r in rows if r["sweep"] == "dofs"]
+    slab = [r for r in rows if r["sweep"] == "contacts"]
+    e1 = plot(dofs, "n_dofs", "DOFs",
+              "Square block on a plane (n x n Q1 cells, n+1 contacts, mu = 0.3)",
+              "doc/scaling_dofs.png")
+    e2 = plot(slab, "n_candidates", "n_c (contact candidates)",
+              "Slab nx x 4 cells, bottom and top nodes candidates (mu = 0.3)",
+              "doc/scaling_contacts.png")
+    print("\nfitted exponents (larger half of each sweep)")
+    print(f"{'phase':40s} {'vs DOFs':>8s} {'vs n_c':>8s}")
+    for key, label in PHASES:
+        print(f"{label:40s} {e1[key]:8.2f} {e2[key]:8.2f}")
+    print("peak memory [MB]: " + ", ".join(
+        f"{r['n_dofs']} DOFs: {float(r['peak_rss_mb']):.0f}" for r in dofs))
+    print("wrote doc/scaling.csv, doc/scaling_dofs.png, doc/scaling_contacts.png")
+
+
+if __name__ == "__main__":
+    main()

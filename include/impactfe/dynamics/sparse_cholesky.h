@@ -1,0 +1,71 @@
+#ifndef impactfe_dynamics_sparse_cholesky_h
+#define impactfe_dynamics_sparse_cholesky_h
+
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <cstddef>
+#include <memory>
+
+namespace impactfe
+{
+  using namespace dealii;
+
+  /**
+   * Sparse Cholesky factorisation M~ = L L^T of a symmetric positive
+   * definite matrix (CHOLMOD, SuiteSparse, fill-reducing ordering), made
+   * once; each solve is one forward and one backward substitution into work
+   * space kept from the previous solve, so the time loop neither allocates
+   * nor refactorises.
+   *
+   * Why not deal.II's SparseDirectUMFPACK: it factorises as a general LU and
+   * its solve runs UMFPACK's iterative refinement (2 to 3 triangular-solve
+   * pairs plus residuals per solve, doc/performance.md). The step matrices
+   * M + c_C C + c_K K are symmetric positive definite, so one Cholesky
+   * solve pair is exact to rounding.
+   */
+  class SparseCholesky
+  {
+  public:
+    SparseCholesky();
+    ~SparseCholesky();
+    SparseCholesky(const SparseCholesky &) = delete;
+    SparseCholesky &
+    operator=(const SparseCholesky &) = delete;
+
+    /**
+     * Factorise @p matrix (only its upper triangle is read). Throws with a
+     * message naming @p name if the matrix is not positive definite.
+     */
+    void
+    factorize(const SparseMatrix<double> &matrix,
+              const std::string          &name = "matrix");
+
+    /** x <- M~^{-1} x. */
+    void
+    solve(Vector<double> &rhs_and_solution) const;
+
+    /**
+     * X <- M~^{-1} X for @p n_columns right-hand sides stored one after the
+     * other (column-major, n rows each). The supernodal solve works on all
+     * of them at once with dense blocks, much faster per column than
+     * separate solves.
+     */
+    void
+    solve(double *columns, const unsigned int n_columns) const;
+
+    /** Rows (= columns) of the factorised matrix. */
+    std::size_t
+    size() const;
+
+    /** Entries of L (the cost of one solve pair is about 4 of these). */
+    std::size_t
+    n_factor_entries() const;
+
+  private:
+    struct Data;
+    std::unique_ptr<Data> data;
+  };
+} // namespace impactfe
+
+#endif
