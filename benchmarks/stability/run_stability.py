@@ -205,7 +205,9 @@ for courant, h, T, pen in [(10, "1.25e-3", "1", "5.7e-4"),
                            "in the step after the impact; rests",
          "newmark": "fails by nature: leaves faster than it came (restitution "
                     "> 1), the energy grows many times"},
-        tests=ALL, bounds_only=["theta_05"] if courant == 10 else [],
+        # Newmark's energy grows by 50 times: its figures carry round-off
+        # amplified as much; the checks are robust.
+        tests=ALL, bounds_only=(["theta_05"] if courant == 10 else []) + ["newmark"],
         figure=RESTITUTION))
 
 # --- A block resting under gravity for 10^4 steps, with friction (mu =
@@ -351,7 +353,10 @@ for mu in ["0", "0.1", "0.5", "1", "2"]:
     CASES.append(Case(
         f"stick_slip_mu_{mu.replace('.', '')}", f"Stick-slip μ = {mu}",
         {"Geometry": {"Height": "0.01", "Number of cells up": "2"},
-         "Material": {"Young's modulus": "1e9"},
+         # E = 1e9 Pa keeps the block from rocking at mu = 1 and 2; at
+         # mu = 0.1 it slides 1 m, and 1e7 Pa keeps the round-off of its
+         # energy (eps |K||u|^2) at 1e-8 instead of 1e-6.
+         "Material": {"Young's modulus": "1e7" if mu == "0.1" else "1e9"},
          "Initial conditions": {"Horizontal velocity": "1"},
          "Loads": {"Push force": "0.005, 0"},
          "Obstacle": {"Friction coefficient": mu}},
