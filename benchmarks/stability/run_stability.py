@@ -63,10 +63,12 @@ BLOCK = {
 }
 
 # Round-off of the energy: 1/2 u.Ku is summed from terms of size
-# ||K|| |u|^2 that cancel down to the strain energy, so a step can show an
-# increase of about eps ||K|| |u|^2 (u includes the rigid motion). The
-# bounds below are that estimate rounded up, relative to the energy scale.
-ROUND_OFF = "1e-10"
+# ||K|| |u|^2 that cancel down to the strain energy (u includes the rigid
+# motion: a block that slid 1 m, a steel block that flew 1 m), so a step can
+# show an increase of about R = eps (||K|| |u|^2 + ||M|| |v|^2 + |F| |u|).
+# block_on_plane prints R; a scheme that cannot increase the energy must
+# stay within 100 R (observed: up to 4 R; real growth is 1e5 R and more).
+NO_GROWTH = dict(increase_roundoff="100", max_energy_ratio="1.000001")
 
 
 def merge(*parts):
@@ -95,6 +97,7 @@ def checks(**bounds):
     names = {
         "penetration": "Maximum penetration",
         "energy_increase": "Maximum energy increase",
+        "increase_roundoff": "Maximum energy increase in round-offs",
         "max_energy_ratio": "Maximum energy ratio",
         "min_energy_ratio": "Minimum energy ratio",
         "impulse_balance": "Maximum impulse balance error",
@@ -120,7 +123,6 @@ def checks(**bounds):
 # the plane carries the load.
 AT_REST = dict(gap_drift="1e-12", final_penetration="1e-12", active_set="0",
                reaction="1e-6")
-NO_GROWTH = dict(energy_increase=ROUND_OFF, max_energy_ratio="1.0000000001")
 
 
 class Case:
@@ -130,8 +132,11 @@ class Case:
     depend on round-off)."""
 
     def __init__(self, name, title, scene, short, long, bounds, behaviour,
-                 tests, bounds_only=(), short_for=None, program="block_on_plane"):
+                 tests, bounds_only=(), short_for=None, program="block_on_plane",
+                 figure=None):
         self.name, self.title, self.scene = name, title, scene
+        # (column title, function of summary.json) of the case's own figure
+        self.figure = figure or ("gap drift [m]", lambda s: fmt(s["stability"]["gap_drift"]))
         self.short, self.long = short, long
         self.bounds, self.behaviour = bounds, behaviour
         self.tests = list(dict.fromkeys(tests))
@@ -156,6 +161,19 @@ def time(h, T, final=None):
 
 
 CASES = []
+
+
+def fmt(x, digits=2):
+    if x is None:
+        return "—"
+    if abs(x) < 1e-12:
+        return "0" if x == 0 else "< 1e-12"
+    return f"{x:.{digits}g}"
+
+
+RESTITUTION = ("restitution", lambda s: fmt(s["stability"]["restitution"]))
+REACTION = ("reaction error, final phase",
+            lambda s: fmt(s["stability"]["reaction_error"]))
 
 # --- Time steps far above the Courant limit: the block (nu = 0, so that
 # the impact is the one of a bar on a wall: contact 2H/c = 1 ms, leaves at
@@ -187,7 +205,10 @@ for courant, h, T, pen in [(10, "1.25e-3", "1", "5.7e-4"),
                            "in the step after the impact; rests",
          "newmark": "fails by nature: leaves faster than it came (restitution "
                     "> 1), the energy grows many times"},
-        tests=ALL, bounds_only=["theta_05"] if courant == 10 else []))
+        # Newmark's energy grows by 50 times: its figures carry round-off
+        # amplified as much; the checks are robust.
+        tests=ALL, bounds_only=(["theta_05"] if courant == 10 else []) + ["newmark"],
+        figure=RESTITUTION))
 
 # --- A block resting under gravity for 10^4 steps, with friction (mu =
 # 0.5, nu = 0.3: the base wants to spread, the friction holds it).
@@ -206,7 +227,7 @@ CASES.append(Case(
      "modified_theta": "no drift, no chattering, vibration damped",
      "newmark": "fails by nature: with friction the contact forces pump energy "
                 "in (from round-off, after 2 s); the block ends up jumping"},
-    tests=THETA))
+    tests=THETA, figure=REACTION))
 
 # --- The same without friction and with nu = 0: the top sinks by
 # rho g H^2 / (2E) (the column under its own weight, exact at the nodes).
@@ -224,7 +245,8 @@ CASES.append(Case(
      "theta_euler": "static state to round-off",
      "modified_theta": "static state to round-off",
      "newmark": "undamped vibration about the static state; no growth without friction"},
-    tests=ALL))
+    tests=ALL, figure=("top sinking, error vs ρgH²/2E",
+                       lambda s: fmt(s["stability"]["compression_error"]))))
 
 # --- A very stiff block hitting at high speed: steel, 50 m/s; contact
 # 2H/c = 2e-5 s = 2 steps.
@@ -233,8 +255,8 @@ CASES.append(Case(
     {"Material": {"Young's modulus": "2e11", "Density": "7800"},
      "Initial conditions": {"Vertical velocity": "-50"}},
     time("1e-5", "2e-3"), time("1e-5", "2e-2"),
-    {**{s: checks(penetration="1e-12", energy_increase="1e-9",
-                  max_energy_ratio="1.000000001") for s in ["theta_05", "theta_055", "theta_euler"]},
+    {**{s: checks(penetration="1e-12", **NO_GROWTH)
+        for s in ["theta_05", "theta_055", "theta_euler"]},
      "modified_theta": checks(penetration="2.3e-4", max_energy_ratio="1"),
      "newmark": checks(penetration="1e-12", min_energy_ratio="1.5")},
     {"theta_05": "energy conserved; leaves at 0.61 v0 plus vibration",
@@ -242,7 +264,7 @@ CASES.append(Case(
      "theta_euler": "strongly damped impact (2 steps of contact)",
      "modified_theta": "penetrates up to h(1-θ)v0; energy rises in the step after the impact",
      "newmark": "fails by nature: leaves faster than it came, energy doubles"},
-    tests=ALL))
+    tests=ALL, figure=RESTITUTION))
 
 # --- A very soft block (E = 1e4 Pa, c = 3.7 m/s) dropped at 0.1 m/s.
 CASES.append(Case(
@@ -260,17 +282,14 @@ CASES.append(Case(
      "theta_055": "settles",
      "theta_euler": "settles, never leaves the plane",
      "modified_theta": "penetrates 2e-5 m; settles",
-     "newmark": "fails by nature: unbounded energy growth (10⁵ × in 4 s)"},
-    tests=ALL, bounds_only=["theta_05", "newmark"]))
+     "newmark": "fails by nature: unbounded energy growth (10⁶ × in 10 s)"},
+    tests=ALL, bounds_only=["theta_05", "newmark"], figure=RESTITUTION))
 
 # --- Mass ratio 1000: a second block of the same size falls 1 cm onto the
 # first, with 1000 times its density, and one 1000 times lighter.
 for name, title, rho2 in [("heavy_on_light", "Mass ratio 1000 (heavy on light)", "1e6"),
                           ("light_on_heavy", "Mass ratio 1/1000 (light on heavy)", "1")]:
-    # The energy scale is the largest kinetic + elastic energy, that of the
-    # light block when it falls: the heavy block's terms carry round-off
-    # 1000 times larger, hence 1e-7.
-    growth = dict(energy_increase="1e-7", max_energy_ratio="1.0000001")
+    growth = NO_GROWTH
     b = {s: checks(penetration="1e-12", impulse_balance="1e-6", **growth)
          for s in THETA}
     if name == "light_on_heavy":
@@ -294,12 +313,14 @@ for name, title, rho2 in [("heavy_on_light", "Mass ratio 1000 (heavy on light)",
          "theta_euler": "the heavy block keeps bouncing on the light one" if name == "heavy_on_light" else "settles",
          "modified_theta": "the heavy block keeps bouncing on the light one" if name == "heavy_on_light" else "settles",
          "newmark": ("fails by nature: exponential energy growth, the state "
-                     "overflows (NaN) at t = 0.61 s" if name == "heavy_on_light"
+                     "overflows (NaN) at t = 0.74 s" if name == "heavy_on_light"
                      else "fails by nature: energy grows, the light block jumps")},
         tests=["theta_euler", "modified_theta", "newmark"] if name == "heavy_on_light"
         else ["theta_euler", "modified_theta"],
         bounds_only=["modified_theta", "newmark"],
-        short_for={"newmark": time("1e-4", "0.15")}))
+        short_for={"newmark": time("1e-4", "0.15")},
+        figure=("impulse balance error",
+                lambda s: fmt(s["checks"]["impulse_balance_error"]))))
 
 # --- Stick-slip: a flat stiff block (0.1 m x 0.01 m, E = 1e9 Pa: no
 # rocking even at mu = 2) slides at v0 = 1 m/s, pushed forwards by f with
@@ -318,34 +339,46 @@ for mu in ["0", "0.1", "0.5", "1", "2"]:
         # round-off of K u with the rigid translation in u (eps ||K|| |u| h
         # per step)
         sliding = dict(final_velocity="1e-6", distance="1e-3")
-    # Round-off of 1/2 u.Ku for a stiff block (||K|| ~ 2e8 N/m) that has
-    # slid |u| ~ 1 m: eps ||K|| |u|^2 ~ 5e-8 J, 1e-5 of E0 = 5e-3 J.
-    b = {s: checks(penetration="1e-12", coulomb="1e-9", energy_increase="1e-5",
+    b = {s: checks(penetration="1e-12", coulomb="1e-9", increase_roundoff="100",
                    max_energy_ratio="1", **sliding,
                    **dict(AT_REST, reaction="1e-3", final_phase=final))
          for s in DAMPED}
+    # theta = 0.5 fails this by nature: it chatters while the block slows
+    # down and once it has stopped, so the stick time and the distance
+    # depend on the chatter (17 % and 0.6 % off at mu = 2; at mu = 0.1 the
+    # mean velocity need not reach 0). Without friction it is exact.
     b["theta_05"] = checks(penetration="1e-12", coulomb="1e-9",
-                           **(dict(stick_time="0.1") if t_star else sliding))
+                           **({} if t_star else sliding))
     b["newmark"] = checks(penetration="1e-12", coulomb="1e-9",
                           **({} if t_star else dict(final_velocity="1e-6")))
     CASES.append(Case(
         f"stick_slip_mu_{mu.replace('.', '')}", f"Stick-slip μ = {mu}",
         {"Geometry": {"Height": "0.01", "Number of cells up": "2"},
-         "Material": {"Young's modulus": "1e9"},
+         # E = 1e9 Pa keeps the block from rocking at mu = 1 and 2; at
+         # mu = 0.1 it slides 1 m, and 1e7 Pa keeps the round-off of its
+         # energy (eps |K||u|^2) at 1e-8 instead of 1e-6.
+         "Material": {"Young's modulus": "1e7" if mu == "0.1" else "1e9"},
          "Initial conditions": {"Horizontal velocity": "1"},
          "Loads": {"Push force": "0.005, 0"},
          "Obstacle": {"Friction coefficient": mu}},
         time(h, T), time(h, T),
         b,
-        {"theta_05": "sticks late" + ("" if mu == "0" else "; chatters once stuck"),
-         "theta_055": "rigid-block stick time", "theta_euler": "rigid-block stick time",
-         "modified_theta": "rigid-block stick time",
+        {"theta_05": "v(T) = v0 + (f/m) T exactly" if mu == "0" else
+                     "fails by nature: chatters while slowing down and once "
+                     "stopped; stick time and distance depend on the chatter",
+         **{s: ("v(T) = v0 + (f/m) T exactly" if mu == "0" else
+                "rigid-block stick time and distance") for s in DAMPED},
          "newmark": "fails by nature: the block starts to jump (energy gained "
                     "at contact releases); v_x still exact" if mu == "0" else
-                    "fails by nature: friction pumps energy in, never sticks"},
+                    "fails by nature: the friction power is not sign-definite "
+                    "(energy rises in steps), never sticks"},
         tests=(["theta_euler"] + (ALL if mu == "0.5" else [])) if t_star
         else ["theta_euler", "newmark"],
-        bounds_only=["theta_05", "newmark"]))
+        bounds_only=["theta_05", "newmark"],
+        figure=("stick time error" if t_star else "error of v(T)",
+                (lambda s: fmt(s["stability"]["stick_time_error"], 2)
+                 if s["stability"]["measured_stick_time"] >= 0 else "never sticks")
+                if t_star else lambda s: fmt(s["stability"]["final_velocity_error"]))))
 
 # --- Grazing incidence: v = (10, -0.01) m/s, no gravity, 0.1 mm above the
 # plane. Without friction v_x stays 10 m/s; with friction the nodes slide
@@ -363,7 +396,8 @@ for mu in ["0", "0.5"]:
         b,
         {s: "bounces off; " + ("v_x unchanged" if mu == "0" else "P_T = μ P_N")
          for s in ALL},
-        tests=["theta_euler", "modified_theta"]))
+        tests=["theta_euler", "modified_theta"],
+        figure=("P_T / P_N", lambda s: fmt(s["tangential_impulse"] / s["normal_impulse"], 3))))
 
 # --- Many simultaneous contacts: a flat punch, 128 cells across (129
 # contact nodes, Klarbring LCP of 387 rows), pressed by 100 N with mu = 0.5.
@@ -381,8 +415,9 @@ CASES.append(Case(
      "theta_055": "settles: stick in the middle, slip at the edges",
      "theta_euler": "settles: stick in the middle, slip at the edges",
      "modified_theta": "settles: stick in the middle, slip at the edges",
-     "newmark": "fails by nature: chatters (20 active-set changes per step), energy grows"},
-    tests=["theta_euler", "modified_theta"], bounds_only=["modified_theta"]))
+     "newmark": "fails by nature: chatters (13 active-set changes per step), energy grows"},
+    tests=["theta_euler", "modified_theta"], bounds_only=["modified_theta"],
+    figure=REACTION))
 
 # --- A long run of repeated impacts: a coarse block (4 x 2 cells) dropped
 # from 5 cm, bouncing under gravity, 10^4 steps (test) and 10^5 (long).
@@ -395,12 +430,12 @@ CASES.append(Case(
         for s in DAMPED},
      "theta_05": checks(penetration="1e-12", **NO_GROWTH),
      "newmark": checks(min_energy_ratio="1.2")},
-    {"theta_05": "energy bounded, bounces on for ~50 s",
+    {"theta_05": "energy bounded; still bounces now and then at t = 90 to 100 s",
      "theta_055": "a few bounces, then rests; no drift",
      "theta_euler": "almost inelastic, rests; no drift",
      "modified_theta": "a few bounces, then rests; no drift",
-     "newmark": "fails by nature: each impact adds energy, the block ends up 50 m high"},
-    tests=DAMPED + ["newmark"], bounds_only=["newmark"]))
+     "newmark": "fails by nature: each impact adds energy, the block ends up tens of metres high"},
+    tests=DAMPED + ["newmark"], bounds_only=["newmark"], figure=REACTION))
 
 
 # --- The same far above the Courant limit in 1D: the two bars of the paper
@@ -489,18 +524,10 @@ def run_case(build, case, scheme, length, out_dir):
     return summary, result.returncode, message
 
 
-def fmt(x, digits=2):
-    if x is None:
-        return "—"
-    if abs(x) < 1e-12:
-        return "0" if x == 0 else "< 1e-12"
-    return f"{x:.{digits}g}"
-
-
 def row(case, scheme, summary, code, message):
     label = SCHEMES[scheme][0]
     if summary is None:
-        return (f"| {label} | — | — | — | — | — | **no result**: {message} | "
+        return (f"| {label} | — | — | — | — | — | — | **no result**: {message} | "
                 f"{case.behaviour[scheme]} |")
     st = summary["stability"]
     verdict = "pass" if code == 0 else ("**fails**: " + message if "Verification" not in message
@@ -512,6 +539,7 @@ def row(case, scheme, summary, code, message):
         fmt(st["max_energy_increase"]),
         fmt(st["active_set_changes_per_step"]),
         fmt(st["final_active_set_changes_per_step"]),
+        case.figure[1](summary),
         verdict,
         case.behaviour[scheme]]) + " |")
 
@@ -529,9 +557,10 @@ def row_1d(case, scheme, summary, code, message):
 HEADER_1D = ("| scheme | err_v | err_f | energy ratio | checks | behaviour |\n"
              "|---|---|---|---|---|---|")
 
-HEADER = ("| scheme | max penetration [m] | energy change | largest rise in a step "
-          "| active-set changes / step | same, final phase | checks | behaviour |\n"
-          "|---|---|---|---|---|---|---|---|")
+def header(case):
+    return ("| scheme | max penetration [m] | energy change | largest rise in a step "
+            "| active-set changes / step | same, final phase | " + case.figure[0] +
+            " | checks | behaviour |\n|---|---|---|---|---|---|---|---|---|")
 
 
 def main():
@@ -556,7 +585,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for case in cases:
             one_d = case.program != "block_on_plane"
-            lines = [f"### {case.title} (`{case.name}`)", "", HEADER_1D if one_d else HEADER]
+            lines = [f"### {case.title} (`{case.name}`)", "", HEADER_1D if one_d else header(case)]
             for scheme in schemes:
                 out = os.path.join(tmp, case.name, scheme)
                 summary, code, message = run_case(args.build, case, scheme, length, out)

@@ -59,6 +59,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -81,6 +82,19 @@ namespace BlockOnPlane
     else
       text << std::setprecision(3) << x;
     return text.str();
+  }
+
+  // sum_ij |A_ij| |x_i| |x_j|: the round-off of x.Ax is at most a small
+  // multiple of eps times this (Higham, Accuracy and Stability of Numerical
+  // Algorithms, section 3.1), whatever cancels in x.Ax itself.
+  double
+  absolute_quadratic_form(const SparseMatrix<double> &A, const Vector<double> &x)
+  {
+    double sum = 0.;
+    for (unsigned int i = 0; i < A.m(); ++i)
+      for (auto entry = A.begin(i); entry != A.end(i); ++entry)
+        sum += std::abs(entry->value() * x(i) * x(entry->column()));
+    return sum;
   }
 
   // A vector as "(x, y)".
@@ -323,6 +337,7 @@ namespace BlockOnPlane
     double max_final_velocity_error = -1.;
     double max_compression_error    = -1.;
     double min_restitution = -1., max_restitution = -1.;
+    double max_energy_increase_in_round_offs = -1.;
 
     static void
     declare_parameters(ParameterHandler &prm)
@@ -377,6 +392,14 @@ namespace BlockOnPlane
                         "rho g H^2 / (2 E) by more than this fraction "
                         "(Poisson's ratio 0, block at rest) [-]. -1: no "
                         "check.");
+      prm.declare_entry("Maximum energy increase in round-offs", "-1",
+                        Patterns::Double(),
+                        "Fail the run if the largest energy increase in a "
+                        "step exceeds this many times the round-off of the "
+                        "energy, eps (|u|.|K||u| + |v|.|M||v| + |F|.|u|) "
+                        "(entry-wise absolute values, largest over the run) "
+                        "[-]. The bound for schemes that cannot increase the "
+                        "energy. -1: no check.");
       prm.declare_entry("Minimum restitution", "-1", Patterns::Double(),
                         "Fail the run if the apparent restitution of the "
                         "first impact (mean normal velocity after / before) "
@@ -400,6 +423,8 @@ namespace BlockOnPlane
       max_distance_error     = prm.get_double("Maximum sliding distance error");
       max_final_velocity_error = prm.get_double("Maximum final velocity error");
       max_compression_error  = prm.get_double("Maximum static compression error");
+      max_energy_increase_in_round_offs =
+        prm.get_double("Maximum energy increase in round-offs");
       min_restitution        = prm.get_double("Minimum restitution");
       max_restitution        = prm.get_double("Maximum restitution");
       prm.leave_subsection();
@@ -470,6 +495,10 @@ namespace BlockOnPlane
     void
     output_results(const StepReport &report);
     void
+    measure_step(const unsigned int active_set_changes_of_step);
+    void
+    update_energy_round_off();
+    void
     report_results();
 
     GeometryParameters            geometry;
@@ -516,6 +545,11 @@ namespace BlockOnPlane
     double reaction_sum = 0., compression_sum = 0.;
     unsigned int final_contact_steps = 0;
     std::vector<double> gaps;
+    // Largest eps (|u|.|K||u| + |v|.|M||v| + |F|.|u|) of the run: the
+    // round-off with which the energy is computed. u.Ku sums terms of size
+    // |K| |u|^2 (u includes the rigid motion) that cancel down to twice the
+    // strain energy.
+    double energy_round_off = 0.;
     // First impact: normal velocity before touching and after leaving.
     double velocity_before_impact = 0., velocity_after_impact = 0.;
     // 0 before, 1 from the first contact on, 2 once no node touches the
@@ -817,84 +851,115 @@ namespace BlockOnPlane
 
   // @sect4{BlockOnPlaneProblem::output_results}
   //
-  // The recorder's files and checks, and this program's measurements.
+  // The recorder's files and checks (history.csv gets this program's
+  // columns), then this program's measurements of the step.
   void
   BlockOnPlaneProblem::output_results(const StepReport &report)
   {
     unsigned int changes = 0;
     if (report.step > 0)
       {
-        const double              t        = system->state().time;
-        const bool                in_final = t >= final_phase_start - 1e-9 *
-                                                  time_stepping.time_step;
-        const std::vector<bool> &active    = system->active_set();
+        const std::vector<bool> &active = system->active_set();
         for (unsigned int c = 0; c < active.size(); ++c)
           changes += active[c] != previous_active[c] ? 1 : 0;
         previous_active = active;
-        active_set_changes += changes;
-
-        system->contacts().gaps(system->state().displacement, gaps);
-        mean_gap = 0.;
-        for (unsigned int c = 0; c < n_plane_candidates; ++c)
-          mean_gap += gaps[c] / n_plane_candidates;
-
-        if (in_final)
-          {
-            if (final_phase_steps == 0)
-              mean_gap_at_phase_start = mean_gap;
-            ++final_phase_steps;
-            final_active_set_changes += changes;
-            for (const double g : gaps)
-              final_penetration = std::max(final_penetration, -g);
-            reaction_sum += plane_reaction();
-            final_contact_steps += plane_reaction() > 0. ? 1 : 0;
-            compression_sum += top_sinking();
-          }
-
-        // First impact on the plane.
-        const double v_n        = mean_velocity() * normal;
-        bool         on_plane   = false;
-        for (unsigned int c = 0; c < n_plane_candidates; ++c)
-          on_plane |= active[c];
-        if (impact_phase == 0 && on_plane)
-          impact_phase = 1;
-        else if (impact_phase == 1 && !on_plane && v_n > 0.)
-          {
-            impact_phase          = 2;
-            velocity_after_impact = v_n;
-          }
-        if (impact_phase == 0)
-          velocity_before_impact = v_n;
-
-        // The first time the mean velocity along t reaches 0, between
-        // this step and the last (linear interpolation).
-        const double v_t = mean_velocity() * tangent;
-        if (measured_stick_time < 0. && previous_tangential_velocity != 0. &&
-            v_t * previous_tangential_velocity <= 0.)
-          measured_stick_time =
-            t - time_stepping.time_step +
-            time_stepping.time_step * previous_tangential_velocity /
-              (previous_tangential_velocity - v_t);
-        previous_tangential_velocity = v_t;
       }
+    update_energy_round_off();
     recorder->record(report,
                      {mean_velocity()[0],
                       mean_velocity()[1],
                       plane_reaction(),
                       recorder->monitor().total_energy(),
                       double(changes)});
+    if (report.step > 0)
+      measure_step(changes);
+  }
 
-    if (report.step > 0 &&
-        system->state().time >= final_phase_start - 1e-9 * time_stepping.time_step)
-      for (unsigned int c = 0; c < previous_states.size(); ++c)
-        {
-          const ContactState s = recorder->monitor().state(c);
-          final_state_changes += s != previous_states[c] ? 1 : 0;
-          previous_states[c] = s;
-        }
-    else
-      for (unsigned int c = 0; c < previous_states.size(); ++c)
-        previous_states[c] = recorder->monitor().state(c);
+
+
+  // @sect4{BlockOnPlaneProblem::measure_step}
+  //
+  // Active-set and contact-state changes, the gap, penetration, reaction
+  // and top of the block in the final phase, the first impact, and the
+  // first time the mean velocity along the plane reaches 0. Called after
+  // the recorder, whose monitor classifies the contact states.
+  void
+  BlockOnPlaneProblem::measure_step(const unsigned int active_set_changes_of_step)
+  {
+    const double t        = system->state().time;
+    const bool   in_final = t >= final_phase_start - 1e-9 * time_stepping.time_step;
+    active_set_changes += active_set_changes_of_step;
+
+    system->contacts().gaps(system->state().displacement, gaps);
+    mean_gap = 0.;
+    for (unsigned int c = 0; c < n_plane_candidates; ++c)
+      mean_gap += gaps[c] / n_plane_candidates;
+
+    for (unsigned int c = 0; c < previous_states.size(); ++c)
+      {
+        const ContactState state = recorder->monitor().state(c);
+        final_state_changes += (in_final && state != previous_states[c]) ? 1 : 0;
+        previous_states[c] = state;
+      }
+    if (in_final)
+      {
+        if (final_phase_steps == 0)
+          mean_gap_at_phase_start = mean_gap;
+        ++final_phase_steps;
+        final_active_set_changes += active_set_changes_of_step;
+        for (const double g : gaps)
+          final_penetration = std::max(final_penetration, -g);
+        reaction_sum += plane_reaction();
+        final_contact_steps += plane_reaction() > 0. ? 1 : 0;
+        compression_sum += top_sinking();
+      }
+
+    // First impact on the plane.
+    const double v_n      = mean_velocity() * normal;
+    bool         on_plane = false;
+    for (unsigned int c = 0; c < n_plane_candidates; ++c)
+      on_plane |= system->active_set()[c];
+    if (impact_phase == 0 && on_plane)
+      impact_phase = 1;
+    else if (impact_phase == 1 && !on_plane && v_n > 0.)
+      {
+        impact_phase          = 2;
+        velocity_after_impact = v_n;
+      }
+    if (impact_phase == 0)
+      velocity_before_impact = v_n;
+
+    // The first time the mean velocity along t reaches 0, between this
+    // step and the last (linear interpolation).
+    const double v_t = mean_velocity() * tangent;
+    if (measured_stick_time < 0. && previous_tangential_velocity != 0. &&
+        v_t * previous_tangential_velocity <= 0.)
+      measured_stick_time =
+        t - time_stepping.time_step +
+        time_stepping.time_step * previous_tangential_velocity /
+          (previous_tangential_velocity - v_t);
+    previous_tangential_velocity = v_t;
+  }
+
+
+
+  // @sect4{BlockOnPlaneProblem::update_energy_round_off}
+  void
+  BlockOnPlaneProblem::update_energy_round_off()
+  {
+    double round_off = 0.;
+    for (unsigned int b = 0; b < blocks.size(); ++b)
+      {
+        const Vector<double> &u = system->state().displacement.block(b),
+                             &v = system->state().velocity.block(b);
+        round_off += absolute_quadratic_form(blocks[b]->stiffness_matrix(), u) +
+                     absolute_quadratic_form(blocks[b]->mass_matrix(), v);
+        for (unsigned int i = 0; i < u.size(); ++i)
+          round_off += std::abs(blocks[b]->external_force()(i) * u(i));
+      }
+    energy_round_off =
+      std::max(energy_round_off,
+               std::numeric_limits<double>::epsilon() * round_off);
   }
 
 
@@ -956,6 +1021,20 @@ namespace BlockOnPlane
                                     s,
                                     verification,
                                     system->contacts().n_directions() > 1);
+
+    // The energy's round-off, in units of the energy scale of the summary.
+    const double round_off =
+      s.energy_scale > 0. ? energy_round_off / s.energy_scale : 0.;
+    const double increase_in_round_offs =
+      round_off > 0. ? s.max_energy_increase / round_off : 0.;
+    out << "  Round-off of the energy eps (|u|.|K||u| + |v|.|M||v| + "
+           "|F|.|u|) = "
+        << figure(round_off, 1e-300) << " of the same scale; largest increase "
+        << "in a step = " << figure(increase_in_round_offs, 100.)
+        << " round-offs" << std::endl;
+    ok &= print_check(out, "energy increase in a step in round-offs",
+                      increase_in_round_offs, "<=",
+                      bounds.max_energy_increase_in_round_offs);
 
     // The final phase.
     const double gap_drift = std::abs(mean_gap - mean_gap_at_phase_start);
@@ -1100,6 +1179,7 @@ namespace BlockOnPlane
       .add("max_penetration", s.max_penetration)
       .add("energy_change", s.energy_ratio - 1.)
       .add("max_energy_increase", s.max_energy_increase)
+      .add("energy_round_off", round_off)
       .add("active_set_changes", double(active_set_changes))
       .add("active_set_changes_per_step", changes_per_step)
       .add("final_phase_start", final_phase_start)

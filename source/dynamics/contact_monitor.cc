@@ -56,9 +56,22 @@ namespace impactfe
     run.energy_scale      = initial_energy;
     run.energy_scale_is_initial = initial_energy > 0.;
     states.assign(system.contacts().n_candidates(), ContactState::open);
-    const lcp::DenseMatrix &W = system.delassus_operator();
-    for (std::size_t j = 0; j < W.n_rows(); ++j)
-      largest_delassus_diagonal = std::max(largest_delassus_diagonal, W(j, j));
+    // 1 / (smallest nodal mass of a contact node): an impulse P changes the
+    // velocity of its node by about P times this. (Not the diagonal of W,
+    // which would make the system compute every Delassus column.)
+    double smallest_nodal_mass = std::numeric_limits<double>::max();
+    for (const ContactCandidate &c : system.contacts().candidates())
+      {
+        const ElasticBody<dim>     &body = *bodies[c.body_a];
+        const SparseMatrix<double> &M    = body.mass_matrix();
+        const auto row = body.vertex_dof(c.vertex_a, 0);
+        double     mass = 0.;
+        for (auto entry = M.begin(row); entry != M.end(row); ++entry)
+          mass += std::abs(entry->value());
+        smallest_nodal_mass = std::min(smallest_nodal_mass, mass);
+      }
+    if (!system.contacts().candidates().empty() && smallest_nodal_mass > 0.)
+      largest_inverse_nodal_mass = 1. / smallest_nodal_mass;
 
     if (!node_file.empty())
       {
@@ -235,13 +248,13 @@ namespace impactfe
       }
     // A node is sliding if |V_T| is more than round-off of the velocities
     // of the run: those of the contact nodes, of the bodies, and the
-    // velocity W P that the largest impulse makes. (The contact nodes of a
-    // body resting on a plane never move: their velocities alone would be
-    // a scale of round-off itself, and every sticking node would count as
-    // sliding.)
+    // velocity that the largest impulse gives a contact node. (The contact
+    // nodes of a body resting on a plane never move: their velocities alone
+    // would be a scale of round-off itself, and every sticking node would
+    // count as sliding.)
     velocity_scale = std::max({velocity_scale,
                                system.state().velocity.linfty_norm(),
-                               largest_delassus_diagonal * impulse_scale});
+                               largest_inverse_nodal_mass * impulse_scale});
     const double impulse_tolerance  = 1e-9 * impulse_scale;
     const double velocity_tolerance = 1e-8 * velocity_scale;
     for (unsigned int c = 0; c < contacts.n_candidates(); ++c)

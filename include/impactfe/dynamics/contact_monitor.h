@@ -190,7 +190,7 @@ namespace impactfe
     std::vector<ContactState>  states;
     std::vector<double>        gaps, local_velocity;
     double                     velocity_scale = 0., impulse_scale = 0.,
-                               largest_delassus_diagonal = 0.;
+                               largest_inverse_nodal_mass = 0.;
   };
 } // namespace impactfe
 
