@@ -50,8 +50,8 @@
 #include <impactfe/dynamics/multibody_system.h>
 #include <impactfe/lcp/contact_problem.h>
 #include <impactfe/lcp/problem_io.h>
+#include <impactfe/utilities/program.h>
 
-#include <ctime>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -64,20 +64,10 @@ using namespace impactfe;
 
 namespace
 {
-  /// CPU seconds of this thread: on a shared machine the wall clock also
-  /// counts the time other processes had the core.
-  double
-  cpu_seconds()
-  {
-    timespec t;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return t.tv_sec + 1e-9 * t.tv_nsec;
-  }
-
   double
   seconds_since(const double start)
   {
-    return cpu_seconds() - start;
+    return thread_cpu_seconds() - start;
   }
 
   double
@@ -151,7 +141,7 @@ namespace
     material.plane_model    = PlaneModel::plane_strain;
     DiscretizationParameters discretization;
 
-    const auto    setup_start = cpu_seconds();
+    const auto    setup_start = thread_cpu_seconds();
     ElasticBody<2> block("block", material, discretization, /*thickness=*/1.);
     // colorize: the face y = 0 gets boundary id 2
     GridGenerator::subdivided_hyper_rectangle(block.triangulation(),
@@ -222,7 +212,7 @@ namespace
         row.setup_seconds = setup_seconds;
 
         // warm: the states of the previous step
-        auto                       start = cpu_seconds();
+        auto                       start = thread_cpu_seconds();
         const lcp::ContactSolution warm  = lcp::solve_contact_problem(problem, {}, states);
         row.warm_seconds                 = seconds_since(start);
         row.warm_path                    = lcp::to_string(warm.lcp.start_path);
@@ -243,7 +233,7 @@ namespace
         row.system_difference = relative_difference(problem, P_system, warm.P);
 
         // no history: block pivoting from "all open"
-        start = cpu_seconds();
+        start = thread_cpu_seconds();
         const lcp::ContactSolution from_open =
           lcp::solve_contact_problem(problem, {}, std::vector<lcp::ContactState>(n_contacts, lcp::ContactState::open));
         row.open_seconds          = seconds_since(start);
@@ -268,11 +258,11 @@ namespace
         row.lcp_size = 3 * n_contacts;
         if (step >= 2 && step <= 1 + cold_steps)
           {
-            start = cpu_seconds();
+            start = thread_cpu_seconds();
             lcp::assemble_contact_lcp(problem);
             row.cold_assembly_seconds = seconds_since(start);
 
-            start                     = cpu_seconds();
+            start                     = thread_cpu_seconds();
             const lcp::ContactSolution cold = lcp::solve_contact_problem(problem);
             row.cold_seconds          = seconds_since(start);
             row.cold_done             = true;

@@ -34,12 +34,12 @@
 #include <impactfe/contact/contact_parameters.h>
 #include <impactfe/contact/contact_set.h>
 #include <impactfe/dynamics/multibody_system.h>
+#include <impactfe/utilities/program.h>
 
 #include <sys/resource.h>
 
 #include <algorithm>
 #include <cstdlib>
-#include <ctime>
 #include <iostream>
 #include <string>
 
@@ -47,14 +47,6 @@ using namespace impactfe;
 
 namespace
 {
-  double
-  cpu_seconds()
-  {
-    timespec t;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return t.tv_sec + 1e-9 * t.tv_nsec;
-  }
-
   double
   peak_rss_megabytes()
   {
@@ -82,7 +74,7 @@ namespace
     material.plane_model    = PlaneModel::plane_strain;
     DiscretizationParameters discretization;
 
-    double         start = cpu_seconds();
+    double         start = thread_cpu_seconds();
     ElasticBody<2> block("block", material, discretization, 1.);
     // colorize: y = 0 gets boundary id 2, y = top id 3
     GridGenerator::subdivided_hyper_rectangle(
@@ -93,7 +85,7 @@ namespace
       true);
     block.setup();
     block.set_body_force(Tensor<1, 2>({0., -body_force}));
-    const double assembly_seconds = cpu_seconds() - start;
+    const double assembly_seconds = thread_cpu_seconds() - start;
 
     TimeSteppingParameters time_stepping;
     time_stepping.scheme    = Scheme::theta_euler;

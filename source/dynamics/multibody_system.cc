@@ -2,10 +2,10 @@
 
 #include <impactfe/dynamics/multibody_system.h>
 #include <impactfe/lcp/problem_io.h>
+#include <impactfe/utilities/program.h>
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -14,15 +14,6 @@ namespace impactfe
 {
   namespace
   {
-    /// CPU seconds of the calling thread (not inflated by other processes).
-    double
-    thread_cpu_seconds()
-    {
-      timespec t;
-      clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-      return t.tv_sec + 1e-9 * t.tv_nsec;
-    }
-
     /// Adds the time since the last call to one of the cost counters.
     class CostClock
     {

@@ -48,6 +48,14 @@ namespace impactfe
     }
   } // namespace
 
+  double
+  thread_cpu_seconds()
+  {
+    timespec now;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+    return now.tv_sec + 1e-9 * now.tv_nsec;
+  }
+
   void
   CpuStopwatch::start()
   {

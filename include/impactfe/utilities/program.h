@@ -19,6 +19,14 @@ namespace impactfe
   report_exception(const std::exception &exc);
 
   /**
+   * CPU seconds used so far by the calling thread (CLOCK_THREAD_CPUTIME_ID):
+   * on a shared machine the wall clock would also count the time other
+   * processes had the core. For timing phases inside one thread.
+   */
+  double
+  thread_cpu_seconds();
+
+  /**
    * Accumulating stopwatch of the process's CPU time, with nanosecond
    * resolution (CLOCK_PROCESS_CPUTIME_ID): time loops that take
    * milliseconds are measured, not rounded to zero.
