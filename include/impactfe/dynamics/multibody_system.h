@@ -4,7 +4,6 @@
 #include <deal.II/base/tensor.h>
 
 #include <deal.II/lac/block_vector.h>
-#include <deal.II/lac/sparse_direct.h>
 
 #include <impactfe/bodies/elastic_body.h>
 #include <impactfe/contact/contact_parameters.h>
