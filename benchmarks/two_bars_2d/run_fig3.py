@@ -51,7 +51,7 @@ def main():
                 t = [x * 1e3 for x in h["time"]]
                 norm = lambda v: [(x - 0.5 * v0) / (0.5 * v0) for x in v]  # noqa: E731
                 ax = axes[row][col]
-                ax.plot(t, norm(h["exact_1d_contact_velocity"]), "k:", lw=1,
+                ax.plot(t, norm(h["exact_contact_velocity"]), "k:", lw=1,
                         label="1D exact, impacting bar")
                 ax.plot(t, norm(h["contact_velocity"]), "b-", lw=1.3,
                         label="bar 1 (impacting)")
@@ -64,8 +64,8 @@ def main():
                 if col == 0:
                     ax.set_ylabel("(v - v0/2) / (v0/2)")
                 print(f"{model:13s} {scheme:15s} {s['first_contact']:12.4g} "
-                      f"{s['last_contact']:10.4g} {s['err_v_1d']:9.4f} "
-                      f"{s['err_f_1d']:9.4f} {s['energy_ratio']:9.4f}")
+                      f"{s['last_contact']:10.4g} {s['err_v']:9.4f} "
+                      f"{s['err_f']:9.4f} {s['energy_ratio']:9.4f}")
     axes[0][0].legend(fontsize=8, loc="lower left")
     fig.suptitle("Two bars in 2D, ν = 0.45, θ = 0.55: normal velocity at the "
                  "centre of the contact zone (paper Fig. 3)\n" +

@@ -64,6 +64,15 @@ namespace impactfe
 
 
   template <int dim>
+  const Triangulation<dim> &
+  ElasticBody<dim>::triangulation() const
+  {
+    return mesh;
+  }
+
+
+
+  template <int dim>
   void
   ElasticBody<dim>::setup()
   {

@@ -492,7 +492,17 @@ namespace impactfe
         << " of " << reference << std::endl;
     out << "  Contact state changes (open/stick/slip): " << s.state_changes
         << " in " << s.n_steps << " steps" << std::endl;
+    return check_contact_bounds(out, s, bounds, frictional);
+  }
 
+
+
+  bool
+  check_contact_bounds(std::ostream                        &out,
+                       const ContactRunSummary             &s,
+                       const ContactVerificationParameters &bounds,
+                       const bool                           frictional)
+  {
     bool ok = true;
     if (s.impulse_balance_checked)
       ok &= print_check(out,

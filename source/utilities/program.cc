@@ -2,7 +2,9 @@
 
 #include <impactfe/utilities/program.h>
 
+#include <cmath>
 #include <ctime>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 
@@ -14,6 +16,19 @@ namespace impactfe
     std::ostringstream s;
     s << value;
     return s.str();
+  }
+
+
+
+  std::string
+  format_figure(const double value, const double round_off)
+  {
+    std::ostringstream text;
+    if (std::abs(value) < round_off)
+      text << "< " << round_off;
+    else
+      text << std::setprecision(3) << value;
+    return text.str();
   }
 
 
@@ -89,5 +104,24 @@ namespace impactfe
               << "----------------------------------------------------"
               << std::endl;
     return 1;
+  }
+
+
+
+  int
+  report_current_exception()
+  {
+    try
+      {
+        throw;
+      }
+    catch (const std::exception &exc)
+      {
+        return report_exception(exc);
+      }
+    catch (...)
+      {
+        return report_unknown_exception();
+      }
   }
 } // namespace impactfe

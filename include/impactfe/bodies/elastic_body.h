@@ -60,6 +60,8 @@ namespace impactfe
     /** The mesh; fill it (GridGenerator, GridIn) before calling setup(). */
     Triangulation<dim> &
     triangulation();
+    const Triangulation<dim> &
+    triangulation() const;
 
     /** Distribute DoFs and assemble M, K and (if there is damping) C. */
     void

@@ -111,6 +111,16 @@ namespace impactfe
                         const ContactVerificationParameters &bounds,
                         const bool                           frictional);
 
+  /**
+   * Only the checks of print_contact_summary(): one line per bound that is
+   * set. Returns false if one failed.
+   */
+  bool
+  check_contact_bounds(std::ostream                        &out,
+                        const ContactRunSummary             &summary,
+                        const ContactVerificationParameters &bounds,
+                        const bool                           frictional);
+
 
 
   /**

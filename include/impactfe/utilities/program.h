@@ -11,6 +11,14 @@ namespace impactfe
   format_number(const double value);
 
   /**
+   * A figure of merit as a report prints it: three significant digits, and
+   * values below @p round_off as "< round_off", so that the output does not
+   * depend on the last bits.
+   */
+  std::string
+  format_figure(const double value, const double round_off = 1e-12);
+
+  /**
    * Print an exception caught in main() to stderr and return the exit code
    * 1. For deal.II exceptions only the message is printed (what went wrong
    * and which entry, value or step), not the library's source location.
@@ -50,6 +58,14 @@ namespace impactfe
   /** The same for an exception of unknown type. */
   int
   report_unknown_exception();
+
+  /**
+   * For `catch (...)` in main(): report the exception being handled (with
+   * report_exception() if it is a std::exception) and return the exit
+   * code 1.
+   */
+  int
+  report_current_exception();
 } // namespace impactfe
 
 #endif

@@ -1,0 +1,353 @@
+#include <impactfe/scenes/contact_scene.h>
+#include <impactfe/utilities/program.h>
+
+#include <filesystem>
+#include <sstream>
+
+namespace impactfe
+{
+  void
+  SceneParameters::declare_parameters(
+    ParameterHandler  &prm,
+    const std::string &default_output_directory)
+  {
+    DiscretizationParameters::declare_parameters(prm);
+    TimeSteppingParameters::declare_parameters(prm);
+    ContactSolverParameters::declare_parameters(prm);
+    OutputParameters::declare_parameters(prm, default_output_directory);
+    ContactVerificationParameters::declare_parameters(prm);
+  }
+
+
+
+  void
+  SceneParameters::parse_parameters(ParameterHandler &prm)
+  {
+    discretization.parse_parameters(prm);
+    time_stepping.parse_parameters(prm);
+    contact_solver.parse_parameters(prm);
+    output.parse_parameters(prm);
+    verification.parse_parameters(prm);
+  }
+
+
+
+  template <int dim>
+  ContactScene<dim>::ContactScene(const std::string &program_name)
+    : program_name(program_name)
+  {}
+
+
+
+  template <int dim>
+  void
+  ContactScene<dim>::run(int argc, char *argv[])
+  {
+    AssertThrow(argc <= 2,
+                ExcMessage("Usage: " + std::string(argv[0]) +
+                           " [parameter file]"));
+    run(argc > 1 ? std::string(argv[1]) :
+                   std::string(IMPACTFE_SOURCE_DIR) + "/parameter_files/" +
+                     program_name + ".prm");
+  }
+
+
+
+  // @sect3{The run}
+  // The set-up and the initial output are timed together, the loop's steps
+  // on their own.
+  template <int dim>
+  void
+  ContactScene<dim>::run(const std::string &parameter_file)
+  {
+    read_parameters(parameter_file);
+
+    CpuStopwatch setup_timer;
+    setup_timer.start();
+    setup_system();
+    output_results(StepReport());
+    setup_timer.stop();
+    setup_cpu_seconds = setup_timer.seconds();
+
+    CpuStopwatch       loop_timer;
+    const unsigned int n_steps = parameters.time_stepping.n_steps();
+    for (unsigned int step = 0; step < n_steps; ++step)
+      {
+        loop_timer.start();
+        const StepReport report = multibody_system->do_time_step();
+        loop_timer.stop();
+        output_results(report);
+      }
+    loop_cpu_seconds = loop_timer.seconds();
+    recorder->finish();
+    report_results();
+  }
+
+
+
+  // Every entry is declared with its pattern before the file is read, so a
+  // misspelt entry or a value outside its pattern is reported by
+  // ParameterHandler with the line number; the checks that patterns cannot
+  // express are in each parse_parameters().
+  template <int dim>
+  void
+  ContactScene<dim>::read_parameters(const std::string &file)
+  {
+    parameter_file_name = file;
+    ParameterHandler prm;
+    declare_parameters(prm);
+    SceneParameters::declare_parameters(prm, "results/" + program_name);
+    AssertThrow(std::filesystem::exists(file),
+                ExcMessage("The parameter file '" + file +
+                           "' does not exist."));
+    prm.parse_input(file);
+    parameters.parse_parameters(prm);
+    parse_parameters(prm);
+  }
+
+
+
+  // @sect3{The set-up}
+  template <int dim>
+  void
+  ContactScene<dim>::setup_system()
+  {
+    make_bodies();
+    for (const auto &b : body_list)
+      b->setup();
+    apply_loads();
+
+    multibody_system =
+      std::make_unique<MultibodySystem<dim>>(parameters.time_stepping,
+                                             parameters.contact_solver,
+                                             frictional() ? dim : 1);
+    for (const auto &b : body_list)
+      multibody_system->add_body(*b);
+    add_contacts(multibody_system->contacts());
+    for (const auto &c : multibody_system->contacts().candidates())
+      AssertThrow(c.initial_gap >= 0.,
+                  ExcMessage("Initial conditions: a node of the " +
+                             body_list[c.body_a]->name() +
+                             " is below the obstacle at t = 0 (gap " +
+                             format_number(c.initial_gap) + " m)."));
+    set_initial_state(multibody_system->state());
+
+    create_output_directory(parameters.output.directory);
+    multibody_system->set_dump_directory(parameters.output.directory);
+    multibody_system->setup();
+    prepare_run();
+    recorder = std::make_unique<SceneRecorder<dim>>(*multibody_system,
+                                                    parameters.output,
+                                                    history_columns());
+  }
+
+
+
+  template <int dim>
+  void
+  ContactScene<dim>::output_results(const StepReport &report)
+  {
+    recorder->record(report, history_values(report));
+    if (report.step > 0)
+      measure_step(report);
+  }
+
+
+
+  // @sect3{The report}
+  // The scene's report and entries, then what every program prints: the
+  // CPU times (if asked for: tests compare the screen), summary.json and the
+  // files.
+  template <int dim>
+  void
+  ContactScene<dim>::report_results()
+  {
+    const TimeSteppingParameters &ts = parameters.time_stepping;
+    std::ostringstream            out;
+    JsonObject                    summary;
+    summary.add("program", program_name)
+      .add("scheme", to_string(ts.scheme))
+      .add("theta", ts.theta)
+      .add("time_step", ts.time_step)
+      .add("setup_cpu_seconds", setup_cpu_seconds)
+      .add("loop_cpu_seconds", loop_cpu_seconds);
+    const bool ok = report(out, summary);
+    recorder->add_summary(summary);
+    summary.write(parameters.output.directory + "/summary.json");
+
+    if (parameters.output.print_performance)
+      out << "  CPU seconds: set-up " << setup_cpu_seconds << ", time loop "
+          << loop_cpu_seconds
+          << "; LCP: " << multibody_system->total_pivots()
+          << " pivots in total, largest LCP "
+          << multibody_system->largest_lcp() << std::endl;
+    recorder->report_files(out,
+                           plot_columns(),
+                           title() + ", " + to_string(ts.scheme));
+    print_report(out.str(), std::cout);
+    AssertThrow(ok,
+                ExcMessage("Verification: at least one bound of subsection "
+                           "'Verification' does not hold (see above)."));
+  }
+
+
+
+  template <int dim>
+  std::vector<std::string>
+  ContactScene<dim>::history_columns() const
+  {
+    return {};
+  }
+
+
+
+  template <int dim>
+  std::vector<double>
+  ContactScene<dim>::history_values(const StepReport &)
+  {
+    return {};
+  }
+
+
+
+  template <int dim>
+  void
+  ContactScene<dim>::measure_step(const StepReport &)
+  {}
+
+
+
+  template <int dim>
+  void
+  ContactScene<dim>::print_report(const std::string &text,
+                                  std::ostream      &out) const
+  {
+    out << text;
+  }
+
+
+
+  template <int dim>
+  ElasticBody<dim> &
+  ContactScene<dim>::add_body(const std::string        &name,
+                              const MaterialParameters &material,
+                              const double              out_of_plane_measure)
+  {
+    body_list.push_back(
+      std::make_unique<ElasticBody<dim>>(name,
+                                         material,
+                                         parameters.discretization,
+                                         out_of_plane_measure));
+    return *body_list.back();
+  }
+
+
+
+  template <int dim>
+  ElasticBody<dim> &
+  ContactScene<dim>::body(const unsigned int b)
+  {
+    return *body_list.at(b);
+  }
+
+
+
+  template <int dim>
+  const ElasticBody<dim> &
+  ContactScene<dim>::body(const unsigned int b) const
+  {
+    return *body_list.at(b);
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  ContactScene<dim>::n_bodies() const
+  {
+    return body_list.size();
+  }
+
+
+
+  template <int dim>
+  MultibodySystem<dim> &
+  ContactScene<dim>::system()
+  {
+    return *multibody_system;
+  }
+
+
+
+  template <int dim>
+  const MultibodySystem<dim> &
+  ContactScene<dim>::system() const
+  {
+    return *multibody_system;
+  }
+
+
+
+  template <int dim>
+  const ContactMonitor<dim> &
+  ContactScene<dim>::monitor() const
+  {
+    return recorder->monitor();
+  }
+
+
+
+  template <int dim>
+  const ContactRunSummary &
+  ContactScene<dim>::run_summary() const
+  {
+    return recorder->monitor().summary();
+  }
+
+
+
+  template <int dim>
+  const std::string &
+  ContactScene<dim>::parameter_file() const
+  {
+    return parameter_file_name;
+  }
+
+
+
+  template <int dim>
+  std::string
+  ContactScene<dim>::scheme_description(const std::string &time_unit) const
+  {
+    const TimeSteppingParameters &ts = parameters.time_stepping;
+    std::ostringstream            text;
+    text << "scheme " << to_string(ts.scheme);
+    if (ts.scheme == Scheme::newmark)
+      text << " (beta = " << ts.newmark_beta << ", gamma = " << ts.newmark_gamma
+           << ")";
+    else
+      text << " (theta = " << ts.theta << ")";
+    text << ", h = " << ts.time_step << time_unit << ", "
+         << run_summary().n_steps << " steps";
+    return text.str();
+  }
+
+
+
+  template <int dim>
+  bool
+  ContactScene<dim>::print_contact_checks(std::ostream &out) const
+  {
+    return print_contact_summary(out,
+                                 run_summary(),
+                                 parameters.verification,
+                                 multibody_system->contacts().n_directions() >
+                                   1);
+  }
+
+
+
+  template class ContactScene<1>;
+  template class ContactScene<2>;
+  template class ContactScene<3>;
+} // namespace impactfe

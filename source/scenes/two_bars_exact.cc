@@ -1,0 +1,86 @@
+#include <impactfe/scenes/two_bars_exact.h>
+
+#include <cmath>
+
+namespace impactfe
+{
+  TwoBarsExactSolution::TwoBarsExactSolution(const double impact_velocity,
+                                             const double initial_gap,
+                                             const double bar_length,
+                                             const double wave_speed,
+                                             const double density,
+                                             const double area)
+    : v0(impact_velocity)
+    , t_contact(initial_gap / impact_velocity)
+    , duration(2. * bar_length / wave_speed)
+    , contact_force(0.5 * density * wave_speed * impact_velocity * area)
+  {}
+
+
+
+  double
+  TwoBarsExactSolution::contact_velocity(const double t) const
+  {
+    return t < t_contact ? v0 : (t < t_contact + duration ? 0.5 * v0 : 0.);
+  }
+
+
+
+  double
+  TwoBarsExactSolution::target_velocity(const double t) const
+  {
+    return v0 - contact_velocity(t);
+  }
+
+
+
+  double
+  TwoBarsExactSolution::normal_force(const double t) const
+  {
+    return (t >= t_contact && t < t_contact + duration) ? contact_force : 0.;
+  }
+
+
+
+  TwoBarsErrors::TwoBarsErrors(const TwoBarsExactSolution &exact)
+    : exact(exact)
+  {}
+
+
+
+  void
+  TwoBarsErrors::add(const double t,
+                     const double contact_velocity,
+                     const double normal_force)
+  {
+    sum_v += std::abs(contact_velocity - exact.contact_velocity(t)) /
+             (0.5 * exact.v0);
+    sum_f +=
+      std::abs(normal_force - exact.normal_force(t)) / exact.contact_force;
+    ++n;
+  }
+
+
+
+  double
+  TwoBarsErrors::err_v() const
+  {
+    return n > 0 ? sum_v / n : 0.;
+  }
+
+
+
+  double
+  TwoBarsErrors::err_f() const
+  {
+    return n > 0 ? sum_f / n : 0.;
+  }
+
+
+
+  unsigned int
+  TwoBarsErrors::n_steps() const
+  {
+    return n;
+  }
+} // namespace impactfe
