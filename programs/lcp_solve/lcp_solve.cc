@@ -22,6 +22,7 @@
 #include <vector>
 
 using namespace impactfe::lcp;
+using impactfe::ContactState;
 
 namespace
 {

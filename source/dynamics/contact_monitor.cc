@@ -173,7 +173,7 @@ namespace impactfe
     for (const ContactState s : states)
       {
         sticking += s == ContactState::stick ? 1 : 0;
-        sliding += s == ContactState::slip ? 1 : 0;
+        sliding += is_sliding(s) ? 1 : 0;
       }
     values.push_back(system.kinetic_energy());
     values.push_back(system.elastic_energy());
@@ -279,14 +279,17 @@ namespace impactfe
           {
             // Frictionless candidates carry no tangential unknown: they
             // slide freely.
-            s = (nd == 1 || v_t > velocity_tolerance) ? ContactState::slip :
-                                                         ContactState::stick;
-            if (nd > 1 && s == ContactState::slip &&
+            const bool backwards = nd > 1 && local_velocity[c * nd + 1] < 0.;
+            s = (nd == 1 || v_t > velocity_tolerance) ?
+                  (backwards ? ContactState::slip_negative :
+                               ContactState::slip_positive) :
+                  ContactState::stick;
+            if (nd > 1 && is_sliding(s) &&
                 (p_dot_v > impulse_tolerance * v_t ||
                  p_t < mu * p_n - impulse_tolerance))
               ++run.wrong_slip_count;
           }
-        if (s != states[c])
+        if (contact_mode(s) != contact_mode(states[c]))
           ++run.state_changes;
         states[c] = s;
 
@@ -304,7 +307,7 @@ namespace impactfe
             *node_output << "," << force_factor * p_n << ","
                          << force_factor * signed_p_t << "," << gaps[c] << ","
                          << local_velocity[c * nd] << "," << signed_v_t << ","
-                         << static_cast<int>(s) << "\n";
+                         << contact_mode(s) << "\n";
           }
       }
 

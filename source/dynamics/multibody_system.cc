@@ -378,11 +378,11 @@ namespace impactfe
     // the answer is verified like a cold one.
     if (last_contact_states.size() != contact_set.n_candidates())
       last_contact_states.assign(contact_set.n_candidates(),
-                                 lcp::ContactState::open);
+                                 ContactState::open);
     lcp::ContactSolution solution;
     if (solver_parameters.warm_start)
       {
-        std::vector<lcp::ContactState> guess(lcp_candidates.size());
+        std::vector<ContactState> guess(lcp_candidates.size());
         for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
           guess[a] = last_contact_states[lcp_candidates[a]];
         solution = lcp::solve_contact_problem(problem, {}, guess);
@@ -392,7 +392,7 @@ namespace impactfe
     if (solution.lcp.status == lcp::Status::solved)
       {
         std::fill(last_contact_states.begin(), last_contact_states.end(),
-                  lcp::ContactState::open);
+                  ContactState::open);
         for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
           last_contact_states[lcp_candidates[a]] = solution.states[a];
       }

@@ -258,7 +258,8 @@ namespace impactfe
     for (unsigned int c = 0; c < previous_states.size(); ++c)
       {
         const ContactState state = monitor.state(c);
-        final_state_changes += (in_final && state != previous_states[c]) ? 1 : 0;
+        final_state_changes +=
+          (in_final && contact_mode(state) != contact_mode(previous_states[c])) ? 1 : 0;
         previous_states[c] = state;
       }
     if (in_final)

@@ -5,6 +5,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <impactfe/dynamics/multibody_system.h>
+#include <impactfe/lcp/contact_state.h>
 
 #include <fstream>
 #include <memory>
@@ -15,13 +16,6 @@ namespace impactfe
 {
   using namespace dealii;
 
-  /** State of a contact candidate after a step. */
-  enum class ContactState
-  {
-    open  = 0,
-    stick = 1,
-    slip  = 2
-  };
 
 
 
@@ -163,7 +157,10 @@ namespace impactfe
     void
     record(const StepReport &report);
 
-    /** State of candidate @p c after the last step. */
+    /**
+     * State of candidate @p c after the last step; a sliding candidate
+     * slips along +t1 or -t1 (frictionless: slip_positive).
+     */
     ContactState
     state(const unsigned int c) const;
 

@@ -256,7 +256,7 @@ namespace impactfe
     std::vector<bool>         active;
     std::vector<bool>         in_lcp;
     /// State of each candidate at the last LCP solve (warm start).
-    std::vector<lcp::ContactState> last_contact_states;
+    std::vector<ContactState> last_contact_states;
     std::vector<unsigned int> lcp_candidates;
     lcp::ContactProblem       problem;
     unsigned int              last_lcp_size = 0;

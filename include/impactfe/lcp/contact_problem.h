@@ -4,6 +4,7 @@
 #ifndef impactfe_lcp_contact_problem_h
 #define impactfe_lcp_contact_problem_h
 
+#include <impactfe/lcp/contact_state.h>
 #include <impactfe/lcp/dense_matrix.h>
 #include <impactfe/lcp/lemke.h>
 
@@ -53,28 +54,6 @@ namespace impactfe
     std::string
     to_string(FrictionForm form);
 
-    /**
-     * The state of one contact at a solution, or a guess of it. In 2D with
-     * friction the four states are the four complementary bases of one
-     * contact (in the facet form with k = 2: which of P_N, beta_+, beta_-,
-     * sigma are basic). Frictionless and 3D problems use open and stick
-     * only (stick meaning "closed": P_N > 0 expected).
-     */
-    enum class ContactState : unsigned char
-    {
-      /// P = 0: the contact separates (or grazes).
-      open,
-      /// Closed and sticking: V_N + b_N = 0, V_T = 0, |P_T| <= mu P_N.
-      stick,
-      /// Closed and sliding with V_T > 0: P_T = -mu P_N.
-      slip_positive,
-      /// Closed and sliding with V_T < 0: P_T = +mu P_N.
-      slip_negative
-    };
-
-    /// "open", "stick", "slip+", "slip-".
-    std::string
-    to_string(ContactState state);
 
     /// Options of solve_contact_problem().
     struct ContactOptions
