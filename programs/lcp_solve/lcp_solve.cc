@@ -8,9 +8,16 @@
 // and sign conditions in one scale-invariant number)
 // (n is the size of the LCP actually solved; "-" when not solved), then with
 // --solution the solution z (LCP files) or the impulses P (contact files).
+// With --form auto (the default) a contact problem that the first form does
+// not solve is tried by the other routes of contact_routes.h; every route is
+// listed on stderr if none succeeds. Status "infeasible" means proven to have
+// no solution; "ray-termination" and the others mean Lemke's method did not
+// find one (and, for contact problems with --form auto, the problem is
+// feasible or that could not be decided).
 // Exit code: 0 if every problem was solved, 1 if one was not, 2 on a bad
 // command line or an unreadable/malformed file.
 #include <impactfe/lcp/contact_problem.h>
+#include <impactfe/lcp/contact_routes.h>
 #include <impactfe/lcp/lemke.h>
 #include <impactfe/lcp/problem_io.h>
 
@@ -130,6 +137,15 @@ main(int argc, char **argv)
                 }
               else
                 r = solve_lemke(f.lcp.M, f.lcp.q, options.lemke);
+              // A ray does not say whether the LCP has a solution unless M is
+              // copositive-plus; an infeasible LCP has none.
+              if (r.status == Status::ray_termination &&
+                  lcp_feasibility(f.lcp.M, f.lcp.q, options.lemke) == Status::ray_termination)
+                {
+                  r.status = Status::infeasible;
+                  r.message += "; no z >= 0 with M z + q >= 0 (Lemke's ray on the LCP of that linear "
+                               "program): the LCP has no solution";
+                }
             }
           else
             {
@@ -143,12 +159,15 @@ main(int argc, char **argv)
                       guess[c] = ContactState::stick;
                   s = solve_contact_problem(p, options, guess);
                 }
+              else if (options.form == FrictionForm::automatic)
+                s = solve_contact_problem_by_routes(p, options).solution;
               else
                 s = solve_contact_problem(p, options);
               n = s.lcp.z.size();
               if (n == 0) // not solved: report the size of the assembled LCP
                 n = assemble_contact_lcp(p, options).q.size();
-              r = s.lcp;
+              r         = s.lcp;
+              r.message = s.message; // every route tried
               P = s.P;
             }
           const double seconds =

@@ -1,4 +1,5 @@
 #include <impactfe/lcp/contact_problem.h>
+#include <impactfe/lcp/contact_routes.h>
 #include <impactfe/lcp/lu.h>
 
 #include "floating_point_mode.h"
@@ -390,6 +391,9 @@ namespace impactfe
           s.states = contact_states(p, s.P);
         }
       s.message = lcp.message + "; " + s.lcp.message + warm_note;
+      // automatic: never stop at the first failure (contact_routes.h)
+      if (options.form == FrictionForm::automatic && s.lcp.status != Status::solved)
+        return continue_with_other_routes(p, options, s);
       return s;
     }
 
@@ -996,6 +1000,9 @@ namespace impactfe
       s.message = lcp.message + "; " + s.lcp.message;
       if (!why_not_block_pivoting.empty())
         s.message = "block pivoting gave up (" + why_not_block_pivoting + "); " + s.message;
+      // automatic: never stop at the first failure (contact_routes.h)
+      if (options.form == FrictionForm::automatic && s.lcp.status != Status::solved)
+        return continue_with_other_routes(p, options, s);
       return s;
     }
   } // namespace lcp

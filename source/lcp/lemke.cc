@@ -35,6 +35,8 @@ namespace impactfe
             return "pivot-limit";
           case Status::numerical_failure:
             return "failed";
+          case Status::infeasible:
+            return "infeasible";
         }
       return "failed";
     }
@@ -240,6 +242,21 @@ namespace impactfe
                   s << "ray termination after " << result.pivots << " pivots: "
                     << (entering < n ? "w_" : "z_") << (entering % n)
                     << " cannot enter (no positive entry in its column); z0 = " << x[position[z0]];
+                  // z0 within rounding of 0 (a degenerate end of the path,
+                  // e.g. a singular W): the point without z0 may already
+                  // solve the LCP. Accepted only if it passes verify().
+                  std::vector<double> z_end, w_end;
+                  extract(z_end, w_end);
+                  const Verification v = verify(M, q, z_end, w_end, options.verification_tolerance_factor);
+                  if (v.ok)
+                    {
+                      result.status       = Status::solved;
+                      result.verification = v;
+                      note = "; at the last pivot the entering column had no positive entry, but z0 = " +
+                             std::to_string(x[position[z0]]) + " was within rounding of 0 and the point "
+                             "without it passed verification";
+                      return;
+                    }
                   result.driving_variable = entering;
                   fail(result, Status::ray_termination, s.str());
                   return;
@@ -362,6 +379,8 @@ namespace impactfe
         }
 
         unsigned int refactorisations = 0;
+        /// Appended to the message of a solved run (see the ray test in run()).
+        std::string note;
 
       private:
         const int                  n;
@@ -709,7 +728,7 @@ namespace impactfe
             if (result.status == Status::solved)
               {
                 std::ostringstream s;
-                s << "solved by Lemke's method in " << result.pivots << " pivots";
+                s << "solved by Lemke's method in " << result.pivots << " pivots" << engine.note;
                 result.message = s.str();
               }
           }
@@ -844,7 +863,7 @@ namespace impactfe
                   {
                     std::ostringstream s;
                     s << "solved by Lemke's method from the guessed basis in " << warm.pivots
-                      << " pivots";
+                      << " pivots" << engine.note;
                     warm.message = s.str();
                     return warm;
                   }

@@ -1,5 +1,6 @@
 #include <impactfe/lcp/problem_io.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -52,6 +53,78 @@ namespace impactfe
         at_end() const
         {
           return pos >= tokens.size();
+        }
+
+        /// The next token as text ("" at the end), without consuming it.
+        const std::string &
+        peek_text(const std::size_t offset = 0) const
+        {
+          static const std::string none;
+          return pos + offset < tokens.size() ? tokens[pos + offset] : none;
+        }
+
+        /// Line of the next token (0 at the end).
+        unsigned int
+        line() const
+        {
+          return pos < tokens.size() ? lines[pos] : 0;
+        }
+
+        /// Skip every remaining token of the current token's line.
+        void
+        skip_line()
+        {
+          const unsigned int l = line();
+          while (pos < tokens.size() && lines[pos] == l)
+            ++pos;
+        }
+
+        /// Consume the literal token @p word, or report what was expected.
+        void
+        expect(const std::string &word, const std::string &what)
+        {
+          if (at_end() || tokens[pos] != word)
+            error("expected '" + word + "' " + what);
+          ++pos;
+        }
+
+        /// An integer token followed by an optional trailing character
+        /// (CSparse writes "3822," and "1334-by-1334,").
+        long
+        integer_with_suffix(const std::string &what, const long min, const long max, const char suffix)
+        {
+          if (!at_end() && !tokens[pos].empty() && tokens[pos].back() == suffix)
+            {
+              tokens[pos].pop_back();
+              return integer(what, min, max);
+            }
+          return integer(what, min, max);
+        }
+
+        /// The current token split at "-by-" into (rows, columns), which
+        /// must be (rows, columns).
+        void
+        dimensions(const std::string &what, const long rows, const long columns)
+        {
+          if (at_end())
+            error("missing " + what);
+          std::string t = tokens[pos];
+          if (!t.empty() && t.back() == ',')
+            t.pop_back();
+          const std::size_t by = t.find("-by-");
+          bool              ok0 = false, ok1 = false;
+          double            r = 0., c = 0.;
+          if (by != std::string::npos)
+            {
+              r = parse(t.substr(0, by), ok0);
+              c = parse(t.substr(by + 4), ok1);
+            }
+          if (!ok0 || !ok1 || r != std::floor(r) || c != std::floor(c) || r < 0 || c < 0)
+            error("expected 'rows-by-columns,' for " + what);
+          if (r != rows || c != columns)
+            error(what + " differs from the storage header (" + std::to_string(rows) + " x " +
+                  std::to_string(columns) + ")");
+          ++pos;
         }
 
         double
@@ -117,15 +190,114 @@ namespace impactfe
 
       constexpr long max_size = 1000000;
 
+      /**
+       * Storage type 2 (NumericsSparseMatrix): the text CSparse prints,
+       * as Siconos writes it (NSM_write_in_file / CSparseMatrix_print_in_file):
+       *
+       *   [origin]              1 triplet, 2 compressed column, 3 compressed
+       *                         row (newer files; older files lack it)
+       *   [CSparse Version ...] one line, skipped
+       *   m-by-n, nzmax: X nnz: Y, 1-norm: Z           (compressed)
+       *       col j : locations a to b                 (per column j)
+       *         i : value                              (b - a + 1 entries)
+       *   triplet: m-by-n, nzmax: X nnz: Y             (triplet)
+       *       i j : value                              (Y entries)
+       *
+       * In compressed row storage "col j" is row j and "i" a column. Triplet
+       * entries with the same (i, j) are summed, as CSparse's compression
+       * does. The values are written by Siconos with 6 significant digits
+       * (%g): such a file holds that rounded matrix, nothing more.
+       */
+      void
+      read_sparse(Tokens &t, const long size0, const long size1, DenseMatrix &M)
+      {
+        long origin = 0;
+        // the optional origin stands alone on its line
+        if (t.peek_text() == "1" || t.peek_text() == "2" || t.peek_text() == "3")
+          origin = t.integer("the sparse matrix origin (1 triplet, 2 CSC, 3 CSR)", 1, 3);
+        if (t.peek_text() == "(null)")
+          t.error("the sparse matrix was written as (null)");
+        if (t.peek_text() == "CSparse" || t.peek_text() == "CXSparse")
+          t.skip_line();
+        const bool triplet = (t.peek_text() == "triplet:");
+        if (triplet)
+          t.expect("triplet:", "");
+        if (origin == 1 && !triplet)
+          t.error("origin 1 (triplet) announced, but the header is not 'triplet: ...'");
+        if (triplet && origin > 1)
+          t.error("a triplet header, but origin " + std::to_string(origin) + " (compressed) announced");
+        const bool by_rows = (origin == 3);
+        t.dimensions("the sparse matrix size", size0, size1);
+        t.expect("nzmax:", "in the sparse matrix header");
+        const long nzmax = t.integer("nzmax", 0, max_size * 100);
+        t.expect("nnz:", "in the sparse matrix header");
+        const long nnz = t.integer_with_suffix("nnz", 0, nzmax, ',');
+        if (!triplet)
+          {
+            // ", 1-norm: Z" closes the header line
+            t.expect("1-norm:", "in the sparse matrix header");
+            t.number("the 1-norm");
+          }
+
+        auto entry = [&](const long i, const long j, const double v) {
+          if (i < 0 || i >= size0 || j < 0 || j >= size1)
+            t.error("entry (" + std::to_string(i) + ", " + std::to_string(j) + ") outside the matrix");
+          M(i, j) += v;
+        };
+
+        if (triplet)
+          {
+            for (long p = 0; p < nnz; ++p)
+              {
+                const long i = t.integer("a triplet row index", 0, size0 - 1);
+                const long j = t.integer("a triplet column index", 0, size1 - 1);
+                t.expect(":", "after a triplet's indices");
+                entry(i, j, t.number("a triplet value"));
+              }
+            return;
+          }
+        const long n_outer = by_rows ? size0 : size1;
+        const long n_inner = by_rows ? size1 : size0;
+        long       next    = 0; // the location the next column must start at
+        for (long j = 0; j < n_outer; ++j)
+          {
+            t.expect("col", by_rows ? "(row " + std::to_string(j) + " of a compressed-row matrix)" :
+                                      "(column " + std::to_string(j) + ")");
+            t.integer("the column number", j, j);
+            t.expect(":", "after the column number");
+            t.expect("locations", "in a column header");
+            t.integer("the first location of the column", next, next);
+            t.expect("to", "in a column header");
+            const long last = t.integer("the last location of the column", next - 1, nnz - 1);
+            for (long p = next; p <= last; ++p)
+              {
+                const long i = t.integer("a row index", 0, n_inner - 1);
+                t.expect(":", "after a row index");
+                const double v = t.number("a matrix entry");
+                if (by_rows)
+                  entry(j, i, v);
+                else
+                  entry(i, j, v);
+              }
+            next = last + 1;
+          }
+        if (next != nnz)
+          t.error("the columns hold " + std::to_string(next) + " entries, the header says nnz = " +
+                  std::to_string(nnz));
+      }
+
       DenseMatrix
       read_numerics_matrix(Tokens &t)
       {
         const long storage = t.integer("the matrix storage type", 0, 2);
         const long size0   = t.integer("the number of matrix rows", 0, max_size);
         const long size1   = t.integer("the number of matrix columns", 0, max_size);
-        if (storage == 2)
-          t.error("sparse (CSparse, storage type 2) matrices are not supported; use dense (0) or sparse block (1)");
         DenseMatrix M(size0, size1, 0.);
+        if (storage == 2)
+          {
+            read_sparse(t, size0, size1, M);
+            return M;
+          }
         if (storage == 0)
           {
             const long r = t.integer("the dense matrix row count", size0, size0);
@@ -173,16 +345,63 @@ namespace impactfe
         return M;
       }
 
+      /// A NumericsMatrix in the requested storage, at full precision (17
+      /// significant digits, unlike Siconos' %g for sparse matrices).
       void
-      write_dense(std::ostream &out, const DenseMatrix &M)
+      write_matrix(std::ostream &out, const DenseMatrix &M, const MatrixStorage storage)
       {
-        out << 0 << '\n' << M.n_rows() << '\n' << M.n_cols() << '\n';
-        out << M.n_rows() << '\t' << M.n_cols() << '\n';
+        if (storage == MatrixStorage::dense)
+          {
+            out << 0 << '\n' << M.n_rows() << '\n' << M.n_cols() << '\n';
+            out << M.n_rows() << '\t' << M.n_cols() << '\n';
+            for (std::size_t j = 0; j < M.n_cols(); ++j)
+              {
+                for (std::size_t i = 0; i < M.n_rows(); ++i)
+                  out << M(i, j) << ' ';
+                out << '\n';
+              }
+            return;
+          }
+        std::size_t nnz = 0;
+        double      norm1 = 0.;
         for (std::size_t j = 0; j < M.n_cols(); ++j)
           {
+            double column_sum = 0.;
             for (std::size_t i = 0; i < M.n_rows(); ++i)
-              out << M(i, j) << ' ';
-            out << '\n';
+              if (M(i, j) != 0.)
+                {
+                  ++nnz;
+                  column_sum += std::abs(M(i, j));
+                }
+            norm1 = std::max(norm1, column_sum);
+          }
+        const bool triplet = (storage == MatrixStorage::triplet);
+        out << 2 << '\n' << M.n_rows() << '\n' << M.n_cols() << '\n' << (triplet ? 1 : 2) << '\n';
+        out << "CSparse Version 3.1.9 text layout, written by impactfe\n";
+        if (triplet)
+          out << "triplet: " << M.n_rows() << "-by-" << M.n_cols() << ", nzmax: " << nnz << " nnz: " << nnz
+              << '\n';
+        else
+          out << M.n_rows() << "-by-" << M.n_cols() << ", nzmax: " << nnz << " nnz: " << nnz
+              << ", 1-norm: " << norm1 << '\n';
+        std::size_t location = 0;
+        for (std::size_t j = 0; j < M.n_cols(); ++j)
+          {
+            std::size_t count = 0;
+            for (std::size_t i = 0; i < M.n_rows(); ++i)
+              count += (M(i, j) != 0.);
+            if (!triplet)
+              out << "    col " << j << " : locations " << location << " to "
+                  << static_cast<long>(location + count) - 1 << '\n';
+            for (std::size_t i = 0; i < M.n_rows(); ++i)
+              if (M(i, j) != 0.)
+                {
+                  if (triplet)
+                    out << "    " << i << ' ' << j << " : " << M(i, j) << '\n';
+                  else
+                    out << "      " << i << " : " << M(i, j) << '\n';
+                }
+            location += count;
           }
       }
     } // namespace
@@ -256,13 +475,13 @@ namespace impactfe
 
 
     void
-    write_lcp(std::ostream &out, const DenseMatrix &M, const std::vector<double> &q)
+    write_lcp(std::ostream &out, const DenseMatrix &M, const std::vector<double> &q, const MatrixStorage storage)
     {
       if (M.n_rows() != q.size() || M.n_cols() != q.size())
         throw std::invalid_argument("write_lcp: inconsistent sizes");
       const auto old = out.precision(17);
       out << q.size() << '\n';
-      write_dense(out, M);
+      write_matrix(out, M, storage);
       for (const double v : q)
         out << v << ' ';
       out << '\n';
@@ -272,12 +491,12 @@ namespace impactfe
 
 
     void
-    write_friction_contact(std::ostream &out, const ContactProblem &p)
+    write_friction_contact(std::ostream &out, const ContactProblem &p, const MatrixStorage storage)
     {
       check_contact_problem(p);
       const auto old = out.precision(17);
       out << p.n_directions << '\n' << p.n_contacts << '\n';
-      write_dense(out, p.W);
+      write_matrix(out, p.W, storage);
       for (unsigned int c = 0; c < p.n_contacts; ++c)
         for (unsigned int a = 0; a < p.n_directions; ++a)
           out << p.free_velocity[c * p.n_directions + a] + (a == 0 ? p.gap_term[c] : 0.) << ' ';
@@ -291,12 +510,15 @@ namespace impactfe
 
 
     void
-    write_lcp_file(const std::string &filename, const DenseMatrix &M, const std::vector<double> &q)
+    write_lcp_file(const std::string         &filename,
+                   const DenseMatrix         &M,
+                   const std::vector<double> &q,
+                   const MatrixStorage        storage)
     {
       std::ofstream out(filename);
       if (!out)
         throw std::runtime_error(filename + ": cannot open the file for writing");
-      write_lcp(out, M, q);
+      write_lcp(out, M, q, storage);
       if (!out)
         throw std::runtime_error(filename + ": write error");
     }
@@ -304,12 +526,14 @@ namespace impactfe
 
 
     void
-    write_friction_contact_file(const std::string &filename, const ContactProblem &problem)
+    write_friction_contact_file(const std::string    &filename,
+                                const ContactProblem &problem,
+                                const MatrixStorage   storage)
     {
       std::ofstream out(filename);
       if (!out)
         throw std::runtime_error(filename + ": cannot open the file for writing");
-      write_friction_contact(out, problem);
+      write_friction_contact(out, problem, storage);
       if (!out)
         throw std::runtime_error(filename + ": write error");
     }

@@ -29,10 +29,14 @@ namespace impactfe
       pivot_limit,
       /// The basis became singular, or the final (z, w) failed verify() even
       /// after a refactorisation.
-      numerical_failure
+      numerical_failure,
+      /// Not returned by solve_lemke(): proven to have no solution, because
+      /// there is no z >= 0 with M z + q >= 0 (see lcp_feasibility() in
+      /// contact_routes.h).
+      infeasible
     };
 
-    /// "solved", "ray-termination", "pivot-limit" or "failed".
+    /// "solved", "ray-termination", "pivot-limit", "failed" or "infeasible".
     std::string
     to_string(Status status);
 

@@ -11,7 +11,12 @@
 //                                 column sizes, filled1, filled2, index1_data,
 //                                 index2_data, then per block its number and
 //                                 its values column-major
-//    storage 2 (CSparse):         not supported (a clear error)
+//    storage 2 (CSparse):         [origin 1|2|3], [CSparse Version line], then
+//                                 "m-by-n, nzmax: X nnz: Y, 1-norm: Z" and per
+//                                 column "col j : locations a to b" and
+//                                 "i : value" lines (compressed column; rows
+//                                 for origin 3), or "triplet: m-by-n, nzmax: X
+//                                 nnz: Y" and "i j : value" lines
 // Anything after the data (Siconos files often end with a comment) is ignored.
 #ifndef impactfe_lcp_problem_io_h
 #define impactfe_lcp_problem_io_h
@@ -64,9 +69,21 @@ namespace impactfe
     ProblemFile
     read_problem_file(const std::string &filename);
 
-    /// Write an LCP (dense storage, full precision).
+    /// How a matrix is written: NumericsMatrix storage 0, or storage 2 as
+    /// compressed columns or triplets (zeros are not written).
+    enum class MatrixStorage
+    {
+      dense,
+      compressed_column,
+      triplet
+    };
+
+    /// Write an LCP (full precision).
     void
-    write_lcp(std::ostream &out, const DenseMatrix &M, const std::vector<double> &q);
+    write_lcp(std::ostream              &out,
+              const DenseMatrix         &M,
+              const std::vector<double> &q,
+              MatrixStorage              storage = MatrixStorage::dense);
 
     /**
      * Write a contact problem as a Siconos FrictionContactProblem (dense W).
@@ -75,15 +92,22 @@ namespace impactfe
      * LCP, and the same impulses, as the problem itself.
      */
     void
-    write_friction_contact(std::ostream &out, const ContactProblem &problem);
+    write_friction_contact(std::ostream         &out,
+                           const ContactProblem &problem,
+                           MatrixStorage         storage = MatrixStorage::dense);
 
     /// Write to a file (std::runtime_error if it cannot be written).
     void
-    write_lcp_file(const std::string &filename, const DenseMatrix &M, const std::vector<double> &q);
+    write_lcp_file(const std::string         &filename,
+                   const DenseMatrix         &M,
+                   const std::vector<double> &q,
+                   MatrixStorage              storage = MatrixStorage::dense);
 
     /// Write to a file (std::runtime_error if it cannot be written).
     void
-    write_friction_contact_file(const std::string &filename, const ContactProblem &problem);
+    write_friction_contact_file(const std::string    &filename,
+                                const ContactProblem &problem,
+                                MatrixStorage         storage = MatrixStorage::dense);
   } // namespace lcp
 } // namespace impactfe
 

@@ -1,0 +1,95 @@
+// Solving a contact problem by several routes, so that a solvable problem is
+// not given up after the first form that fails, and telling an unsolvable
+// problem (proven: its LCP is infeasible) from one we failed on.
+//
+// The routes, in order, each tried only if the previous ones did not give a
+// verified solution (see doc/lcp.md, "Solvable means solved"):
+//  1. the requested form (automatic: frictionless / Klarbring / facets);
+//  2. the facet form (k = 2 in 2D, n_facets in 3D), cold Lemke. For a
+//     positive semidefinite W it is copositive, and Lemke's method processes
+//     it whenever q^T u >= 0 for every u in the polygonal cone with W u = 0
+//     (e.g. q = H^T v + b with b_N >= 0 for W = H^T M^{-1} H);
+//  3. the same with a pivot tolerance 100 times smaller (near a singular
+//     basis the default one hides true positive entries: false rays);
+//  4. the same with another covering vector;
+//  5. the facet form of W + eps ||W|| I (positive definite: Lemke always
+//     processes it), then Lemke on the original facet form warm-started from
+//     that solution's basis, reduced to linearly independent columns where
+//     the basis is singular (redundant contacts);
+// and, if none gave a verified solution, a feasibility test: the LCP of the
+// linear program "z >= 0, M z + q >= 0" (skew-symmetric, copositive-plus) is
+// solved by Lemke's method; a ray there proves that the facet form has no
+// solution (Status::infeasible).
+#ifndef impactfe_lcp_contact_routes_h
+#define impactfe_lcp_contact_routes_h
+
+#include <impactfe/lcp/contact_problem.h>
+
+#include <string>
+#include <vector>
+
+namespace impactfe
+{
+  namespace lcp
+  {
+    /// One route tried by solve_contact_problem_by_routes().
+    struct RouteAttempt
+    {
+      /// "requested", "copositive", "small-tolerance", "covering", "regularised"
+      /// or "feasibility": which of the routes above.
+      std::string  kind;
+      std::string  route;
+      Status       status = Status::numerical_failure;
+      unsigned int pivots = 0;
+      std::string  message;
+    };
+
+    /// What solve_contact_problem_by_routes() returns.
+    struct RoutedContactSolution
+    {
+      /// The solution of the route that succeeded (or the last attempt).
+      ContactSolution solution;
+      /// Every route tried, in order.
+      std::vector<RouteAttempt> attempts;
+      /// Index into attempts of the successful route, -1 if none.
+      int successful_route = -1;
+    };
+
+    /**
+     * Routes 1 to 5 above (route 1 is @p first_attempt if given), then (if all failed) the feasibility test. On
+     * success solution.lcp.status == solved and solution.P the impulses; if
+     * the facet form was proven infeasible, solution.lcp.status ==
+     * Status::infeasible; otherwise the status of the last route. The
+     * message lists every route and its outcome. Pivots are summed over the
+     * routes.
+     */
+    RoutedContactSolution
+    solve_contact_problem_by_routes(const ContactProblem  &problem,
+                                    const ContactOptions  &options       = {},
+                                    const ContactSolution *first_attempt = nullptr);
+
+    /**
+     * For solve_contact_problem() with FrictionForm::automatic: @p failed is
+     * its unsolved result (route 1, cold or warm); the other routes are
+     * tried. Returns the routed solution, message "<failed message>; then
+     * route 2 ...", pivots summed.
+     */
+    ContactSolution
+    continue_with_other_routes(const ContactProblem  &problem,
+                               const ContactOptions  &options,
+                               const ContactSolution &failed);
+
+    /**
+     * Is there z >= 0 with M z + q >= 0? Lemke's method on the LCP of that
+     * linear program (size 2n, M_LP = [0 -M^T; M 0], q_LP = (0, q)): M_LP is
+     * skew-symmetric, hence copositive-plus, so a ray proves infeasibility
+     * (Cottle-Pang-Stone 1992, Thm 4.4.13); otherwise a feasible z is found.
+     * Returns the Lemke status on the LP (solved: feasible; ray_termination:
+     * infeasible; anything else: undecided).
+     */
+    Status
+    lcp_feasibility(const DenseMatrix &M, const std::vector<double> &q, const LemkeOptions &options = {});
+  } // namespace lcp
+} // namespace impactfe
+
+#endif

@@ -1,0 +1,370 @@
+#include <impactfe/lcp/contact_routes.h>
+#include <impactfe/lcp/lu.h>
+
+#include "floating_point_mode.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <sstream>
+
+namespace impactfe
+{
+  namespace lcp
+  {
+    namespace
+    {
+      bool
+      frictionless(const ContactProblem &p)
+      {
+        return p.n_directions == 1 || std::all_of(p.mu.begin(), p.mu.end(), [](double m) { return m == 0.; });
+      }
+
+      /// The form whose LCP matrix is copositive for a positive semidefinite
+      /// W: W_NN itself without friction, the facet form with friction.
+      ContactOptions
+      copositive_form(const ContactProblem &p, const ContactOptions &options)
+      {
+        ContactOptions o = options;
+        o.form           = frictionless(p) ? FrictionForm::frictionless : FrictionForm::facets;
+        return o;
+      }
+
+      /// Lemke on an assembled form; impulses and states if solved.
+      ContactSolution
+      solve_assembled(const ContactProblem &p, const ContactLCP &lcp, const Result &r)
+      {
+        ContactSolution s;
+        s.form     = lcp.form;
+        s.n_facets = lcp.n_facets;
+        s.lcp      = r;
+        if (r.status == Status::solved)
+          {
+            s.P      = impulses_from_lcp(p, lcp, r.z);
+            s.states = contact_states(p, s.P);
+          }
+        s.message = lcp.message + "; " + r.message;
+        return s;
+      }
+
+      std::string
+      form_name(const ContactLCP &lcp)
+      {
+        if (lcp.form == FrictionForm::facets)
+          return "facet form, k = " + std::to_string(lcp.n_facets);
+        return to_string(lcp.form) + " form";
+      }
+
+      /**
+       * The guess "z_i basic" reduced to a set whose principal block of M is
+       * nonsingular: indices are taken greedily in order of decreasing z_i
+       * (relative to the largest z of the same kind of variable), and one is
+       * kept only if the block stays nonsingular. Redundant contacts (W u = 0
+       * for some u != 0) make the block of a regularised solution singular;
+       * dropping the dependent columns keeps W P, hence the velocities.
+       * O(g^4) for g guessed indices: only used for g <= max_size.
+       */
+      std::vector<bool>
+      independent_guess(const DenseMatrix &M, const std::vector<double> &z, const std::size_t max_size)
+      {
+        std::vector<std::size_t> candidates;
+        for (std::size_t i = 0; i < z.size(); ++i)
+          if (z[i] > 0.)
+            candidates.push_back(i);
+        std::vector<bool> guess(z.size(), false);
+        if (candidates.size() > max_size)
+          {
+            for (const std::size_t i : candidates)
+              guess[i] = true;
+            return guess;
+          }
+        std::stable_sort(candidates.begin(), candidates.end(),
+                         [&](std::size_t a, std::size_t b) { return z[a] > z[b]; });
+        std::vector<std::size_t> kept;
+        for (const std::size_t i : candidates)
+          {
+            kept.push_back(i);
+            DenseMatrix block(kept.size(), kept.size());
+            for (std::size_t a = 0; a < kept.size(); ++a)
+              for (std::size_t b = 0; b < kept.size(); ++b)
+                block(a, b) = M(kept[a], kept[b]);
+            LUFactorization lu;
+            if (!lu.factorize(block, 1e-11))
+              kept.pop_back();
+          }
+        for (const std::size_t i : kept)
+          guess[i] = true;
+        return guess;
+      }
+
+      double
+      max_abs(const std::vector<double> &v)
+      {
+        double m = 0.;
+        for (const double x : v)
+          m = std::max(m, std::abs(x));
+        return m;
+      }
+    } // namespace
+
+    Status
+    lcp_feasibility(const DenseMatrix &M, const std::vector<double> &q, const LemkeOptions &options);
+
+    namespace
+    {
+      /**
+       * Why a verified LCP solution is not accepted, or "" if it is.
+       * - Klarbring form: P_T is recovered through W_TT^{-1}; with an
+       *   ill-conditioned W_TT a verified z can give impulses that fail the
+       *   contact conditions. They are checked on (P, V) directly, with the
+       *   tolerance of block pivoting (exact cone in 2D).
+       * - Impulses 1e6 times larger than |q| / |W| (or any point of the
+       *   regularised route): verify() measures against ||M|| ||z||, so a
+       *   problem that a perturbation of W at the level of rounding makes
+       *   solvable (singular W) passes with enormous impulses. Such a point
+       *   is accepted only if the form is feasible (lcp_feasibility()).
+       */
+      std::string
+      objection_to(const ContactProblem &p, const ContactOptions &options, const ContactSolution &s,
+                   const bool regularised)
+      {
+        if (s.form == FrictionForm::klarbring)
+          {
+            const double tol = std::max(options.lemke.verification_tolerance_factor *
+                                          std::numeric_limits<double>::epsilon() * 4. * std::max(p.n_contacts, 1u),
+                                        1e-10);
+            const ContactVerification v = verify_contact_solution(p, s.P, tol);
+            if (!v.ok)
+              {
+                std::ostringstream m;
+                m << "the Klarbring impulses fail the contact conditions (Signorini " << v.max_signorini_violation
+                  << ", cone " << v.max_cone_violation << ", sliding " << v.max_sliding_violation
+                  << "): W_TT^{-1} ill-conditioned";
+                return m.str();
+              }
+          }
+        const double normW = p.W.max_abs(), qmax = max_abs(p.free_velocity) + max_abs(p.gap_term);
+        const bool   huge  = max_abs(s.P) > 1e6 * (normW > 0. ? qmax / normW : 0.);
+        if (regularised || huge)
+          {
+            ContactOptions o = copositive_form(p, options);
+            const ContactLCP lcp = assemble_contact_lcp(p, o);
+            if (lcp_feasibility(lcp.M, lcp.q, options.lemke) == Status::ray_termination)
+              {
+                std::ostringstream m;
+                m << "impulses up to " << max_abs(s.P)
+                  << ", but the form is infeasible (feasibility test): a solution only of a problem within "
+                     "rounding of this one";
+                return m.str();
+              }
+          }
+        return "";
+      }
+    } // namespace
+
+
+
+    Status
+    lcp_feasibility(const DenseMatrix &M, const std::vector<double> &q, const LemkeOptions &options)
+    {
+      const std::size_t n = q.size();
+      DenseMatrix       A(2 * n, 2 * n, 0.);
+      std::vector<double> b(2 * n, 0.);
+      for (std::size_t i = 0; i < n; ++i)
+        {
+          for (std::size_t j = 0; j < n; ++j)
+            {
+              A(i, n + j) = -M(j, i);
+              A(n + i, j) = M(i, j);
+            }
+          b[n + i] = q[i];
+        }
+      return solve_lemke(A, b, options).status;
+    }
+
+
+
+    RoutedContactSolution
+    solve_contact_problem_by_routes(const ContactProblem  &p,
+                                    const ContactOptions  &options,
+                                    const ContactSolution *first_attempt)
+    {
+      const internal::FlushSubnormalsScope flush_subnormals; // see floating_point_mode.h
+      check_contact_problem(p);
+      RoutedContactSolution out;
+      unsigned int          total_pivots = 0;
+
+      // Record one route; true if it gave a verified solution.
+      auto record = [&](const std::string &kind, const std::string &route, ContactSolution &&s) {
+        RouteAttempt a;
+        a.kind    = kind;
+        a.route   = route;
+        a.status  = s.lcp.status;
+        a.pivots  = s.lcp.pivots;
+        a.message = s.lcp.message;
+        total_pivots += s.lcp.pivots;
+        if (s.lcp.status == Status::solved)
+          {
+            const std::string objection = objection_to(p, options, s, kind == "regularised");
+            if (!objection.empty())
+              {
+                a.status      = Status::numerical_failure;
+                a.message     = "rejected: " + objection;
+                s.lcp.status  = Status::numerical_failure;
+                s.lcp.message = a.message;
+                s.P.clear();
+                s.states.clear();
+                s.lcp.z.clear();
+                s.lcp.w.clear();
+              }
+          }
+        out.attempts.push_back(a);
+        out.solution = std::move(s);
+        if (out.solution.lcp.status == Status::solved)
+          {
+            out.successful_route = static_cast<int>(out.attempts.size()) - 1;
+            return true;
+          }
+        return false;
+      };
+      auto finish = [&]() {
+        std::ostringstream m;
+        for (std::size_t i = 0; i < out.attempts.size(); ++i)
+          {
+            const RouteAttempt &a = out.attempts[i];
+            m << (i ? "; " : "") << "route " << i + 1 << " (" << a.route << "): " << to_string(a.status);
+            if (a.status != Status::infeasible)
+              m << " after " << a.pivots << (a.pivots == 1 ? " pivot" : " pivots");
+            if (a.status != Status::solved && !a.message.empty())
+              m << " [" << a.message << "]";
+          }
+        out.solution.lcp.pivots = total_pivots;
+        out.solution.message    = m.str();
+        return out;
+      };
+
+      // 1. The requested form (or what the caller already tried).
+      const ContactLCP first = assemble_contact_lcp(p, options);
+      if (first_attempt != nullptr)
+        {
+          ContactSolution s = *first_attempt;
+          s.lcp.message     = s.message;
+          if (record("requested", "as requested", std::move(s)))
+            return finish();
+        }
+      else if (record("requested", form_name(first) + (first.message.find("singular") != std::string::npos ?
+                                            " (W_TT singular: facets instead of Klarbring)" :
+                                            ""),
+                      solve_assembled(p, first, solve_lemke(first.M, first.q, options.lemke))))
+        return finish();
+
+      // 2. The copositive form, if that is not what route 1 solved.
+      const ContactOptions copositive = copositive_form(p, options);
+      const ContactLCP     lcp        = assemble_contact_lcp(p, copositive);
+      if (first_attempt != nullptr || lcp.form != first.form || lcp.n_facets != first.n_facets)
+        if (record("copositive", form_name(lcp), solve_assembled(p, lcp, solve_lemke(lcp.M, lcp.q, options.lemke))))
+          return finish();
+
+      // 3. A smaller pivot tolerance. The candidate test y_p > tol * eps *
+      //     ||a|| * max|B^{-1}| scales with the largest entry of the basis
+      //     inverse: near a singular basis (W singular) true positive
+      //     entries fall below it and Lemke's method reports a ray that is
+      //     not there. Whatever this run returns is verified like any other.
+      {
+        LemkeOptions o           = options.lemke;
+        o.pivot_tolerance_factor = 1e-2 * options.lemke.pivot_tolerance_factor;
+        if (record("small-tolerance", form_name(lcp) + ", pivot tolerance / 100",
+                   solve_assembled(p, lcp, solve_lemke(lcp.M, lcp.q, o))))
+          return finish();
+      }
+
+      // 4. Another covering vector: a different path of Lemke's method.
+      {
+        LemkeOptions o = options.lemke;
+        o.covering_vector.resize(lcp.q.size());
+        for (std::size_t i = 0; i < lcp.q.size(); ++i)
+          o.covering_vector[i] = 1. + 0.5 * std::sin(1. + static_cast<double>(i));
+        if (record("covering", form_name(lcp) + ", covering vector 1 + sin(1 + i) / 2",
+                   solve_assembled(p, lcp, solve_lemke(lcp.M, lcp.q, o))))
+          return finish();
+      }
+
+      // 5. Regularised: W + eps max|W| I is positive definite (for a W whose
+      //    symmetric part is semidefinite up to its asymmetry), so Lemke's
+      //    method processes its copositive form; its basis, reduced to
+      //    independent columns, starts Lemke on the original form.
+      {
+        const double      tau = std::max(p.W.max_abs(), std::numeric_limits<double>::min());
+        const std::size_t m   = p.W.n_rows();
+        double            asymmetry = 0.;
+        for (std::size_t i = 0; i < m; ++i)
+          for (std::size_t j = 0; j < i; ++j)
+            asymmetry = std::max(asymmetry, std::abs(p.W(i, j) - p.W(j, i)));
+        for (const double base : {1e-10, 1e-6})
+          {
+            const double   eps = base + static_cast<double>(m) * asymmetry / tau;
+            ContactProblem regularised = p;
+            for (std::size_t i = 0; i < m; ++i)
+              regularised.W(i, i) += eps * tau;
+            const ContactLCP   rlcp = assemble_contact_lcp(regularised, copositive);
+            LemkeOptions       o    = options.lemke;
+            o.pivot_tolerance_factor = 1e-2 * options.lemke.pivot_tolerance_factor;
+            const Result       r    = solve_lemke(rlcp.M, rlcp.q, o);
+            std::ostringstream name;
+            name << form_name(lcp) << " warm-started from W + " << eps << " max|W| I";
+            if (r.status != Status::solved)
+              {
+                ContactSolution s;
+                s.lcp         = r;
+                s.lcp.message = "the regularised problem: " + r.message;
+                record("regularised", name.str(), std::move(s));
+                continue;
+              }
+            const std::vector<bool> guess = independent_guess(lcp.M, r.z, 400);
+            ContactSolution         s =
+              solve_assembled(p, lcp, solve_lemke_warm(lcp.M, lcp.q, guess, options.lemke));
+            s.lcp.pivots += r.pivots;
+            if (record("regularised", name.str(), std::move(s)))
+              return finish();
+          }
+      }
+
+      // No route solved it: is the copositive form feasible at all?
+      const Status feasibility = lcp_feasibility(lcp.M, lcp.q, options.lemke);
+      if (feasibility == Status::ray_termination)
+        {
+          ContactSolution s;
+          s.form        = lcp.form;
+          s.n_facets    = lcp.n_facets;
+          s.lcp.status  = Status::infeasible;
+          s.lcp.message = "no z >= 0 with M z + q >= 0 in the " + form_name(lcp) +
+                          " (ray of Lemke's method on the skew-symmetric LCP of that linear program): "
+                          "the problem has no solution";
+          record("feasibility", "feasibility test", std::move(s));
+        }
+      else
+        {
+          RouteAttempt a;
+          a.kind    = "feasibility";
+          a.route   = "feasibility test";
+          a.status  = feasibility;
+          a.message = feasibility == Status::solved ?
+                        "the " + form_name(lcp) + " is feasible: not proven unsolvable" :
+                        "undecided";
+          out.attempts.push_back(a);
+        }
+      return finish();
+    }
+
+
+
+    ContactSolution
+    continue_with_other_routes(const ContactProblem  &p,
+                               const ContactOptions  &options,
+                               const ContactSolution &failed)
+    {
+      return solve_contact_problem_by_routes(p, options, &failed).solution;
+    }
+  } // namespace lcp
+} // namespace impactfe
