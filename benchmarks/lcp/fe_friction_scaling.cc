@@ -192,7 +192,7 @@ namespace
     problem.W            = W;
     problem.mu.assign(n_contacts, scene.mu);
 
-    std::vector<lcp::ContactState> states(n_contacts, lcp::ContactState::open);
+    std::vector<impactfe::ContactState> states(n_contacts, impactfe::ContactState::open);
     std::vector<double>            V, WP;
     bool                           all_good = true;
     for (unsigned int step = 1; step <= n_steps; ++step)
@@ -235,7 +235,7 @@ namespace
         // no history: block pivoting from "all open"
         start = thread_cpu_seconds();
         const lcp::ContactSolution from_open =
-          lcp::solve_contact_problem(problem, {}, std::vector<lcp::ContactState>(n_contacts, lcp::ContactState::open));
+          lcp::solve_contact_problem(problem, {}, std::vector<impactfe::ContactState>(n_contacts, impactfe::ContactState::open));
         row.open_seconds          = seconds_since(start);
         row.open_path             = lcp::to_string(from_open.lcp.start_path);
         row.open_pivots           = from_open.lcp.pivots;

@@ -42,6 +42,7 @@ namespace impactfe
                                 const double out_of_plane_measure)
     : body_name(name)
     , material_parameters(material)
+    , model(create_constitutive_model<dim>(material))
     , discretization_parameters(discretization)
     , out_of_plane(out_of_plane_measure)
     , fe(FE_Q<dim>(1), dim)
@@ -98,7 +99,50 @@ namespace impactfe
     else
       damping.clear();
     body_force_vector.reinit(dofs.n_dofs());
+
+    // Internal variables at every quadrature point of the assembly rule.
+    const unsigned int n_points = QGauss<dim>(2).size();
+    point_history.clear();
+    for (const auto &cell : mesh.active_cell_iterators())
+      {
+        point_history.initialize(cell, n_points);
+        for (const auto &point : point_history.get_data(cell))
+          {
+            model->initialize(point->old_values);
+            point->new_values = point->old_values;
+          }
+      }
     assemble();
+  }
+
+
+
+  template <int dim>
+  std::vector<std::shared_ptr<MaterialPointHistory>>
+  ElasticBody<dim>::material_point_history(
+    const typename Triangulation<dim>::cell_iterator &cell)
+  {
+    return point_history.get_data(cell);
+  }
+
+
+
+  template <int dim>
+  void
+  ElasticBody<dim>::accept_material_step()
+  {
+    for (const auto &cell : mesh.active_cell_iterators())
+      for (const auto &point : point_history.get_data(cell))
+        point->old_values = point->new_values;
+  }
+
+
+
+  template <int dim>
+  const ConstitutiveModel<dim> &
+  ElasticBody<dim>::constitutive_model() const
+  {
+    return *model;
   }
 
 
@@ -124,28 +168,39 @@ namespace impactfe
   {
     mass      = 0.;
     stiffness = 0.;
+    if (has_damping())
+      damping = 0.;
     body_force_vector = 0.;
 
     const QGauss<dim> quadrature(2);
-    FEValues<dim>     fe_values(fe,
-                            quadrature,
-                            update_values | update_gradients |
-                              update_JxW_values);
+    FEValues<dim>     fe_values(
+      fe, quadrature, update_values | update_gradients | update_JxW_values);
     const unsigned int dofs_per_cell = fe.n_dofs_per_cell();
     FullMatrix<double> cell_mass(dofs_per_cell, dofs_per_cell);
     FullMatrix<double> cell_stiffness(dofs_per_cell, dofs_per_cell);
     Vector<double>     cell_load(dofs_per_cell);
     std::vector<types::global_dof_index> local_dofs(dofs_per_cell);
 
-    const SymmetricTensor<4, dim> elasticity =
-      material_parameters.elasticity_tensor<dim>();
-    const double rho = material_parameters.density;
+    // A linear law: K and C are assembled once, from its elasticity and
+    // viscosity tensors. (A nonlinear law is evaluated at each iterate of
+    // a nonlinear step instead.)
+    AssertThrow(model->is_linear(),
+                ExcMessage("Body '" + body_name + "': the material law '" +
+                           model->name() +
+                           "' is nonlinear; its body cannot be assembled "
+                           "into constant matrices."));
+    const SymmetricTensor<4, dim> elasticity = model->elasticity_tensor();
+    const SymmetricTensor<4, dim> viscosity  = model->viscosity_tensor();
+    const bool                    viscous    = viscosity.norm() > 0.;
+    FullMatrix<double>            cell_viscous(dofs_per_cell, dofs_per_cell);
+    const double                  rho = material_parameters.density;
 
     for (const auto &cell : dofs.active_cell_iterators())
       {
         fe_values.reinit(cell);
         cell_mass      = 0.;
         cell_stiffness = 0.;
+        cell_viscous   = 0.;
         cell_load      = 0.;
         for (const unsigned int q : fe_values.quadrature_point_indices())
           {
@@ -155,12 +210,14 @@ namespace impactfe
                 const unsigned int ci = fe.system_to_component_index(i).first;
                 const double       phi_i = fe_values.shape_value(i, q);
                 SymmetricTensor<2, dim> eps_i;
-                const Tensor<1, dim> grad_i = fe_values.shape_grad(i, q);
+                const Tensor<1, dim>    grad_i = fe_values.shape_grad(i, q);
                 // eps_i = sym(e_ci (x) grad phi_i); a SymmetricTensor stores
                 // [ci][d] and [d][ci] once.
                 for (unsigned int d = 0; d < dim; ++d)
                   eps_i[ci][d] = (d == ci ? 1. : 0.5) * grad_i[d];
                 const SymmetricTensor<2, dim> sigma_i = elasticity * eps_i;
+                const SymmetricTensor<2, dim> viscous_i =
+                  viscous ? viscosity * eps_i : SymmetricTensor<2, dim>();
                 cell_load(i) += body_force_density[ci] * phi_i * dx;
                 for (const unsigned int j : fe_values.dof_indices())
                   {
@@ -171,10 +228,16 @@ namespace impactfe
                         rho * phi_i * fe_values.shape_value(j, q) * dx;
                     const Tensor<1, dim> grad_j = fe_values.shape_grad(j, q);
                     // sigma_i : eps_j with eps_j = sym(e_cj (x) grad_j)
-                    double contraction = 0.;
+                    double contraction = 0., viscous_contraction = 0.;
                     for (unsigned int d = 0; d < dim; ++d)
                       contraction += sigma_i[cj][d] * grad_j[d];
                     cell_stiffness(i, j) += contraction * dx;
+                    if (viscous)
+                      {
+                        for (unsigned int d = 0; d < dim; ++d)
+                          viscous_contraction += viscous_i[cj][d] * grad_j[d];
+                        cell_viscous(i, j) += viscous_contraction * dx;
+                      }
                   }
               }
           }
@@ -190,14 +253,16 @@ namespace impactfe
         else
           mass.add(local_dofs, cell_mass);
         stiffness.add(local_dofs, cell_stiffness);
+        if (has_damping())
+          damping.add(local_dofs, cell_viscous);
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
           body_force_vector(local_dofs[i]) += cell_load(i);
       }
 
+    // C = the law's viscous matrix + Rayleigh a M + b K.
     if (has_damping())
       {
-        damping.copy_from(stiffness);
-        damping *= material_parameters.stiffness_damping_factor();
+        damping.add(material_parameters.rayleigh_stiffness, stiffness);
         damping.add(material_parameters.rayleigh_mass, mass);
       }
   }

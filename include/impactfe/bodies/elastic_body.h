@@ -2,6 +2,7 @@
 #define impactfe_bodies_elastic_body_h
 
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/quadrature_point_data.h>
 #include <deal.II/base/tensor.h>
 
 #include <deal.II/dofs/dof_handler.h>
@@ -14,9 +15,12 @@
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 
+#include <impactfe/bodies/constitutive_model.h>
 #include <impactfe/bodies/material.h>
 
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace impactfe
 {
@@ -75,6 +79,20 @@ namespace impactfe
     name() const;
     const MaterialParameters &
     material() const;
+    /** The constitutive law of the body (from its MaterialParameters). */
+    const ConstitutiveModel<dim> &
+    constitutive_model() const;
+    /**
+     * The internal variables of the quadrature points of @p cell (a 2-point
+     * Gauss rule per direction), set up by setup().
+     */
+    std::vector<std::shared_ptr<MaterialPointHistory>>
+    material_point_history(
+      const typename Triangulation<dim>::cell_iterator &cell);
+    /** After an accepted step: the current internal variables become the
+     * start-of-step ones. */
+    void
+    accept_material_step();
     const DoFHandler<dim> &
     dof_handler() const;
     unsigned int
@@ -117,8 +135,12 @@ namespace impactfe
     fill_uniform(Vector<double> &vector, const Tensor<1, dim> &value) const;
 
   private:
-    std::string              body_name;
-    MaterialParameters       material_parameters;
+    std::string                             body_name;
+    MaterialParameters                      material_parameters;
+    std::unique_ptr<ConstitutiveModel<dim>> model;
+    CellDataStorage<typename Triangulation<dim>::cell_iterator,
+                    MaterialPointHistory>
+                             point_history;
     DiscretizationParameters discretization_parameters;
     double                   out_of_plane;
 
