@@ -4,13 +4,15 @@
 #include <impactfe/lcp/contact_problem.h>
 #include <impactfe/lcp/contact_routes.h>
 #include <impactfe/lcp/lu.h>
-#include "floating_point_mode.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
 #include <sstream>
 #include <stdexcept>
+
+#include "floating_point_mode.h"
 
 namespace impactfe
 {
@@ -21,7 +23,9 @@ namespace impactfe
       bool
       all_zero(const std::vector<double> &v)
       {
-        return std::all_of(v.begin(), v.end(), [](const double x) { return x == 0.; });
+        return std::all_of(v.begin(), v.end(), [](const double x) {
+          return x == 0.;
+        });
       }
     } // namespace
 
@@ -43,7 +47,9 @@ namespace impactfe
 
       /// V = V_free + W P, row by row (W is row-major).
       void
-      local_velocities(const ContactProblem &p, const std::vector<double> &P, std::vector<double> &V)
+      local_velocities(const ContactProblem      &p,
+                       const std::vector<double> &P,
+                       std::vector<double>       &V)
       {
         const std::size_t m = P.size();
         V.resize(m);
@@ -72,17 +78,18 @@ namespace impactfe
           return requested;
         if (p.n_directions == 1 || all_zero(p.mu))
           return FrictionForm::frictionless;
-        return p.n_directions == 2 ? FrictionForm::klarbring : FrictionForm::facets;
+        return p.n_directions == 2 ? FrictionForm::klarbring :
+                                     FrictionForm::facets;
       }
 
       /**
        * The point (P, V) of given 2D states in the variables of the facet
        * form with k = 2, d_0 = +t, d_1 = -t:
        *   z = (P_N [n_c], beta [2 n_c, contact-major], sigma [n_c]),
-       *   M z + q = (V_N + b_N, sigma + V_T, sigma - V_T, mu P_N - beta_0 - beta_1),
-       * w the values a complementary basis of these states carries (exact
-       * zeros where the state imposes an equation), and the residual
-       * w - (M z + q), computed with W only. Returns verify_with_residual().
+       *   M z + q = (V_N + b_N, sigma + V_T, sigma - V_T, mu P_N - beta_0 -
+       * beta_1), w the values a complementary basis of these states carries
+       * (exact zeros where the state imposes an equation), and the residual w -
+       * (M z + q), computed with W only. Returns verify_with_residual().
        */
       Verification
       verify_facet_point(const ContactProblem            &p,
@@ -95,18 +102,23 @@ namespace impactfe
       {
         const unsigned int nc = p.n_contacts;
         const std::size_t  n  = 4 * static_cast<std::size_t>(nc);
-        auto beta  = [nc](std::size_t c, std::size_t j) -> std::size_t { return nc + 2 * c + j; };
-        auto sigma = [nc](std::size_t c) -> std::size_t { return 3 * std::size_t(nc) + c; };
+        auto beta = [nc](std::size_t c, std::size_t j) -> std::size_t {
+          return nc + 2 * c + j;
+        };
+        auto sigma = [nc](std::size_t c) -> std::size_t {
+          return 3 * std::size_t(nc) + c;
+        };
 
         z.assign(n, 0.);
         w.assign(n, 0.);
         std::vector<double> q(n, 0.), residual(n, 0.), Mzq(n, 0.);
         for (unsigned int c = 0; c < nc; ++c)
           {
-            const double PN = P[2 * c], PT = P[2 * c + 1], VN = V[2 * c], VT = V[2 * c + 1];
-            q[c]          = p.free_velocity[2 * c] + p.gap_term[c];
-            q[beta(c, 0)] = p.free_velocity[2 * c + 1];
-            q[beta(c, 1)] = -p.free_velocity[2 * c + 1];
+            const double PN = P[2 * c], PT = P[2 * c + 1], VN = V[2 * c],
+                         VT = V[2 * c + 1];
+            q[c]            = p.free_velocity[2 * c] + p.gap_term[c];
+            q[beta(c, 0)]   = p.free_velocity[2 * c + 1];
+            q[beta(c, 1)]   = -p.free_velocity[2 * c + 1];
 
             z[c]          = PN;
             z[beta(c, 0)] = std::max(PT, 0.);
@@ -128,7 +140,8 @@ namespace impactfe
             Mzq[beta(c, 1)] = z[sigma(c)] - VT;
             Mzq[sigma(c)]   = p.mu[c] * PN - z[beta(c, 0)] - z[beta(c, 1)];
 
-            for (const std::size_t i : {std::size_t(c), beta(c, 0), beta(c, 1), sigma(c)})
+            for (const std::size_t i :
+                 {std::size_t(c), beta(c, 0), beta(c, 1), sigma(c)})
               w[i] = Mzq[i];
             // the equations of the state: these w are nonbasic, exactly 0
             if (closed(states[c]))
@@ -138,7 +151,8 @@ namespace impactfe
                 w[beta(c, 0)] = 0.;
                 w[beta(c, 1)] = 0.;
               }
-            for (const std::size_t i : {std::size_t(c), beta(c, 0), beta(c, 1), sigma(c)})
+            for (const std::size_t i :
+                 {std::size_t(c), beta(c, 0), beta(c, 1), sigma(c)})
               residual[i] = w[i] - Mzq[i];
           }
 
@@ -156,14 +170,16 @@ namespace impactfe
               }
             norm_M = std::max(norm_M, p.mu[c] + 2.);
           }
-        return verify_with_residual(norm_M, q, z, w, residual, tolerance_factor);
+        return verify_with_residual(
+          norm_M, q, z, w, residual, tolerance_factor);
       }
 
       /// -(V_free + b_N) on normal rows, -V_free on tangential rows.
       double
       right_hand_side(const ContactProblem &p, const unsigned int row)
       {
-        return -p.free_velocity[row] - (row % 2 == 0 ? p.gap_term[row / 2] : 0.);
+        return -p.free_velocity[row] -
+               (row % 2 == 0 ? p.gap_term[row / 2] : 0.);
       }
 
       /**
@@ -282,14 +298,15 @@ namespace impactfe
                         std::string               &why)
       {
         const unsigned int nc = p.n_contacts;
-        const double       tolerance_factor = options.lemke.verification_tolerance_factor;
+        const double       tolerance_factor =
+          options.lemke.verification_tolerance_factor;
         // The tolerance of verify_facet_point() (see verify_with_residual()),
         // at least 1e-10: a backward-stable solve meets it on any W.
         const double physical_tolerance =
           std::max(tolerance_factor * eps * 4. * std::max(nc, 1u), 1e-10);
         std::set<std::vector<ContactState>> visited;
-        std::vector<unsigned int>          rows, unknown_column, unknown_contact;
-        std::vector<double>                rhs, slip_factor(nc, 0.);
+        std::vector<unsigned int> rows, unknown_column, unknown_contact;
+        std::vector<double>       rhs, slip_factor(nc, 0.);
         iterations = 0;
 
         // W symmetric up to rounding (a Delassus operator computed column by
@@ -299,14 +316,16 @@ namespace impactfe
         double max_asymmetry = 0.;
         for (std::size_t i = 0; i < p.W.n_rows(); ++i)
           for (std::size_t j = 0; j < i; ++j)
-            max_asymmetry = std::max(max_asymmetry, std::abs(p.W(i, j) - p.W(j, i)));
+            max_asymmetry =
+              std::max(max_asymmetry, std::abs(p.W(i, j) - p.W(j, i)));
         const bool symmetric = max_asymmetry <= 1e3 * eps * p.W.max_abs();
 
         for (;;)
           {
             if (iterations >= options.max_block_pivoting_iterations)
               {
-                why = "no verified point after " + std::to_string(iterations) + " block pivoting solves";
+                why = "no verified point after " + std::to_string(iterations) +
+                      " block pivoting solves";
                 return false;
               }
             if (!visited.insert(states).second)
@@ -325,9 +344,10 @@ namespace impactfe
             unknown_contact.clear();
             for (unsigned int c = 0; c < nc; ++c)
               {
-                slip_factor[c] = states[c] == ContactState::slip_positive ? -p.mu[c] :
-                                 states[c] == ContactState::slip_negative ? p.mu[c] :
-                                                                            0.;
+                slip_factor[c] =
+                  states[c] == ContactState::slip_positive ? -p.mu[c] :
+                  states[c] == ContactState::slip_negative ? p.mu[c] :
+                                                             0.;
                 if (!closed(states[c]))
                   continue;
                 rows.push_back(2 * c);
@@ -356,7 +376,10 @@ namespace impactfe
                     for (std::size_t u = 0; u < m; ++u)
                       {
                         const unsigned int j = unknown_column[u];
-                        gr[u] = (j % 2 == 0) ? wi[j] + slip_factor[unknown_contact[u]] * wi[j + 1] : wi[j];
+                        gr[u]                = (j % 2 == 0) ?
+                                                 wi[j] + slip_factor[unknown_contact[u]] *
+                                            wi[j + 1] :
+                                                 wi[j];
                       }
                     rhs[r] = right_hand_side(p, rows[r]);
                   }
@@ -386,7 +409,8 @@ namespace impactfe
             // with |P_T| > mu P_N, or sliding against their friction force,
             // passed. verify_contact_solution() measures impulses and
             // velocities on their own scales.
-            verification = verify_facet_point(p, states, P, V, tolerance_factor, z, w);
+            verification =
+              verify_facet_point(p, states, P, V, tolerance_factor, z, w);
             if (verification.ok &&
                 verify_contact_solution(p, P, physical_tolerance).ok)
               return true;
@@ -395,7 +419,8 @@ namespace impactfe
             bool changed = false;
             for (unsigned int c = 0; c < nc; ++c)
               {
-                const double       PN = P[2 * c], PT = P[2 * c + 1], VT = V[2 * c + 1];
+                const double PN = P[2 * c], PT = P[2 * c + 1],
+                             VT        = V[2 * c + 1];
                 const ContactState old = states[c];
                 if (old == ContactState::open)
                   {
@@ -407,7 +432,8 @@ namespace impactfe
                 else if (old == ContactState::stick)
                   {
                     if (std::abs(PT) > p.mu[c] * PN)
-                      states[c] = PT < 0. ? ContactState::slip_positive : ContactState::slip_negative;
+                      states[c] = PT < 0. ? ContactState::slip_positive :
+                                            ContactState::slip_negative;
                   }
                 else if ((old == ContactState::slip_positive && VT < 0.) ||
                          (old == ContactState::slip_negative && VT > 0.))
@@ -416,8 +442,10 @@ namespace impactfe
               }
             if (!changed)
               {
-                why = "the point of the current states satisfies every sign condition but fails "
-                      "verification (relative error " + std::to_string(verification.relative_error) + ")";
+                why =
+                  "the point of the current states satisfies every sign condition but fails "
+                  "verification (relative error " +
+                  std::to_string(verification.relative_error) + ")";
                 return false;
               }
           }
@@ -427,7 +455,9 @@ namespace impactfe
 
 
     std::vector<ContactState>
-    contact_states(const ContactProblem &p, const std::vector<double> &P, const double tol)
+    contact_states(const ContactProblem      &p,
+                   const std::vector<double> &P,
+                   const double               tol)
     {
       check_contact_problem(p);
       const unsigned int nc = p.n_contacts, dim = p.n_directions;
@@ -438,10 +468,12 @@ namespace impactfe
       double bmax = 0.;
       for (const double b : p.gap_term)
         bmax = std::max(bmax, std::abs(b));
-      const double normW = p.W.linfty_norm(), pmax = linfty(P), vfree = linfty(p.free_velocity);
-      const double sV = vfree + bmax + normW * pmax;
-      const double sP = std::max(pmax, normW > 0. ? (vfree + bmax) / normW : 0.);
-      const bool   frictional_2d = (dim == 2 && !all_zero(p.mu));
+      const double normW = p.W.linfty_norm(), pmax = linfty(P),
+                   vfree = linfty(p.free_velocity);
+      const double sV    = vfree + bmax + normW * pmax;
+      const double sP =
+        std::max(pmax, normW > 0. ? (vfree + bmax) / normW : 0.);
+      const bool frictional_2d = (dim == 2 && !all_zero(p.mu));
 
       std::vector<ContactState> states(nc, ContactState::open);
       for (unsigned int c = 0; c < nc; ++c)
@@ -464,7 +496,8 @@ namespace impactfe
 
 
     std::vector<bool>
-    guess_from_states(const ContactLCP &lcp, const std::vector<ContactState> &states)
+    guess_from_states(const ContactLCP                &lcp,
+                      const std::vector<ContactState> &states)
     {
       const std::size_t nc = states.size();
       std::vector<bool> guess(lcp.q.size(), false);
@@ -473,7 +506,8 @@ namespace impactfe
         lcp.form == FrictionForm::klarbring    ? 3 :
                                                  lcp.n_facets + 2;
       if (lcp.q.size() != per_contact * nc)
-        throw std::invalid_argument("guess_from_states: one state per contact expected");
+        throw std::invalid_argument(
+          "guess_from_states: one state per contact expected");
       for (std::size_t c = 0; c < nc; ++c)
         {
           guess[c]            = closed(states[c]);
@@ -487,7 +521,8 @@ namespace impactfe
           else if (lcp.form == FrictionForm::facets)
             {
               const std::size_t k = lcp.n_facets;
-              guess[nc + k * nc + c] = slip_pos || slip_neg || states[c] == ContactState::open;
+              guess[nc + k * nc + c] =
+                slip_pos || slip_neg || states[c] == ContactState::open;
               if (k == 2 && lcp.directions.size() == 2)
                 {
                   // P_T = -mu P_N along V_T: facet d_1 = -t for V_T > 0
@@ -506,20 +541,30 @@ namespace impactfe
                           const ContactOptions            &options,
                           const std::vector<ContactState> &state_guess)
     {
-      const internal::FlushSubnormalsScope flush_subnormals; // see floating_point_mode.h
+      const internal::FlushSubnormalsScope
+        flush_subnormals; // see floating_point_mode.h
       check_contact_problem(p);
       if (state_guess.size() != p.n_contacts)
-        throw std::invalid_argument("solve_contact_problem: one guessed state per contact expected");
+        throw std::invalid_argument(
+          "solve_contact_problem: one guessed state per contact expected");
       const FrictionForm form = resolved_form(p, options.form);
 
-      std::string why_not_block_pivoting;
+      std::string  why_not_block_pivoting;
       unsigned int iterations = 0;
       if (p.n_directions == 2 && form != FrictionForm::frictionless)
         {
           std::vector<ContactState> states = state_guess;
           std::vector<double>       P, V, z, w;
           Verification              verification;
-          if (block_pivoting_2d(p, options, states, P, V, z, w, verification, iterations,
+          if (block_pivoting_2d(p,
+                                options,
+                                states,
+                                P,
+                                V,
+                                z,
+                                w,
+                                verification,
+                                iterations,
                                 why_not_block_pivoting))
             {
               ContactSolution s;
@@ -549,7 +594,7 @@ namespace impactfe
       s.form                      = lcp.form;
       s.n_facets                  = lcp.n_facets;
       s.block_pivoting_iterations = iterations;
-      s.lcp                       = solve_lemke_warm(lcp.M, lcp.q, guess, options.lemke);
+      s.lcp = solve_lemke_warm(lcp.M, lcp.q, guess, options.lemke);
       if (s.lcp.status == Status::solved)
         {
           s.P      = impulses_from_lcp(p, lcp, s.lcp.z);
@@ -557,9 +602,11 @@ namespace impactfe
         }
       s.message = lcp.message + "; " + s.lcp.message;
       if (!why_not_block_pivoting.empty())
-        s.message = "block pivoting gave up (" + why_not_block_pivoting + "); " + s.message;
+        s.message = "block pivoting gave up (" + why_not_block_pivoting +
+                    "); " + s.message;
       // automatic: never stop at the first failure (contact_routes.h)
-      if (options.form == FrictionForm::automatic && s.lcp.status != Status::solved)
+      if (options.form == FrictionForm::automatic &&
+          s.lcp.status != Status::solved)
         return continue_with_other_routes(p, options, s);
       return s;
     }

@@ -2,14 +2,14 @@
 #include <impactfe/lcp/contact_routes.h>
 #include <impactfe/lcp/lu.h>
 
-#include "floating_point_mode.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
 #include <sstream>
 #include <stdexcept>
+
+#include "floating_point_mode.h"
 
 namespace impactfe
 {
@@ -34,33 +34,38 @@ namespace impactfe
 
 
 
-
-
-
     void
     check_contact_problem(const ContactProblem &p)
     {
       if (p.n_directions < 1 || p.n_directions > 3)
-        throw std::invalid_argument("contact problem: n_directions must be 1, 2 or 3");
-      const std::size_t m = static_cast<std::size_t>(p.n_contacts) * p.n_directions;
+        throw std::invalid_argument(
+          "contact problem: n_directions must be 1, 2 or 3");
+      const std::size_t m =
+        static_cast<std::size_t>(p.n_contacts) * p.n_directions;
       if (p.W.n_rows() != m || p.W.n_cols() != m)
-        throw std::invalid_argument("contact problem: W must be (n_contacts n_directions)^2");
+        throw std::invalid_argument(
+          "contact problem: W must be (n_contacts n_directions)^2");
       if (p.free_velocity.size() != m)
-        throw std::invalid_argument("contact problem: free_velocity has the wrong size");
+        throw std::invalid_argument(
+          "contact problem: free_velocity has the wrong size");
       if (p.gap_term.size() != p.n_contacts)
-        throw std::invalid_argument("contact problem: gap_term must have n_contacts entries");
+        throw std::invalid_argument(
+          "contact problem: gap_term must have n_contacts entries");
       if (p.n_directions > 1 && p.mu.size() != p.n_contacts)
-        throw std::invalid_argument("contact problem: mu must have n_contacts entries");
+        throw std::invalid_argument(
+          "contact problem: mu must have n_contacts entries");
       for (const double v : p.W.data())
         if (!std::isfinite(v))
-          throw std::invalid_argument("contact problem: W has a non-finite entry");
+          throw std::invalid_argument(
+            "contact problem: W has a non-finite entry");
       for (const auto *vec : {&p.free_velocity, &p.gap_term, &p.mu})
         for (const double v : *vec)
           if (!std::isfinite(v))
             throw std::invalid_argument("contact problem: non-finite data");
       for (const double v : p.mu)
         if (v < 0.)
-          throw std::invalid_argument("contact problem: negative friction coefficient");
+          throw std::invalid_argument(
+            "contact problem: negative friction coefficient");
     }
 
 
@@ -112,20 +117,25 @@ namespace impactfe
       assemble_facets(const ContactProblem &p, const unsigned int k_requested)
       {
         const unsigned int nc = p.n_contacts, dim = p.n_directions;
-        const unsigned int k  = (dim == 2 ? 2 : k_requested);
+        const unsigned int k = (dim == 2 ? 2 : k_requested);
         if (dim == 3 && k < 3)
-          throw std::invalid_argument("facet form: need at least 3 facets in 3D");
+          throw std::invalid_argument(
+            "facet form: need at least 3 facets in 3D");
         ContactLCP lcp;
-        lcp.form       = FrictionForm::facets;
-        lcp.n_facets   = k;
-        lcp.directions = facet_directions(dim, k);
+        lcp.form             = FrictionForm::facets;
+        lcp.n_facets         = k;
+        lcp.directions       = facet_directions(dim, k);
         const auto        &D = lcp.directions;
         const unsigned int n = (k + 2) * nc;
         lcp.M.reinit(n, n);
         lcp.q.assign(n, 0.);
-        auto N     = [&](unsigned int c) { return c * dim; };
-        auto T     = [&](unsigned int c, unsigned int a) { return c * dim + 1 + a; };
-        auto beta  = [&](unsigned int c, unsigned int j) { return nc + c * k + j; };
+        auto N = [&](unsigned int c) { return c * dim; };
+        auto T = [&](unsigned int c, unsigned int a) {
+          return c * dim + 1 + a;
+        };
+        auto beta = [&](unsigned int c, unsigned int j) {
+          return nc + c * k + j;
+        };
         auto sigma = [&](unsigned int c) { return nc + nc * k + c; };
 
         for (unsigned int c = 0; c < nc; ++c)
@@ -175,7 +185,9 @@ namespace impactfe
       /// The block (r, s) of W, r, s in {0 (normal), 1 (tangential)}, as a
       /// contiguous n_c x n_c matrix.
       DenseMatrix
-      delassus_block(const ContactProblem &p, const unsigned int r, const unsigned int s)
+      delassus_block(const ContactProblem &p,
+                     const unsigned int    r,
+                     const unsigned int    s)
       {
         const unsigned int nc = p.n_contacts;
         DenseMatrix        B(nc, nc);
@@ -216,7 +228,9 @@ namespace impactfe
       /// contiguous matrices first, so that the O(n_c^3) products run along
       /// rows.
       bool
-      assemble_klarbring(const ContactProblem &p, const double tol, ContactLCP &lcp)
+      assemble_klarbring(const ContactProblem &p,
+                         const double          tol,
+                         ContactLCP           &lcp)
       {
         const unsigned int nc = p.n_contacts;
         LUFactorization    lu;
@@ -233,22 +247,22 @@ namespace impactfe
           Vt[b] = p.free_velocity[2 * b + 1];
         A.vmult(AVt, Vt);
 
-        lcp.form         = FrictionForm::klarbring;
-        lcp.n_facets     = 0;
+        lcp.form     = FrictionForm::klarbring;
+        lcp.n_facets = 0;
         lcp.M.reinit(3 * nc, 3 * nc);
         lcp.q.assign(3 * nc, 0.);
         for (unsigned int a = 0; a < nc; ++a)
           {
-            const double *wa      = p.W.row(2 * a);
-            double       *m0      = lcp.M.row(a);
-            double       *m1      = lcp.M.row(nc + a);
-            double       *m2      = lcp.M.row(2 * nc + a);
-            double        wntavt  = 0.;
-            const double *s_a     = S.row(a);
-            const double *wnta_a  = WntA.row(a);
-            const double *awtn_a  = AWtn.row(a);
-            const double *A_a     = A.row(a);
-            const double *wnt_a   = Wnt.row(a);
+            const double *wa     = p.W.row(2 * a);
+            double       *m0     = lcp.M.row(a);
+            double       *m1     = lcp.M.row(nc + a);
+            double       *m2     = lcp.M.row(2 * nc + a);
+            double        wntavt = 0.;
+            const double *s_a    = S.row(a);
+            const double *wnta_a = WntA.row(a);
+            const double *awtn_a = AWtn.row(a);
+            const double *A_a    = A.row(a);
+            const double *wnt_a  = Wnt.row(a);
             for (unsigned int b = 0; b < nc; ++b)
               {
                 const double mu_ab = (a == b ? p.mu[a] : 0.);
@@ -277,7 +291,8 @@ namespace impactfe
     ContactLCP
     assemble_contact_lcp(const ContactProblem &p, const ContactOptions &options)
     {
-      const internal::FlushSubnormalsScope flush_subnormals; // see floating_point_mode.h
+      const internal::FlushSubnormalsScope
+        flush_subnormals; // see floating_point_mode.h
       check_contact_problem(p);
       FrictionForm form = options.form;
       std::string  why;
@@ -286,7 +301,8 @@ namespace impactfe
           if (p.n_directions == 1 || all_zero(p.mu))
             {
               form = FrictionForm::frictionless;
-              why  = (p.n_directions == 1 ? "normal directions only" : "all friction coefficients are 0");
+              why  = (p.n_directions == 1 ? "normal directions only" :
+                                            "all friction coefficients are 0");
             }
           else if (p.n_directions == 2)
             form = FrictionForm::klarbring;
@@ -294,15 +310,18 @@ namespace impactfe
             form = FrictionForm::facets;
         }
       if (p.n_directions == 1 && form != FrictionForm::frictionless)
-        throw std::invalid_argument("contact problem with normal directions only: use the frictionless form");
+        throw std::invalid_argument(
+          "contact problem with normal directions only: use the frictionless form");
       if (form == FrictionForm::klarbring && p.n_directions != 2)
-        throw std::invalid_argument("the Klarbring form is for 2D contact (n_directions == 2)");
+        throw std::invalid_argument(
+          "the Klarbring form is for 2D contact (n_directions == 2)");
 
       ContactLCP lcp;
       if (form == FrictionForm::frictionless)
         {
           lcp         = assemble_frictionless(p);
-          lcp.message = "frictionless form" + (why.empty() ? std::string() : " (" + why + ")");
+          lcp.message = "frictionless form" +
+                        (why.empty() ? std::string() : " (" + why + ")");
         }
       else if (form == FrictionForm::klarbring)
         {
@@ -330,7 +349,9 @@ namespace impactfe
 
 
     std::vector<double>
-    impulses_from_lcp(const ContactProblem &p, const ContactLCP &lcp, const std::vector<double> &z)
+    impulses_from_lcp(const ContactProblem      &p,
+                      const ContactLCP          &lcp,
+                      const std::vector<double> &z)
     {
       const unsigned int  nc = p.n_contacts, dim = p.n_directions;
       std::vector<double> P(static_cast<std::size_t>(nc) * dim, 0.);
@@ -371,9 +392,12 @@ namespace impactfe
 
 
     ContactSolution
-    solve_contact_problem(const ContactProblem &p, const ContactOptions &options, const std::vector<bool> *guess)
+    solve_contact_problem(const ContactProblem    &p,
+                          const ContactOptions    &options,
+                          const std::vector<bool> *guess)
     {
-      const internal::FlushSubnormalsScope flush_subnormals; // see floating_point_mode.h
+      const internal::FlushSubnormalsScope
+                       flush_subnormals; // see floating_point_mode.h
       const ContactLCP lcp = assemble_contact_lcp(p, options);
       ContactSolution  s;
       s.form     = lcp.form;
@@ -392,7 +416,8 @@ namespace impactfe
         }
       s.message = lcp.message + "; " + s.lcp.message + warm_note;
       // automatic: never stop at the first failure (contact_routes.h)
-      if (options.form == FrictionForm::automatic && s.lcp.status != Status::solved)
+      if (options.form == FrictionForm::automatic &&
+          s.lcp.status != Status::solved)
         return continue_with_other_routes(p, options, s);
       return s;
     }
@@ -400,12 +425,15 @@ namespace impactfe
 
 
     ContactVerification
-    verify_contact_solution(const ContactProblem &p, const std::vector<double> &P, const double tol)
+    verify_contact_solution(const ContactProblem      &p,
+                            const std::vector<double> &P,
+                            const double               tol)
     {
       check_contact_problem(p);
       const unsigned int nc = p.n_contacts, dim = p.n_directions;
       if (P.size() != static_cast<std::size_t>(nc) * dim)
-        throw std::invalid_argument("verify_contact_solution: P has the wrong size");
+        throw std::invalid_argument(
+          "verify_contact_solution: P has the wrong size");
       std::vector<double> V;
       p.W.vmult(V, P);
       double pmax = 0., vfree = 0., bmax = 0.;
@@ -421,8 +449,11 @@ namespace impactfe
       const double sV    = vfree + bmax + normW * pmax;
       // impulse scale: ||P||, or the impulse that the free velocities call
       // for when P is (nearly) zero
-      const double sP = std::max(pmax, normW > 0. ? (vfree + bmax) / normW : 0.);
-      auto rel = [](const double v, const double s) { return s > 0. ? v / s : (v > 0. ? v * 1e300 : 0.); };
+      const double sP =
+        std::max(pmax, normW > 0. ? (vfree + bmax) / normW : 0.);
+      auto rel = [](const double v, const double s) {
+        return s > 0. ? v / s : (v > 0. ? v * 1e300 : 0.);
+      };
 
       ContactVerification r;
       for (unsigned int c = 0; c < nc; ++c)
@@ -430,7 +461,10 @@ namespace impactfe
           const double PN = P[c * dim];
           const double wN = V[c * dim] + p.gap_term[c];
           r.max_signorini_violation =
-            std::max({r.max_signorini_violation, rel(-PN, sP), rel(-wN, sV), rel(std::abs(PN * wN), sP * sV)});
+            std::max({r.max_signorini_violation,
+                      rel(-PN, sP),
+                      rel(-wN, sV),
+                      rel(std::abs(PN * wN), sP * sV)});
           if (dim == 1)
             {
               if (PN <= tol * sP)
@@ -446,7 +480,8 @@ namespace impactfe
               VT2 += V[c * dim + a] * V[c * dim + a];
             }
           const double PT = std::sqrt(PT2), VT = std::sqrt(VT2);
-          r.max_cone_violation = std::max(r.max_cone_violation, rel(PT - p.mu[c] * PN, sP));
+          r.max_cone_violation =
+            std::max(r.max_cone_violation, rel(PT - p.mu[c] * PN, sP));
           if (PN <= tol * sP)
             ++r.n_separated;
           else if (VT <= tol * sV)
@@ -457,13 +492,16 @@ namespace impactfe
               double dev2 = 0.;
               for (unsigned int a = 1; a < dim; ++a)
                 {
-                  const double e = P[c * dim + a] + p.mu[c] * PN * V[c * dim + a] / VT;
+                  const double e =
+                    P[c * dim + a] + p.mu[c] * PN * V[c * dim + a] / VT;
                   dev2 += e * e;
                 }
-              r.max_sliding_violation = std::max(r.max_sliding_violation, rel(std::sqrt(dev2), sP));
+              r.max_sliding_violation =
+                std::max(r.max_sliding_violation, rel(std::sqrt(dev2), sP));
             }
         }
-      r.ok = r.max_signorini_violation <= tol && r.max_cone_violation <= tol && r.max_sliding_violation <= tol;
+      r.ok = r.max_signorini_violation <= tol && r.max_cone_violation <= tol &&
+             r.max_sliding_violation <= tol;
       return r;
     }
 
