@@ -37,7 +37,9 @@ namespace impactfe_tests
     if (std::abs(value) < floor)
       return 0.;
     const double scale =
-      std::pow(10., digits - 1 - static_cast<int>(std::floor(std::log10(std::abs(value)))));
+      std::pow(10.,
+               digits - 1 -
+                 static_cast<int>(std::floor(std::log10(std::abs(value)))));
     return std::round(value * scale) / scale;
   }
 

@@ -5,10 +5,11 @@
 // cells of side dx) lies on a rigid plane y = 0 with Coulomb friction
 // (mu = 0.3) and is thrown onto it, down and sideways, with the velocity
 // (v_t, -v_n (0.2 + 1.6 x / L)) (harder at the right end, so that some
-// contacts stick and some slip). Every node of the bottom face is a contact candidate, so
-// the LCP has n_c contacts. MultibodySystem<2> builds the Delassus operator
-// W = H^T M~^{-1} H in setup() (one sparse solve per column) and advances a
-// few steps of the theta-Euler scheme; its own LCP solves are warm started.
+// contacts stick and some slip). Every node of the bottom face is a contact
+// candidate, so the LCP has n_c contacts. MultibodySystem<2> builds the
+// Delassus operator W = H^T M~^{-1} H in setup() (one sparse solve per column)
+// and advances a few steps of the theta-Euler scheme; its own LCP solves are
+// warm started.
 //
 // After each step the step's contact problem is rebuilt from what the
 // system exposes, on all candidates:
@@ -42,6 +43,7 @@
 // it is part of cold_seconds too).
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
+
 #include <deal.II/grid/grid_generator.h>
 
 #include <impactfe/bodies/elastic_body.h>
@@ -82,13 +84,17 @@ namespace
   /// max |a - b| over the impulse scale of lcp::verify_contact_solution():
   /// max(||b||, (||V_free|| + ||b_N||) / ||W||).
   double
-  relative_difference(const lcp::ContactProblem &p, const std::vector<double> &a, const std::vector<double> &b)
+  relative_difference(const lcp::ContactProblem &p,
+                      const std::vector<double> &a,
+                      const std::vector<double> &b)
   {
     double d = 0.;
     for (std::size_t i = 0; i < a.size(); ++i)
       d = std::max(d, std::abs(a[i] - b[i]));
     const double scale =
-      std::max(max_abs(b), (max_abs(p.free_velocity) + max_abs(p.gap_term)) / p.W.linfty_norm());
+      std::max(max_abs(b),
+               (max_abs(p.free_velocity) + max_abs(p.gap_term)) /
+                 p.W.linfty_norm());
     return d / scale;
   }
 
@@ -100,19 +106,19 @@ namespace
     double density          = 1000.; // [kg/m^3]
     double poissons_ratio   = 0.3;
     double mu               = 0.3;
-    double normal_speed     = 1.;    // v_n [m/s], downwards
-    double tangential_speed = 0.3;   // v_t [m/s], along +x
-    double time_step        = 1e-4;  // h [s]; P-wave speed 37 m/s: c h = 0.37 dx
+    double normal_speed     = 1.;   // v_n [m/s], downwards
+    double tangential_speed = 0.3;  // v_t [m/s], along +x
+    double time_step        = 1e-4; // h [s]; P-wave speed 37 m/s: c h = 0.37 dx
     double downward_body_force = 0.; // [N/m^3], presses the block down
   };
 
   struct StepRow
   {
     unsigned int n_contacts = 0, step = 0, lcp_size = 0;
-    double       setup_seconds = 0.;
-    bool         cold_done = false;
-    unsigned int cold_pivots = 0;
-    double       cold_seconds = 0.;
+    double       setup_seconds         = 0.;
+    bool         cold_done             = false;
+    unsigned int cold_pivots           = 0;
+    double       cold_seconds          = 0.;
     double       cold_assembly_seconds = 0.; // Klarbring LCP assembly alone
     std::string  warm_path;
     unsigned int warm_pivots = 0, warm_block_iterations = 0, warm_lcp_size = 0;
@@ -131,8 +137,12 @@ namespace
 
   /// One block of n_c bottom nodes, a few steps. Rows are appended.
   bool
-  run(const unsigned int n_contacts, const unsigned int n_steps, const unsigned int cold_steps,
-      const Scene &scene, const std::string &dump_directory, std::vector<StepRow> &rows)
+  run(const unsigned int    n_contacts,
+      const unsigned int    n_steps,
+      const unsigned int    cold_steps,
+      const Scene          &scene,
+      const std::string    &dump_directory,
+      std::vector<StepRow> &rows)
   {
     MaterialParameters material;
     material.youngs_modulus = scene.youngs_modulus;
@@ -141,15 +151,15 @@ namespace
     material.plane_model    = PlaneModel::plane_strain;
     DiscretizationParameters discretization;
 
-    const auto    setup_start = thread_cpu_seconds();
+    const auto     setup_start = thread_cpu_seconds();
     ElasticBody<2> block("block", material, discretization, /*thickness=*/1.);
     // colorize: the face y = 0 gets boundary id 2
-    GridGenerator::subdivided_hyper_rectangle(block.triangulation(),
-                                              std::vector<unsigned int>{n_contacts - 1, 2},
-                                              Point<2>(0., 0.),
-                                              Point<2>((n_contacts - 1) * scene.cell_size,
-                                                       2. * scene.cell_size),
-                                              /*colorize=*/true);
+    GridGenerator::subdivided_hyper_rectangle(
+      block.triangulation(),
+      std::vector<unsigned int>{n_contacts - 1, 2},
+      Point<2>(0., 0.),
+      Point<2>((n_contacts - 1) * scene.cell_size, 2. * scene.cell_size),
+      /*colorize=*/true);
     block.setup();
     if (scene.downward_body_force != 0.)
       block.set_body_force(Tensor<1, 2>({0., -scene.downward_body_force}));
@@ -165,20 +175,27 @@ namespace
     MultibodySystem<2> system(time_stepping, solver_parameters);
     system.add_body(block);
     system.contacts() = ContactSet(/*n_directions=*/2);
-    const unsigned int n_added = system.contacts().add_node_to_plane(
-      system.bodies(), 0, /*boundary_id=*/2, Point<2>(0., 0.), Tensor<1, 2>({0., 1.}), scene.mu);
+    const unsigned int n_added =
+      system.contacts().add_node_to_plane(system.bodies(),
+                                          0,
+                                          /*boundary_id=*/2,
+                                          Point<2>(0., 0.),
+                                          Tensor<1, 2>({0., 1.}),
+                                          scene.mu);
     AssertThrow(n_added == n_contacts, ExcInternalError());
     // v = (v_t, -v_n (0.2 + 1.6 x / L)): the left end lands softly, the right
     // end hard, so that the normal impulses vary along the face and the
     // contacts stick where they are large and slip where they are small.
     {
       Vector<double>              &velocity = system.state().velocity.block(0);
-      const std::vector<Point<2>> &vertices = block.triangulation().get_vertices();
-      const double                 length   = (n_contacts - 1) * scene.cell_size;
+      const std::vector<Point<2>> &vertices =
+        block.triangulation().get_vertices();
+      const double length = (n_contacts - 1) * scene.cell_size;
       for (unsigned int v = 0; v < vertices.size(); ++v)
         {
           velocity(block.vertex_dof(v, 0)) = scene.tangential_speed;
-          velocity(block.vertex_dof(v, 1)) = -scene.normal_speed * (0.2 + 1.6 * vertices[v][0] / length);
+          velocity(block.vertex_dof(v, 1)) =
+            -scene.normal_speed * (0.2 + 1.6 * vertices[v][0] / length);
         }
     }
     system.setup();
@@ -192,12 +209,15 @@ namespace
     problem.W            = W;
     problem.mu.assign(n_contacts, scene.mu);
 
-    std::vector<impactfe::ContactState> states(n_contacts, impactfe::ContactState::open);
-    std::vector<double>            V, WP;
-    bool                           all_good = true;
+    std::vector<impactfe::ContactState> states(n_contacts,
+                                               impactfe::ContactState::open);
+    std::vector<double>                 V, WP;
+    bool                                all_good = true;
     for (unsigned int step = 1; step <= n_steps; ++step)
       {
-        system.integrator().gap_term(contacts, system.state(), problem.gap_term);
+        system.integrator().gap_term(contacts,
+                                     system.state(),
+                                     problem.gap_term);
         system.do_time_step();
         contacts.local_velocities(system.state().velocity, V);
         const std::vector<double> &P_system = system.impulses();
@@ -213,29 +233,34 @@ namespace
 
         // warm: the states of the previous step
         auto                       start = thread_cpu_seconds();
-        const lcp::ContactSolution warm  = lcp::solve_contact_problem(problem, {}, states);
-        row.warm_seconds                 = seconds_since(start);
-        row.warm_path                    = lcp::to_string(warm.lcp.start_path);
-        row.warm_pivots                  = warm.lcp.pivots;
-        row.warm_block_iterations        = warm.block_pivoting_iterations;
-        row.warm_lcp_size                = warm.lcp.z.size();
+        const lcp::ContactSolution warm =
+          lcp::solve_contact_problem(problem, {}, states);
+        row.warm_seconds          = seconds_since(start);
+        row.warm_path             = lcp::to_string(warm.lcp.start_path);
+        row.warm_pivots           = warm.lcp.pivots;
+        row.warm_block_iterations = warm.block_pivoting_iterations;
+        row.warm_lcp_size         = warm.lcp.z.size();
         if (warm.lcp.status != lcp::Status::solved)
           {
-            std::cerr << "n_c = " << n_contacts << ", step " << step << ": warm solve failed: " << warm.message
-                      << "\n";
+            std::cerr << "n_c = " << n_contacts << ", step " << step
+                      << ": warm solve failed: " << warm.message << "\n";
             return false;
           }
-        const lcp::ContactVerification check = lcp::verify_contact_solution(problem, warm.P);
-        row.n_open  = check.n_separated;
-        row.n_stick = check.n_sticking;
-        row.n_slip  = check.n_sliding;
-        all_good    = all_good && check.ok;
+        const lcp::ContactVerification check =
+          lcp::verify_contact_solution(problem, warm.P);
+        row.n_open            = check.n_separated;
+        row.n_stick           = check.n_sticking;
+        row.n_slip            = check.n_sliding;
+        all_good              = all_good && check.ok;
         row.system_difference = relative_difference(problem, P_system, warm.P);
 
         // no history: block pivoting from "all open"
-        start = thread_cpu_seconds();
-        const lcp::ContactSolution from_open =
-          lcp::solve_contact_problem(problem, {}, std::vector<impactfe::ContactState>(n_contacts, impactfe::ContactState::open));
+        start                                = thread_cpu_seconds();
+        const lcp::ContactSolution from_open = lcp::solve_contact_problem(
+          problem,
+          {},
+          std::vector<impactfe::ContactState>(n_contacts,
+                                              impactfe::ContactState::open));
         row.open_seconds          = seconds_since(start);
         row.open_path             = lcp::to_string(from_open.lcp.start_path);
         row.open_pivots           = from_open.lcp.pivots;
@@ -243,14 +268,16 @@ namespace
         if (from_open.lcp.status != lcp::Status::solved)
           {
             std::cerr << "n_c = " << n_contacts << ", step " << step
-                      << ": solve from all open failed: " << from_open.message << "\n";
+                      << ": solve from all open failed: " << from_open.message
+                      << "\n";
             return false;
           }
         row.open_difference = relative_difference(problem, from_open.P, warm.P);
         all_good            = all_good && row.open_difference <= 1e-8;
 
         if (!dump_directory.empty() && step == 2)
-          lcp::write_friction_contact_file(dump_directory + "/fe_friction_" + std::to_string(n_contacts) +
+          lcp::write_friction_contact_file(dump_directory + "/fe_friction_" +
+                                             std::to_string(n_contacts) +
                                              "_step_2.dat",
                                            problem);
 
@@ -262,16 +289,17 @@ namespace
             lcp::assemble_contact_lcp(problem);
             row.cold_assembly_seconds = seconds_since(start);
 
-            start                     = thread_cpu_seconds();
-            const lcp::ContactSolution cold = lcp::solve_contact_problem(problem);
-            row.cold_seconds          = seconds_since(start);
-            row.cold_done             = true;
-            row.cold_pivots           = cold.lcp.pivots;
-            row.lcp_size              = cold.lcp.z.size();
+            start = thread_cpu_seconds();
+            const lcp::ContactSolution cold =
+              lcp::solve_contact_problem(problem);
+            row.cold_seconds = seconds_since(start);
+            row.cold_done    = true;
+            row.cold_pivots  = cold.lcp.pivots;
+            row.lcp_size     = cold.lcp.z.size();
             if (cold.lcp.status != lcp::Status::solved)
               {
-                std::cerr << "n_c = " << n_contacts << ", step " << step << ": cold solve failed: " << cold.message
-                          << "\n";
+                std::cerr << "n_c = " << n_contacts << ", step " << step
+                          << ": cold solve failed: " << cold.message << "\n";
                 return false;
               }
             row.difference = relative_difference(problem, warm.P, cold.P);
@@ -316,9 +344,10 @@ main(int argc, char **argv)
             sizes.push_back(std::atoi(a.c_str()));
           else
             {
-              std::cerr << "usage: fe_friction_scaling [--steps S] [--cold-steps C] [--csv FILE]\n"
-                           "  [--dump DIR] [--youngs-modulus E] [--tangential-speed v_t] [--body-force f]\n"
-                           "  [n_c ...]\n";
+              std::cerr
+                << "usage: fe_friction_scaling [--steps S] [--cold-steps C] [--csv FILE]\n"
+                   "  [--dump DIR] [--youngs-modulus E] [--tangential-speed v_t] [--body-force f]\n"
+                   "  [n_c ...]\n";
               return 2;
             }
         }
@@ -329,45 +358,58 @@ main(int argc, char **argv)
       if (!csv_file.empty())
         file.open(csv_file);
       std::ostream &out = csv_file.empty() ? std::cout : file;
-      out << "n_contacts,step,lcp_size,setup_seconds,cold_pivots,cold_seconds,cold_assembly_seconds,warm_path,"
-             "warm_lcp_size,"
-             "warm_block_iterations,warm_pivots,warm_seconds,open_start_path,open_start_block_iterations,"
-             "open_start_pivots,open_start_seconds,open,stick,slip,relative_difference,system_difference,"
-             "open_start_difference\n";
+      out
+        << "n_contacts,step,lcp_size,setup_seconds,cold_pivots,cold_seconds,cold_assembly_seconds,warm_path,"
+           "warm_lcp_size,"
+           "warm_block_iterations,warm_pivots,warm_seconds,open_start_path,open_start_block_iterations,"
+           "open_start_pivots,open_start_seconds,open,stick,slip,relative_difference,system_difference,"
+           "open_start_difference\n";
 
       bool ok = true;
       for (const unsigned int n_contacts : sizes)
         {
           std::vector<StepRow> rows;
-          const bool           good = run(n_contacts, n_steps, cold_steps, scene, dump_directory, rows);
-          ok                        = ok && good;
+          const bool           good =
+            run(n_contacts, n_steps, cold_steps, scene, dump_directory, rows);
+          ok = ok && good;
           for (const StepRow &r : rows)
             {
-              out << r.n_contacts << ',' << r.step << ',' << r.lcp_size << ',' << r.setup_seconds << ',';
+              out << r.n_contacts << ',' << r.step << ',' << r.lcp_size << ','
+                  << r.setup_seconds << ',';
               if (r.cold_done)
-                out << r.cold_pivots << ',' << r.cold_seconds << ',' << r.cold_assembly_seconds << ',';
+                out << r.cold_pivots << ',' << r.cold_seconds << ','
+                    << r.cold_assembly_seconds << ',';
               else
                 out << ",,,";
-              out << r.warm_path << ',' << r.warm_lcp_size << ',' << r.warm_block_iterations << ','
-                  << r.warm_pivots << ',' << r.warm_seconds << ',' << r.open_path << ','
-                  << r.open_block_iterations << ',' << r.open_pivots << ',' << r.open_seconds << ',' << r.n_open
-                  << ',' << r.n_stick << ',' << r.n_slip << ',';
+              out << r.warm_path << ',' << r.warm_lcp_size << ','
+                  << r.warm_block_iterations << ',' << r.warm_pivots << ','
+                  << r.warm_seconds << ',' << r.open_path << ','
+                  << r.open_block_iterations << ',' << r.open_pivots << ','
+                  << r.open_seconds << ',' << r.n_open << ',' << r.n_stick
+                  << ',' << r.n_slip << ',';
               if (r.cold_done)
                 out << r.difference;
-              out << ',' << r.system_difference << ',' << r.open_difference << '\n';
+              out << ',' << r.system_difference << ',' << r.open_difference
+                  << '\n';
               out.flush();
-              std::cerr << "n_c " << r.n_contacts << " step " << r.step << ": cold "
-                        << (r.cold_done ? std::to_string(r.cold_pivots) + " pivots " +
-                                            std::to_string(r.cold_seconds) + " s" :
-                                          std::string("-"))
-                        << ", warm " << r.warm_path << " " << r.warm_block_iterations << " solves "
-                        << r.warm_pivots << " pivots " << r.warm_seconds << " s, from all open "
-                        << r.open_block_iterations << " solves " << r.open_pivots << " pivots " << r.open_seconds
-                        << " s; open/stick/slip " << r.n_open
-                        << "/" << r.n_stick << "/" << r.n_slip << "; |dP| " << r.difference << "\n";
+              std::cerr << "n_c " << r.n_contacts << " step " << r.step
+                        << ": cold "
+                        << (r.cold_done ?
+                              std::to_string(r.cold_pivots) + " pivots " +
+                                std::to_string(r.cold_seconds) + " s" :
+                              std::string("-"))
+                        << ", warm " << r.warm_path << " "
+                        << r.warm_block_iterations << " solves "
+                        << r.warm_pivots << " pivots " << r.warm_seconds
+                        << " s, from all open " << r.open_block_iterations
+                        << " solves " << r.open_pivots << " pivots "
+                        << r.open_seconds << " s; open/stick/slip " << r.n_open
+                        << "/" << r.n_stick << "/" << r.n_slip << "; |dP| "
+                        << r.difference << "\n";
             }
           if (!good)
-            std::cerr << "n_c = " << n_contacts << ": a check failed (see above)\n";
+            std::cerr << "n_c = " << n_contacts
+                      << ": a check failed (see above)\n";
         }
       return ok ? 0 : 1;
     }

@@ -9,7 +9,8 @@
 //
 // Not a test: timings depend on the machine. Build it like lcp-solve (plain
 // C++17, the sources in source/lcp/), e.g.
-//   g++ -std=c++17 -O2 -Iinclude benchmarks/lcp/lcp_scaling.cc source/lcp/*.cc -o lcp_scaling
+//   g++ -std=c++17 -O2 -Iinclude benchmarks/lcp/lcp_scaling.cc source/lcp/*.cc
+//   -o lcp_scaling
 #include <impactfe/lcp/contact_problem.h>
 
 #include <chrono>
@@ -32,7 +33,8 @@ namespace
       s ^= s >> 12;
       s ^= s << 25;
       s ^= s >> 27;
-      return static_cast<double>((s * 2685821657736338717ull) >> 11) / 9007199254740992.0;
+      return static_cast<double>((s * 2685821657736338717ull) >> 11) /
+             9007199254740992.0;
     }
   };
 
@@ -75,7 +77,8 @@ namespace
   double
   seconds_since(const std::chrono::steady_clock::time_point t0)
   {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+      .count();
   }
 } // namespace
 
@@ -86,10 +89,19 @@ main(int argc, char **argv)
   const unsigned int steps    = argc > 2 ? std::atoi(argv[2]) : 5;
   const unsigned int max_klar = argc > 3 ? std::atoi(argv[3]) : 1000;
 
-  std::printf("%-13s %6s %6s | %9s %10s | %9s %10s | %s\n", "form", "n_c", "n", "cold piv", "cold s",
-              "warm piv", "warm s", "warm paths (solved/lemke/fallback)");
-  for (const FrictionForm form : {FrictionForm::frictionless, FrictionForm::klarbring})
-    for (const unsigned int nc : {10u, 20u, 50u, 100u, 200u, 500u, 1000u, 2000u})
+  std::printf("%-13s %6s %6s | %9s %10s | %9s %10s | %s\n",
+              "form",
+              "n_c",
+              "n",
+              "cold piv",
+              "cold s",
+              "warm piv",
+              "warm s",
+              "warm paths (solved/lemke/fallback)");
+  for (const FrictionForm form :
+       {FrictionForm::frictionless, FrictionForm::klarbring})
+    for (const unsigned int nc :
+         {10u, 20u, 50u, 100u, 200u, 500u, 1000u, 2000u})
       {
         if (nc > max_nc || (form == FrictionForm::klarbring && nc > max_klar))
           continue;
@@ -114,9 +126,11 @@ main(int argc, char **argv)
             const ContactSolution c  = solve_contact_problem(p, o);
             const double          tc = seconds_since(t0);
             t0                       = std::chrono::steady_clock::now();
-            const ContactSolution w  = solve_contact_problem(p, o, guess.empty() ? nullptr : &guess);
-            const double          tw = seconds_since(t0);
-            if (c.lcp.status != Status::solved || w.lcp.status != Status::solved)
+            const ContactSolution w =
+              solve_contact_problem(p, o, guess.empty() ? nullptr : &guess);
+            const double tw = seconds_since(t0);
+            if (c.lcp.status != Status::solved ||
+                w.lcp.status != Status::solved)
               ++failures;
             n = static_cast<unsigned int>(c.lcp.z.size());
             guess.assign(w.lcp.z.size(), false);
@@ -130,9 +144,19 @@ main(int argc, char **argv)
             warm_p += w.lcp.pivots;
             ++paths[static_cast<int>(w.lcp.start_path)];
           }
-        std::printf("%-13s %6u %6u | %9.1f %10.4f | %9.1f %10.4f | %u/%u/%u%s\n", to_string(form).c_str(), nc, n,
-                    cold_p / steps, cold_s / steps, warm_p / steps, warm_s / steps, paths[1], paths[2], paths[3],
-                    failures ? "  (FAILURES)" : "");
+        std::printf(
+          "%-13s %6u %6u | %9.1f %10.4f | %9.1f %10.4f | %u/%u/%u%s\n",
+          to_string(form).c_str(),
+          nc,
+          n,
+          cold_p / steps,
+          cold_s / steps,
+          warm_p / steps,
+          warm_s / steps,
+          paths[1],
+          paths[2],
+          paths[3],
+          failures ? "  (FAILURES)" : "");
         std::fflush(stdout);
       }
   return 0;

@@ -28,6 +28,7 @@
 //   block_scaling --nx NX --ny NY [--steps S] [--top-candidates] [--header]
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
+
 #include <deal.II/grid/grid_generator.h>
 
 #include <impactfe/bodies/elastic_body.h>
@@ -61,14 +62,14 @@ namespace
       const unsigned int n_steps,
       const bool         top_candidates)
   {
-    const double width     = 1.;           // [m]
-    const double cell_size = width / nx;   // [m]
+    const double width     = 1.;         // [m]
+    const double cell_size = width / nx; // [m]
     const double mu        = 0.3;
-    const double v_n = 1., v_t = 0.3;      // [m/s]
-    const double body_force = 1e4;         // [N/m^3], presses the block down
+    const double v_n = 1., v_t = 0.3; // [m/s]
+    const double body_force = 1e4;    // [N/m^3], presses the block down
 
     MaterialParameters material;
-    material.youngs_modulus = 1e6;  // [Pa]; P-wave speed 37 m/s
+    material.youngs_modulus = 1e6; // [Pa]; P-wave speed 37 m/s
     material.density        = 1000.;
     material.poissons_ratio = 0.3;
     material.plane_model    = PlaneModel::plane_strain;
@@ -77,12 +78,11 @@ namespace
     double         start = thread_cpu_seconds();
     ElasticBody<2> block("block", material, discretization, 1.);
     // colorize: y = 0 gets boundary id 2, y = top id 3
-    GridGenerator::subdivided_hyper_rectangle(
-      block.triangulation(),
-      std::vector<unsigned int>{nx, ny},
-      Point<2>(0., 0.),
-      Point<2>(width, ny * cell_size),
-      true);
+    GridGenerator::subdivided_hyper_rectangle(block.triangulation(),
+                                              std::vector<unsigned int>{nx, ny},
+                                              Point<2>(0., 0.),
+                                              Point<2>(width, ny * cell_size),
+                                              true);
     block.setup();
     block.set_body_force(Tensor<1, 2>({0., -body_force}));
     const double assembly_seconds = thread_cpu_seconds() - start;
@@ -119,8 +119,8 @@ namespace
     for (unsigned int step = 0; step < n_steps; ++step)
       {
         const StepReport report = system.do_time_step();
-        max_active   = std::max(max_active, report.active_contacts);
-        max_lcp_size = std::max(max_lcp_size, report.lcp_size);
+        max_active              = std::max(max_active, report.active_contacts);
+        max_lcp_size            = std::max(max_lcp_size, report.lcp_size);
       }
 
     const CostBreakdown &costs     = system.cost_breakdown();
@@ -129,12 +129,10 @@ namespace
               << system.contacts().n_candidates() << ',' << n_steps << ','
               << assembly_seconds << ',' << costs.factorization << ','
               << costs.delassus << ',' << costs.delassus_candidates << ','
-              << costs.free_velocity / n_steps << ','
-              << costs.lcp / n_steps << ',' << costs.update / n_steps << ','
-              << max_active << ',' << max_lcp_size << ','
-              << peak_rss_megabytes() << ','
-              << 8. * n_columns * block.n_dofs() / (1024. * 1024.)
-              << std::endl;
+              << costs.free_velocity / n_steps << ',' << costs.lcp / n_steps
+              << ',' << costs.update / n_steps << ',' << max_active << ','
+              << max_lcp_size << ',' << peak_rss_megabytes() << ','
+              << 8. * n_columns * block.n_dofs() / (1024. * 1024.) << std::endl;
   }
 } // namespace
 

@@ -109,16 +109,17 @@ namespace BlockOnPlane
     const double             h   = parameters.time_stepping.time_step;
     const double             mu  = obstacle_parameters.friction_coefficient;
     const double             c_p = material.longitudinal_wave_speed<2>();
-    const double dx = std::min(block.width / block.n_across,
-                               block.height / block.n_up);
-    const auto   text = [](const Tensor<1, 2> &v) {
+    const double             dx =
+      std::min(block.width / block.n_across, block.height / block.n_up);
+    const auto text = [](const Tensor<1, 2> &v) {
       return "(" + format_number(v[0]) + ", " + format_number(v[1]) + ")";
     };
     out << title() << ", " << scheme_description(" s") << std::endl;
     out << "  Block: " << block.width << " m x " << block.height << " m, "
         << block.n_across << " x " << block.n_up << " Q1 cells, "
-        << n_plane_candidates << " contact nodes on the plane; obstacle: "
-        << obstacle->description() << ", mu = " << mu << std::endl;
+        << n_plane_candidates
+        << " contact nodes on the plane; obstacle: " << obstacle->description()
+        << ", mu = " << mu << std::endl;
     if (body_2)
       out << "  Body 2: " << block_2.width << " m x " << block_2.height
           << " m, " << block_2.n_across << " x " << block_2.n_up
@@ -127,12 +128,12 @@ namespace BlockOnPlane
           << " contact nodes on block 1, mu = " << mu_2
           << "; mass ratio body 2 / body 1 = "
           << format_figure(body(1).total_mass() / mass_1) << std::endl;
-    out << "  Mass " << format_figure(mass_1) << " kg; wave speed c = "
-        << format_figure(c_p) << " m/s; Courant number c h / dx = "
-        << format_figure(c_p * h / dx) << std::endl;
-    out << "  Loads: gravity " << text(gravity) << " m/s^2, push "
-        << text(push) << " N; initial velocity " << text(velocity) << " m/s"
+    out << "  Mass " << format_figure(mass_1)
+        << " kg; wave speed c = " << format_figure(c_p)
+        << " m/s; Courant number c h / dx = " << format_figure(c_p * h / dx)
         << std::endl;
+    out << "  Loads: gravity " << text(gravity) << " m/s^2, push " << text(push)
+        << " N; initial velocity " << text(velocity) << " m/s" << std::endl;
     const Tensor<1, 2> v_end = mean_velocity();
     out << "  Mean velocity of the block at the end: ("
         << format_figure(v_end[0], 1e-9) << ", "
@@ -154,12 +155,17 @@ namespace BlockOnPlane
     if (!body_2 && initial_gap == 0. && velocity * normal == 0. &&
         (velocity * tangent != 0. || a_t != 0.) &&
         obstacle_parameters.type == ObstacleParameters::Type::plane)
-      ok &= tracker->report_sliding(
-        out,
-        RigidSliding(velocity * tangent, a_t, normal_load() / mass_1, mu,
-                     system().state().time),
-        mean_displacement() * tangent, mean_velocity() * tangent,
-        system().state().time, bounds, stability_figures);
+      ok &= tracker->report_sliding(out,
+                                    RigidSliding(velocity * tangent,
+                                                 a_t,
+                                                 normal_load() / mass_1,
+                                                 mu,
+                                                 system().state().time),
+                                    mean_displacement() * tangent,
+                                    mean_velocity() * tangent,
+                                    system().state().time,
+                                    bounds,
+                                    stability_figures);
     else
       stability_figures.add("measured_stick_time", tracker->stop_time())
         .add("stick_time_error", -1.)
@@ -190,14 +196,17 @@ namespace BlockOnPlane
       {
         const double exact = material.density * g_n * block.height *
                              block.height / (2. * material.youngs_modulus);
-        const double mean  = stability->final_phase_mean();
-        error              = std::abs(mean - exact) / exact;
+        const double mean = stability->final_phase_mean();
+        error             = std::abs(mean - exact) / exact;
         out << "  Static compression of the top: rho g H^2 / (2 E) = "
             << format_figure(exact) << " m, time average in the final phase "
             << format_figure(mean) << " m, at the end "
             << format_figure(top_sinking()) << " m: relative error "
             << format_figure(error, 1e-9) << std::endl;
-        ok = print_check(out, "static compression error", error, "<=",
+        ok = print_check(out,
+                         "static compression error",
+                         error,
+                         "<=",
                          bounds.max_compression_error);
       }
     figures.add("compression_error", error);

@@ -51,8 +51,12 @@ namespace CylinderImpact
   {
   public:
     CylinderImpactProblem()
-      : ObstacleImpactScene<2>("cylinder_impact", "cylinder", 1, "0, 0",
-                               "0, 1", "0")
+      : ObstacleImpactScene<2>("cylinder_impact",
+                               "cylinder",
+                               1,
+                               "0, 0",
+                               "0, 1",
+                               "0")
     {}
 
   private:
@@ -126,28 +130,42 @@ namespace CylinderImpact
   CylinderImpactProblem::declare_scene_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
-    prm.declare_entry("Radius", "10", Patterns::Double(),
+    prm.declare_entry("Radius",
+                      "10",
+                      Patterns::Double(),
                       "Radius R of the cylinder [m]. Must be > 0.");
-    prm.declare_entry("Number of core cells", "12", Patterns::Integer(2),
+    prm.declare_entry("Number of core cells",
+                      "12",
+                      Patterns::Integer(2),
                       "Cells across the square core of the O-grid mesh [-]; "
                       "even.");
-    prm.declare_entry("Number of rings", "9", Patterns::Integer(1),
+    prm.declare_entry("Number of rings",
+                      "9",
+                      Patterns::Integer(1),
                       "Rings of cells between the core and the circle [-].");
-    prm.declare_entry("Thickness", "1", Patterns::Double(),
+    prm.declare_entry("Thickness",
+                      "1",
+                      Patterns::Double(),
                       "Out-of-plane length of the cylinder [m]; scales "
                       "masses, forces and energies. Must be > 0.");
     prm.leave_subsection();
     prm.enter_subsection("Initial conditions");
-    prm.declare_entry("Impact velocity", "1", Patterns::Double(),
+    prm.declare_entry("Impact velocity",
+                      "1",
+                      Patterns::Double(),
                       "Downward velocity of the cylinder at t = 0 [m/s]. "
                       "Must be > 0.");
-    prm.declare_entry("Initial gap", "0", Patterns::Double(),
+    prm.declare_entry("Initial gap",
+                      "0",
+                      Patterns::Double(),
                       "Distance from the lowest point of the built-in "
                       "cylinder to the plane at t = 0 [m]. Must be >= 0. (A "
                       "mesh file is used where it is.)");
     prm.leave_subsection();
     prm.enter_subsection("Verification");
-    prm.declare_entry("Maximum symmetry error", "-1", Patterns::Double(),
+    prm.declare_entry("Maximum symmetry error",
+                      "-1",
+                      Patterns::Double(),
                       "Fail the run if max |u(x) - mirrored u(-x)| / max |u| "
                       "exceeds this [-]. -1: no check.");
     prm.leave_subsection();
@@ -202,8 +220,8 @@ namespace CylinderImpact
   void
   CylinderImpactProblem::make_built_in_mesh(Triangulation<2> &tria) const
   {
-    Geometry::disc(tria, Point<2>(0., radius + initial_gap), radius, n_core,
-                   n_rings);
+    Geometry::disc(
+      tria, Point<2>(0., radius + initial_gap), radius, n_core, n_rings);
   }
 
 
@@ -223,7 +241,7 @@ namespace CylinderImpact
     for (const auto &x : vertices)
       size = std::max(size, std::abs(x[0] - x_c));
     const double tolerance = 1e-9 * size;
-    const auto   key = [&](const Point<2> &x) {
+    const auto   key       = [&](const Point<2> &x) {
       return std::llround(x[1] / tolerance / 1e3);
     };
     std::multimap<long long, unsigned int> by_height;
@@ -259,17 +277,18 @@ namespace CylinderImpact
   double
   CylinderImpactProblem::asymmetry() const
   {
-    const Vector<double>   &u    = system().state().displacement.block(0);
-    const ElasticBody<2> &body = deformable_body();
-    double                  difference = 0., size = 0.;
+    const Vector<double> &u          = system().state().displacement.block(0);
+    const ElasticBody<2> &body       = deformable_body();
+    double                difference = 0., size = 0.;
     for (const auto &[a, b] : mirror_pairs)
       {
         const double ax = body.nodal_value(u, a, 0),
                      ay = body.nodal_value(u, a, 1),
                      bx = body.nodal_value(u, b, 0),
                      by = body.nodal_value(u, b, 1);
-        difference = std::max({difference, std::abs(ax + bx), std::abs(ay - by)});
-        size       = std::max({size, std::abs(ax), std::abs(ay)});
+        difference =
+          std::max({difference, std::abs(ax + bx), std::abs(ay - by)});
+        size = std::max({size, std::abs(ax), std::abs(ay)});
       }
     return size > 0. ? difference / size : 0.;
   }
@@ -319,8 +338,8 @@ namespace CylinderImpact
         << (symmetry_error < 1e-12 ? std::string("< 1e-12") :
                                      format_number(symmetry_error))
         << std::endl;
-    return print_check(out, "symmetry error", symmetry_error, "<=",
-                       max_symmetry_error);
+    return print_check(
+      out, "symmetry error", symmetry_error, "<=", max_symmetry_error);
   }
 } // namespace CylinderImpact
 

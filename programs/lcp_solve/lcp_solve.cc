@@ -1,7 +1,8 @@
 // lcp-solve: solve LCP and frictional contact problem files (Siconos numerics
 // text formats, see doc/lcp.md) with impactfe's Lemke solver.
 //
-//   lcp-solve [--solution] [--warm] [--form klarbring|facets|auto] [--facets k] FILE...
+//   lcp-solve [--solution] [--warm] [--form klarbring|facets|auto] [--facets k]
+//   FILE...
 //
 // One line per problem: "file n status pivots relative_error seconds"
 // (relative_error: Verification::relative_error, complementarity, residual
@@ -36,14 +37,15 @@ namespace
   void
   usage(std::ostream &out)
   {
-    out << "usage: lcp-solve [--solution] [--warm] [--form klarbring|facets|auto] [--facets k] FILE...\n"
-           "  --solution   print the solution (z, or the contact impulses P) after each line\n"
-           "  --warm       warm start: LCP files from the guess 'z_i > 0 where q_i < 0';\n"
-           "               contact files from the states 'closed (stick) where V_N + b_N < 0,\n"
-           "               open elsewhere' (2D friction: block pivoting, then Lemke)\n"
-           "  --form F     LCP form for friction-contact files (default auto)\n"
-           "  --facets k   facets of the friction cone in 3D (default 8)\n"
-           "Output per problem: file n status pivots relative_error seconds\n";
+    out
+      << "usage: lcp-solve [--solution] [--warm] [--form klarbring|facets|auto] [--facets k] FILE...\n"
+         "  --solution   print the solution (z, or the contact impulses P) after each line\n"
+         "  --warm       warm start: LCP files from the guess 'z_i > 0 where q_i < 0';\n"
+         "               contact files from the states 'closed (stick) where V_N + b_N < 0,\n"
+         "               open elsewhere' (2D friction: block pivoting, then Lemke)\n"
+         "  --form F     LCP form for friction-contact files (default auto)\n"
+         "  --facets k   facets of the friction cone in 3D (default 8)\n"
+         "Output per problem: file n status pivots relative_error seconds\n";
   }
 
   void
@@ -85,7 +87,8 @@ main(int argc, char **argv)
             options.form = FrictionForm::automatic;
           else
             {
-              std::cerr << "lcp-solve: error: unknown form '" << f << "' (klarbring, facets or auto)\n";
+              std::cerr << "lcp-solve: error: unknown form '" << f
+                        << "' (klarbring, facets or auto)\n";
               return 2;
             }
         }
@@ -120,10 +123,10 @@ main(int argc, char **argv)
     {
       try
         {
-          const ProblemFile f = read_problem_file(file);
-          const auto        t0 = std::chrono::steady_clock::now();
-          Result            r;
-          std::size_t       n = 0;
+          const ProblemFile   f  = read_problem_file(file);
+          const auto          t0 = std::chrono::steady_clock::now();
+          Result              r;
+          std::size_t         n = 0;
           std::vector<double> P;
           if (f.type == ProblemType::lcp)
             {
@@ -140,11 +143,13 @@ main(int argc, char **argv)
               // A ray does not say whether the LCP has a solution unless M is
               // copositive-plus; an infeasible LCP has none.
               if (r.status == Status::ray_termination &&
-                  lcp_feasibility(f.lcp.M, f.lcp.q, options.lemke) == Status::ray_termination)
+                  lcp_feasibility(f.lcp.M, f.lcp.q, options.lemke) ==
+                    Status::ray_termination)
                 {
                   r.status = Status::infeasible;
-                  r.message += "; no z >= 0 with M z + q >= 0 (Lemke's ray on the LCP of that linear "
-                               "program): the LCP has no solution";
+                  r.message +=
+                    "; no z >= 0 with M z + q >= 0 (Lemke's ray on the LCP of that linear "
+                    "program): the LCP has no solution";
                 }
             }
           else
@@ -153,9 +158,11 @@ main(int argc, char **argv)
               ContactSolution       s;
               if (warm)
                 {
-                  std::vector<ContactState> guess(p.n_contacts, ContactState::open);
+                  std::vector<ContactState> guess(p.n_contacts,
+                                                  ContactState::open);
                   for (unsigned int c = 0; c < p.n_contacts; ++c)
-                    if (p.free_velocity[c * p.n_directions] + p.gap_term[c] < 0.)
+                    if (p.free_velocity[c * p.n_directions] + p.gap_term[c] <
+                        0.)
                       guess[c] = ContactState::stick;
                   s = solve_contact_problem(p, options, guess);
                 }
@@ -168,18 +175,31 @@ main(int argc, char **argv)
                 n = assemble_contact_lcp(p, options).q.size();
               r         = s.lcp;
               r.message = s.message; // every route tried
-              P = s.P;
+              P         = s.P;
             }
           const double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+              .count();
           if (r.status == Status::solved)
-            std::printf("%s %zu %s %u %.3e %.3e\n", file.c_str(), n, to_string(r.status).c_str(), r.pivots,
-                        r.verification.relative_error, seconds);
+            std::printf("%s %zu %s %u %.3e %.3e\n",
+                        file.c_str(),
+                        n,
+                        to_string(r.status).c_str(),
+                        r.pivots,
+                        r.verification.relative_error,
+                        seconds);
           else
             {
-              std::printf("%s %zu %s %u - %.3e\n", file.c_str(), n, to_string(r.status).c_str(), r.pivots,
+              std::printf("%s %zu %s %u - %.3e\n",
+                          file.c_str(),
+                          n,
+                          to_string(r.status).c_str(),
+                          r.pivots,
                           seconds);
-              std::fprintf(stderr, "lcp-solve: %s: %s\n", file.c_str(), r.message.c_str());
+              std::fprintf(stderr,
+                           "lcp-solve: %s: %s\n",
+                           file.c_str(),
+                           r.message.c_str());
               exit_code = std::max(exit_code, 1);
             }
           if (solution && r.status == Status::solved)

@@ -45,7 +45,11 @@ namespace ObliquePlate
   {
   public:
     ObliquePlateProblem()
-      : ObstacleImpactScene<2>("oblique_plate", "plate", 2, "0, 0", "0, 1",
+      : ObstacleImpactScene<2>("oblique_plate",
+                               "plate",
+                               2,
+                               "0, 0",
+                               "0, 1",
                                "0.1")
     {}
 
@@ -100,29 +104,47 @@ namespace ObliquePlate
   ObliquePlateProblem::declare_scene_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
-    prm.declare_entry("Width", "0.08", Patterns::Double(),
+    prm.declare_entry("Width",
+                      "0.08",
+                      Patterns::Double(),
                       "Width of the plate [m]. Must be > 0.");
-    prm.declare_entry("Side height", "0.04", Patterns::Double(),
+    prm.declare_entry("Side height",
+                      "0.04",
+                      Patterns::Double(),
                       "Height of the plate's vertical sides, above the ends "
                       "of the round side [m]. Must be > 0.");
-    prm.declare_entry("Radius of the round side", "0.101", Patterns::Double(),
+    prm.declare_entry("Radius of the round side",
+                      "0.101",
+                      Patterns::Double(),
                       "Radius of the arc that forms the lower side [m]. Must "
                       "exceed half the width.");
-    prm.declare_entry("Thickness", "0.01", Patterns::Double(),
+    prm.declare_entry("Thickness",
+                      "0.01",
+                      Patterns::Double(),
                       "Out-of-plane thickness (plane stress) [m]. Must be > "
                       "0.");
-    prm.declare_entry("Number of cells across", "10", Patterns::Integer(1),
+    prm.declare_entry("Number of cells across",
+                      "10",
+                      Patterns::Integer(1),
                       "Q1 cells along the width [-].");
-    prm.declare_entry("Number of cells up", "8", Patterns::Integer(1),
+    prm.declare_entry("Number of cells up",
+                      "8",
+                      Patterns::Integer(1),
                       "Q1 cells along the height [-].");
-    prm.declare_entry("Initial gap", "0", Patterns::Double(),
+    prm.declare_entry("Initial gap",
+                      "0",
+                      Patterns::Double(),
                       "Height of the lowest point of the round side above "
                       "the plane at t = 0 [m]. Must be >= 0.");
     prm.leave_subsection();
     prm.enter_subsection("Initial conditions");
-    prm.declare_entry("Horizontal velocity", "3", Patterns::Double(),
+    prm.declare_entry("Horizontal velocity",
+                      "3",
+                      Patterns::Double(),
                       "V_h, along x, at t = 0 [m/s].");
-    prm.declare_entry("Vertical velocity", "-5", Patterns::Double(),
+    prm.declare_entry("Vertical velocity",
+                      "-5",
+                      Patterns::Double(),
                       "V_v, along y, at t = 0 [m/s]. Must be < 0 for an "
                       "impact.");
     prm.leave_subsection();
@@ -177,8 +199,8 @@ namespace ObliquePlate
   void
   ObliquePlateProblem::make_built_in_mesh(Triangulation<2> &tria) const
   {
-    Geometry::plate_with_round_side(tria, Point<2>(0., initial_gap), width,
-                                    side_height, radius, nx, ny);
+    Geometry::plate_with_round_side(
+      tria, Point<2>(0., initial_gap), width, side_height, radius, nx, ny);
   }
 
 

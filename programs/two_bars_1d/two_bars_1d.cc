@@ -24,9 +24,9 @@
 // The library's TwoBarsScene compares the computed contact velocity and
 // contact force with the exact solution and prints the normalised errors
 // @f[
-//   \mathrm{err}_v = \frac{1}{N}\sum_i \frac{|v_c(t_i) - v_c^{ex}(t_i)|}{v_0/2},
-//   \qquad
-//   \mathrm{err}_f = \frac{1}{N}\sum_i \frac{|F(t_i) - F^{ex}(t_i)|}{\rho c v_0 A/2},
+//   \mathrm{err}_v = \frac{1}{N}\sum_i \frac{|v_c(t_i) -
+//   v_c^{ex}(t_i)|}{v_0/2}, \qquad \mathrm{err}_f = \frac{1}{N}\sum_i
+//   \frac{|F(t_i) - F^{ex}(t_i)|}{\rho c v_0 A/2},
 // @f]
 // with the checks of every contact program (impulse balance, Signorini,
 // energy). This program supplies the two meshes and the candidate.
@@ -108,13 +108,21 @@ namespace TwoBars1D
   TwoBarsProblem::declare_geometry(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
-    prm.declare_entry("Bar length", "0.254", Patterns::Double(),
+    prm.declare_entry("Bar length",
+                      "0.254",
+                      Patterns::Double(),
                       "Length L of each bar [m]. Must be > 0.");
-    prm.declare_entry("Number of cells per bar", "20", Patterns::Integer(1),
+    prm.declare_entry("Number of cells per bar",
+                      "20",
+                      Patterns::Integer(1),
                       "Number of P1 elements in each bar [-].");
-    prm.declare_entry("Initial gap", "0", Patterns::Double(),
+    prm.declare_entry("Initial gap",
+                      "0",
+                      Patterns::Double(),
                       "Distance between the bars at t = 0 [m]. Must be >= 0.");
-    prm.declare_entry("Cross-section area", "6.4516e-4", Patterns::Double(),
+    prm.declare_entry("Cross-section area",
+                      "6.4516e-4",
+                      Patterns::Double(),
                       "Cross-section area A of the bars [m^2]; scales masses, "
                       "forces and energies. Must be > 0.");
     prm.leave_subsection();
@@ -186,7 +194,8 @@ namespace TwoBars1D
                            parameters.time_stepping.time_step /
                            (length / n_cells);
     out << "  Courant number c h / dx = " << courant << std::endl;
-    summary.add("cells_per_bar", double(n_cells)).add("courant_number", courant);
+    summary.add("cells_per_bar", double(n_cells))
+      .add("courant_number", courant);
   }
 } // namespace TwoBars1D
 

@@ -95,10 +95,10 @@ namespace TwoBars2D
              const double          x_left,
              const double          row_offset) const;
 
-    double       length = 0.254, height = 0.0254, thickness = 0.0254;
-    unsigned int n_along = 20, n_across = 4;
-    double       gap = 0., mesh_offset = 0.;
-    bool         node_to_segment = false;
+    double         length = 0.254, height = 0.0254, thickness = 0.0254;
+    unsigned int   n_along = 20, n_across = 4;
+    double         gap = 0., mesh_offset = 0.;
+    bool           node_to_segment = false;
     MeshParameters mesh_1, mesh_2;
   };
 
@@ -112,26 +112,41 @@ namespace TwoBars2D
   TwoBarsProblem::declare_geometry(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
-    prm.declare_entry("Bar length", "0.254", Patterns::Double(),
+    prm.declare_entry("Bar length",
+                      "0.254",
+                      Patterns::Double(),
                       "Length L of each bar [m]. Must be > 0.");
-    prm.declare_entry("Bar height", "0.0254", Patterns::Double(),
+    prm.declare_entry("Bar height",
+                      "0.0254",
+                      Patterns::Double(),
                       "Height H of each bar, in the plane [m]. Must be > 0.");
-    prm.declare_entry("Thickness", "0.0254", Patterns::Double(),
+    prm.declare_entry("Thickness",
+                      "0.0254",
+                      Patterns::Double(),
                       "Out-of-plane thickness [m]; H times the thickness is "
                       "the cross-section of the 1D bars. Must be > 0.");
-    prm.declare_entry("Number of cells along", "20", Patterns::Integer(1),
+    prm.declare_entry("Number of cells along",
+                      "20",
+                      Patterns::Integer(1),
                       "Q1 cells along each bar [-].");
-    prm.declare_entry("Number of cells across", "4", Patterns::Integer(1),
+    prm.declare_entry("Number of cells across",
+                      "4",
+                      Patterns::Integer(1),
                       "Q1 cells across the height of each bar [-]. Even, so "
                       "that a node sits at the centre of the contact zone.");
-    prm.declare_entry("Initial gap", "0", Patterns::Double(),
+    prm.declare_entry("Initial gap",
+                      "0",
+                      Patterns::Double(),
                       "Distance between the bars at t = 0 [m]. Must be >= 0.");
-    prm.declare_entry("Contact discretization", "node-to-node",
+    prm.declare_entry("Contact discretization",
+                      "node-to-node",
                       Patterns::Selection("node-to-node|node-to-segment"),
                       "node-to-node: pairs of nodes at the same height "
                       "(matching meshes); node-to-segment: each node of bar "
                       "1's end against the facing segment of bar 2.");
-    prm.declare_entry("Interface mesh offset", "0", Patterns::Double(),
+    prm.declare_entry("Interface mesh offset",
+                      "0",
+                      Patterns::Double(),
                       "Shift of bar 2's inner rows of nodes, as a fraction of "
                       "a cell height, so that the meshes do not match at the "
                       "interface [-]. In [0, 1); non-zero needs "
@@ -235,12 +250,16 @@ namespace TwoBars2D
   TwoBarsProblem::add_contacts(ContactSet &contacts)
   {
     if (node_to_segment)
-      contacts.add_node_to_segment(system().bodies(), 0,
-                                   mesh_1.contact_boundary_id, 1,
+      contacts.add_node_to_segment(system().bodies(),
+                                   0,
+                                   mesh_1.contact_boundary_id,
+                                   1,
                                    mesh_2.contact_boundary_id);
     else
-      contacts.add_node_to_node(system().bodies(), 0,
-                                mesh_1.contact_boundary_id, 1,
+      contacts.add_node_to_node(system().bodies(),
+                                0,
+                                mesh_1.contact_boundary_id,
+                                1,
                                 mesh_2.contact_boundary_id,
                                 Tensor<1, 2>({-1., 0.}));
   }
@@ -264,8 +283,8 @@ namespace TwoBars2D
   TwoBarsProblem::report_geometry(std::ostream &out, JsonObject &summary) const
   {
     const MaterialParameters &m = material();
-    const bool   strain = m.plane_model == PlaneModel::plane_strain;
-    const double nu     = m.poissons_ratio;
+    const bool   strain         = m.plane_model == PlaneModel::plane_strain;
+    const double nu             = m.poissons_ratio;
     const double bar_speed =
       std::sqrt(m.youngs_modulus / ((strain ? 1. - nu * nu : 1.) * m.density));
     out << "  Mesh: " << body(0).triangulation().n_active_cells() << " + "

@@ -53,10 +53,12 @@ namespace impactfe
           return core_index(0, n - (k - 2 * n));
         return core_index(k - 3 * n, 0);
       };
-      const auto ring_index = [&](const unsigned int level, const unsigned int k) {
+      const auto ring_index = [&](const unsigned int level,
+                                  const unsigned int k) {
         const unsigned int kk = k % n_ring_points;
-        return level == 0 ? square_point(kk) :
-                            (n + 1) * (n + 1) + (level - 1) * n_ring_points + kk;
+        return level == 0 ?
+                 square_point(kk) :
+                 (n + 1) * (n + 1) + (level - 1) * n_ring_points + kk;
       };
       for (unsigned int level = 1; level <= m; ++level)
         {
@@ -122,9 +124,9 @@ namespace impactfe
       AssertThrow(2. * radius > width,
                   ExcMessage("Geometry: the radius of the round side must "
                              "exceed half the plate's width."));
-      const double half      = 0.5 * width;
-      const double sagitta   = radius - std::sqrt(radius * radius - half * half);
-      const double top       = sagitta + side_height;
+      const double half    = 0.5 * width;
+      const double sagitta = radius - std::sqrt(radius * radius - half * half);
+      const double top     = sagitta + side_height;
       GridGenerator::subdivided_hyper_rectangle(triangulation,
                                                 {nx, ny},
                                                 Point<2>(-half, 0.),

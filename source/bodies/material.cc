@@ -35,10 +35,11 @@ namespace impactfe
       "Kelvin-Voigt viscous Young's modulus eta [Pa s]: the viscous stress is "
       "eta/E times the elastic stress computed from the strain rate. 0 for an "
       "elastic body.");
-    prm.declare_entry("Rayleigh mass coefficient",
-                      "0",
-                      Patterns::Double(),
-                      "Rayleigh damping: coefficient a of C = a M + b K [1/s].");
+    prm.declare_entry(
+      "Rayleigh mass coefficient",
+      "0",
+      Patterns::Double(),
+      "Rayleigh damping: coefficient a of C = a M + b K [1/s].");
     prm.declare_entry("Rayleigh stiffness coefficient",
                       "0",
                       Patterns::Double(),
@@ -74,20 +75,23 @@ namespace impactfe
     prm.leave_subsection();
 
     AssertThrow(youngs_modulus > 0. && std::isfinite(youngs_modulus),
-                ExcMessage(subsection + ": 'Young's modulus' must be > 0, got " +
+                ExcMessage(subsection +
+                           ": 'Young's modulus' must be > 0, got " +
                            format_number(youngs_modulus) + "."));
     AssertThrow(density > 0. && std::isfinite(density),
                 ExcMessage(subsection + ": 'Density' must be > 0, got " +
                            format_number(density) + "."));
     AssertThrow(poissons_ratio >= 0. && poissons_ratio < 0.5,
-                ExcMessage(subsection + ": 'Poisson's ratio' must be in [0, 0.5), "
+                ExcMessage(subsection +
+                           ": 'Poisson's ratio' must be in [0, 0.5), "
                            "got " +
                            format_number(poissons_ratio) + "."));
     AssertThrow(viscosity >= 0.,
                 ExcMessage(subsection + ": 'Viscosity' must be >= 0, got " +
                            format_number(viscosity) + "."));
     AssertThrow(rayleigh_mass >= 0. && rayleigh_stiffness >= 0.,
-                ExcMessage(subsection + ": the Rayleigh coefficients must be >= 0."));
+                ExcMessage(subsection +
+                           ": the Rayleigh coefficients must be >= 0."));
   }
 
 
@@ -96,8 +100,8 @@ namespace impactfe
   SymmetricTensor<4, dim>
   MaterialParameters::elasticity_tensor() const
   {
-    const double E  = youngs_modulus;
-    const double nu = poissons_ratio;
+    const double E      = youngs_modulus;
+    const double nu     = poissons_ratio;
     double       lambda = E * nu / ((1. + nu) * (1. - 2. * nu));
     const double mu     = E / (2. * (1. + nu));
     if (dim == 2 && plane_model == PlaneModel::plane_stress)

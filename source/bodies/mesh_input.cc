@@ -10,9 +10,10 @@
 namespace impactfe
 {
   void
-  MeshParameters::declare_parameters(ParameterHandler  &prm,
-                                     const std::string &subsection,
-                                     const unsigned int default_contact_boundary_id)
+  MeshParameters::declare_parameters(
+    ParameterHandler  &prm,
+    const std::string &subsection,
+    const unsigned int default_contact_boundary_id)
   {
     prm.enter_subsection(subsection);
     prm.declare_entry("Mesh file",
@@ -67,11 +68,11 @@ namespace impactfe
     if (chosen == "auto")
       {
         const std::string extension = path.extension().string();
-        chosen = extension == ".msh" ? "msh" :
-                 extension == ".ucd" ? "ucd" :
-                 extension == ".inp" ? "abaqus" :
-                 extension == ".vtk" ? "vtk" :
-                                       "";
+        chosen                      = extension == ".msh" ? "msh" :
+                                      extension == ".ucd" ? "ucd" :
+                                      extension == ".inp" ? "abaqus" :
+                                      extension == ".vtk" ? "vtk" :
+                                                            "";
         AssertThrow(!chosen.empty(),
                     ExcMessage("Mesh: cannot tell the format of '" +
                                path.string() +
@@ -84,9 +85,10 @@ namespace impactfe
       chosen == "vtk" ? GridIn<dim>::vtk :
                         GridIn<dim>::abaqus;
 
-    GridIn<dim> grid_in(triangulation);
+    GridIn<dim>   grid_in(triangulation);
     std::ifstream input(path);
-    AssertThrow(input, ExcMessage("Mesh: cannot open '" + path.string() + "'."));
+    AssertThrow(input,
+                ExcMessage("Mesh: cannot open '" + path.string() + "'."));
     try
       {
         grid_in.read(input, grid_format);
@@ -94,8 +96,8 @@ namespace impactfe
     catch (const std::exception &error)
       {
         AssertThrow(false,
-                    ExcMessage("Mesh: cannot read '" + path.string() +
-                               "' as " + chosen + ": " + error.what()));
+                    ExcMessage("Mesh: cannot read '" + path.string() + "' as " +
+                               chosen + ": " + error.what()));
       }
     AssertThrow(triangulation.n_active_cells() > 0,
                 ExcMessage("Mesh: the mesh file '" + path.string() +

@@ -81,7 +81,8 @@ namespace impactfe
   // frame.
   template <int dim>
   void
-  ContactSet::set_frame(ContactCandidate &candidate, const Tensor<1, dim> &normal) const
+  ContactSet::set_frame(ContactCandidate     &candidate,
+                        const Tensor<1, dim> &normal) const
   {
     const double norm = normal.norm();
     AssertThrow(norm > 0., ExcMessage("A contact normal must not be zero."));
@@ -96,14 +97,17 @@ namespace impactfe
         // t1: the unit vector orthogonal to n built from the axis least
         // aligned with n; t2 = n x t1.
         std::array<double, 3> a{{0., 0., 0.}};
-        const unsigned int    axis =
-          (std::abs(n[0]) <= std::abs(n[1]) && std::abs(n[0]) <= std::abs(n[2])) ? 0 :
-          (std::abs(n[1]) <= std::abs(n[2])) ? 1 : 2;
-        a[axis] = 1.;
+        const unsigned int    axis = (std::abs(n[0]) <= std::abs(n[1]) &&
+                                   std::abs(n[0]) <= std::abs(n[2])) ?
+                                       0 :
+                                     (std::abs(n[1]) <= std::abs(n[2])) ? 1 :
+                                                                          2;
+        a[axis]                    = 1.;
         std::array<double, 3> t1{{a[1] * n[2] - a[2] * n[1],
                                   a[2] * n[0] - a[0] * n[2],
                                   a[0] * n[1] - a[1] * n[0]}};
-        const double l = std::sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
+        const double          l =
+          std::sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
         for (double &x : t1)
           x /= l;
         candidate.frame[1] = t1;
@@ -117,12 +121,13 @@ namespace impactfe
 
   template <int dim>
   unsigned int
-  ContactSet::add_node_to_plane(const std::vector<const ElasticBody<dim> *> &bodies,
-                                const unsigned int       body_index,
-                                const types::boundary_id boundary_id,
-                                const Point<dim>        &plane_point,
-                                const Tensor<1, dim>    &plane_normal,
-                                const double             friction_coefficient)
+  ContactSet::add_node_to_plane(
+    const std::vector<const ElasticBody<dim> *> &bodies,
+    const unsigned int                           body_index,
+    const types::boundary_id                     boundary_id,
+    const Point<dim>                            &plane_point,
+    const Tensor<1, dim>                        &plane_normal,
+    const double                                 friction_coefficient)
   {
     return add_node_to_obstacle(bodies,
                                 body_index,
@@ -137,10 +142,10 @@ namespace impactfe
   unsigned int
   ContactSet::add_node_to_obstacle(
     const std::vector<const ElasticBody<dim> *> &bodies,
-    const unsigned int                            body_index,
-    const types::boundary_id                      boundary_id,
-    const RigidObstacle<dim>                     &obstacle,
-    const double                                  friction_coefficient)
+    const unsigned int                           body_index,
+    const types::boundary_id                     boundary_id,
+    const RigidObstacle<dim>                    &obstacle,
+    const double                                 friction_coefficient)
   {
     AssertThrow(body_index < bodies.size(),
                 ExcMessage("Contact: body index out of range."));
@@ -178,19 +183,20 @@ namespace impactfe
   // away from its cell's centre.
   template <int dim>
   unsigned int
-  ContactSet::add_node_to_segment(const std::vector<const ElasticBody<dim> *> &bodies,
-                                  const unsigned int       body_a,
-                                  const types::boundary_id boundary_a,
-                                  const unsigned int       body_b,
-                                  const types::boundary_id boundary_b,
-                                  const double             friction_coefficient)
+  ContactSet::add_node_to_segment(
+    const std::vector<const ElasticBody<dim> *> &bodies,
+    const unsigned int                           body_a,
+    const types::boundary_id                     boundary_a,
+    const unsigned int                           body_b,
+    const types::boundary_id                     boundary_b,
+    const double                                 friction_coefficient)
   {
     AssertThrow(dim == 2,
                 ExcMessage("Contact: node-to-segment candidates are "
                            "implemented in 2D only."));
-    AssertThrow(body_a < bodies.size() && body_b < bodies.size() &&
-                  body_a != body_b,
-                ExcMessage("Contact: node-to-segment needs two distinct bodies."));
+    AssertThrow(
+      body_a < bodies.size() && body_b < bodies.size() && body_a != body_b,
+      ExcMessage("Contact: node-to-segment needs two distinct bodies."));
     AssertThrow(friction_coefficient >= 0.,
                 ExcMessage("Contact: the friction coefficient must be >= 0."));
     const auto &A          = *bodies[body_a];
@@ -214,10 +220,10 @@ namespace impactfe
             cell->face(f)->boundary_id() == boundary_b)
           {
             Segment s;
-            s.v1 = cell->face(f)->vertex_index(0);
-            s.v2 = cell->face(f)->vertex_index(1);
-            s.p1 = vertex_position(B, s.v1);
-            s.p2 = vertex_position(B, s.v2);
+            s.v1                   = cell->face(f)->vertex_index(0);
+            s.v2                   = cell->face(f)->vertex_index(1);
+            s.p1                   = vertex_position(B, s.v1);
+            s.p2                   = vertex_position(B, s.v2);
             const Tensor<1, dim> t = s.p2 - s.p1;
             if constexpr (dim == 2)
               s.normal = Tensor<1, dim>({-t[1], t[0]}) / t.norm();
@@ -250,11 +256,11 @@ namespace impactfe
               }
           }
         AssertThrow(best != nullptr,
-                    ExcMessage("Contact: the node of body '" + A.name() +
-                               "' at boundary id " + std::to_string(boundary_a) +
-                               " projects on no segment of body '" + B.name() +
-                               "' (boundary id " + std::to_string(boundary_b) +
-                               ")."));
+                    ExcMessage(
+                      "Contact: the node of body '" + A.name() +
+                      "' at boundary id " + std::to_string(boundary_a) +
+                      " projects on no segment of body '" + B.name() +
+                      "' (boundary id " + std::to_string(boundary_b) + ")."));
         ContactCandidate candidate;
         candidate.body_a    = body_a;
         candidate.vertex_a  = va;
@@ -265,7 +271,8 @@ namespace impactfe
         for (unsigned int d = 0; d < dim; ++d)
           candidate.position[d] = x[d];
         set_frame(candidate, best->normal);
-        const Point<dim> projection = best->p1 + best_xi * (best->p2 - best->p1);
+        const Point<dim> projection =
+          best->p1 + best_xi * (best->p2 - best->p1);
         candidate.initial_gap          = (x - projection) * best->normal;
         candidate.friction_coefficient = friction_coefficient;
         candidate_list.push_back(candidate);
@@ -277,21 +284,22 @@ namespace impactfe
 
   template <int dim>
   unsigned int
-  ContactSet::add_node_to_node(const std::vector<const ElasticBody<dim> *> &bodies,
-                               const unsigned int       body_a,
-                               const types::boundary_id boundary_a,
-                               const unsigned int       body_b,
-                               const types::boundary_id boundary_b,
-                               const Tensor<1, dim>    &normal,
-                               const double             friction_coefficient)
+  ContactSet::add_node_to_node(
+    const std::vector<const ElasticBody<dim> *> &bodies,
+    const unsigned int                           body_a,
+    const types::boundary_id                     boundary_a,
+    const unsigned int                           body_b,
+    const types::boundary_id                     boundary_b,
+    const Tensor<1, dim>                        &normal,
+    const double                                 friction_coefficient)
   {
     AssertThrow(body_a < bodies.size() && body_b < bodies.size() &&
                   body_a != body_b,
                 ExcMessage("Contact: node-to-node needs two distinct bodies."));
     AssertThrow(friction_coefficient >= 0.,
                 ExcMessage("Contact: the friction coefficient must be >= 0."));
-    const auto &A = *bodies[body_a];
-    const auto &B = *bodies[body_b];
+    const auto &A          = *bodies[body_a];
+    const auto &B          = *bodies[body_b];
     const auto  vertices_a = boundary_vertices(A, boundary_a);
     const auto  vertices_b = boundary_vertices(B, boundary_b);
     AssertThrow(!vertices_a.empty(),
@@ -353,7 +361,8 @@ namespace impactfe
   // nodes), e_k being direction k of the candidate's frame.
   template <int dim>
   void
-  ContactSet::build_operator(const std::vector<const ElasticBody<dim> *> &bodies)
+  ContactSet::build_operator(
+    const std::vector<const ElasticBody<dim> *> &bodies)
   {
     AssertThrow(directions == 1 || directions == dim,
                 ExcMessage("Contact: the number of local directions must be 1 "
@@ -371,14 +380,17 @@ namespace impactfe
                 if (e == 0.)
                   continue;
                 column.push_back(
-                  {cand.body_a, bodies[cand.body_a]->vertex_dof(cand.vertex_a, d), e});
+                  {cand.body_a,
+                   bodies[cand.body_a]->vertex_dof(cand.vertex_a, d),
+                   e});
                 if (cand.against_rigid_obstacle())
                   continue;
                 const double w2 = cand.weight_b2;
                 if (w2 < 1.)
-                  column.push_back({cand.body_b,
-                                    bodies[cand.body_b]->vertex_dof(cand.vertex_b, d),
-                                    -(1. - w2) * e});
+                  column.push_back(
+                    {cand.body_b,
+                     bodies[cand.body_b]->vertex_dof(cand.vertex_b, d),
+                     -(1. - w2) * e});
                 if (w2 > 0.)
                   column.push_back(
                     {cand.body_b,
@@ -392,7 +404,8 @@ namespace impactfe
 
 
   double
-  ContactSet::column_dot(const unsigned int column, const BlockVector<double> &v) const
+  ContactSet::column_dot(const unsigned int         column,
+                         const BlockVector<double> &v) const
   {
     double sum = 0.;
     for (const Entry &e : columns[column])
@@ -425,7 +438,7 @@ namespace impactfe
 
   void
   ContactSet::normal_velocities(const BlockVector<double> &v,
-                                std::vector<double>       &normal_velocity) const
+                                std::vector<double> &normal_velocity) const
   {
     normal_velocity.resize(candidate_list.size());
     for (unsigned int c = 0; c < candidate_list.size(); ++c)
@@ -445,36 +458,36 @@ namespace impactfe
 
 
 
-#define IMPACTFE_INSTANTIATE(dim)                                              \
-  template unsigned int ContactSet::add_node_to_plane<dim>(                    \
-    const std::vector<const ElasticBody<dim> *> &,                             \
-    const unsigned int,                                                        \
-    const types::boundary_id,                                                  \
-    const Point<dim> &,                                                        \
-    const Tensor<1, dim> &,                                                    \
-    const double);                                                             \
-  template unsigned int ContactSet::add_node_to_obstacle<dim>(                 \
-    const std::vector<const ElasticBody<dim> *> &,                             \
-    const unsigned int,                                                        \
-    const types::boundary_id,                                                  \
-    const RigidObstacle<dim> &,                                                \
-    const double);                                                             \
-  template unsigned int ContactSet::add_node_to_segment<dim>(                  \
-    const std::vector<const ElasticBody<dim> *> &,                             \
-    const unsigned int,                                                        \
-    const types::boundary_id,                                                  \
-    const unsigned int,                                                        \
-    const types::boundary_id,                                                  \
-    const double);                                                             \
-  template unsigned int ContactSet::add_node_to_node<dim>(                     \
-    const std::vector<const ElasticBody<dim> *> &,                             \
-    const unsigned int,                                                        \
-    const types::boundary_id,                                                  \
-    const unsigned int,                                                        \
-    const types::boundary_id,                                                  \
-    const Tensor<1, dim> &,                                                    \
-    const double);                                                             \
-  template void ContactSet::build_operator<dim>(                               \
+#define IMPACTFE_INSTANTIATE(dim)                              \
+  template unsigned int ContactSet::add_node_to_plane<dim>(    \
+    const std::vector<const ElasticBody<dim> *> &,             \
+    const unsigned int,                                        \
+    const types::boundary_id,                                  \
+    const Point<dim> &,                                        \
+    const Tensor<1, dim> &,                                    \
+    const double);                                             \
+  template unsigned int ContactSet::add_node_to_obstacle<dim>( \
+    const std::vector<const ElasticBody<dim> *> &,             \
+    const unsigned int,                                        \
+    const types::boundary_id,                                  \
+    const RigidObstacle<dim> &,                                \
+    const double);                                             \
+  template unsigned int ContactSet::add_node_to_segment<dim>(  \
+    const std::vector<const ElasticBody<dim> *> &,             \
+    const unsigned int,                                        \
+    const types::boundary_id,                                  \
+    const unsigned int,                                        \
+    const types::boundary_id,                                  \
+    const double);                                             \
+  template unsigned int ContactSet::add_node_to_node<dim>(     \
+    const std::vector<const ElasticBody<dim> *> &,             \
+    const unsigned int,                                        \
+    const types::boundary_id,                                  \
+    const unsigned int,                                        \
+    const types::boundary_id,                                  \
+    const Tensor<1, dim> &,                                    \
+    const double);                                             \
+  template void ContactSet::build_operator<dim>(               \
     const std::vector<const ElasticBody<dim> *> &);
 
   IMPACTFE_INSTANTIATE(1)

@@ -238,9 +238,9 @@ namespace impactfe
   {
     prm.enter_subsection("Obstacle");
     const std::string type_name = prm.get("Type");
-    type = type_name == "plane" ? Type::plane :
-           type_name == "ball"  ? Type::ball :
-                                  Type::level_set;
+    type                        = type_name == "plane" ? Type::plane :
+                                  type_name == "ball"  ? Type::ball :
+                                                         Type::level_set;
     // Only the entries of the chosen type must have dim coordinates.
     const auto read_vector = [&](const std::string &entry, const bool used) {
       const std::vector<std::string> parts =
@@ -254,9 +254,9 @@ namespace impactfe
         values[d] = Utilities::string_to_double(parts[d]);
       return values;
     };
-    point  = read_vector("Point on plane", type == Type::plane);
-    normal = read_vector("Normal", type == Type::plane);
-    center = read_vector("Center", type == Type::ball);
+    point                = read_vector("Point on plane", type == Type::plane);
+    normal               = read_vector("Normal", type == Type::plane);
+    center               = read_vector("Center", type == Type::ball);
     radius               = prm.get_double("Radius");
     expression           = prm.get("Level set");
     friction_coefficient = prm.get_double("Friction coefficient");
@@ -270,7 +270,8 @@ namespace impactfe
     AssertThrow(type != Type::ball || radius > 0.,
                 ExcMessage("Obstacle: 'Radius' must be > 0, got " +
                            format_number(radius) + "."));
-    AssertThrow(friction_coefficient >= 0. && std::isfinite(friction_coefficient),
+    AssertThrow(friction_coefficient >= 0. &&
+                  std::isfinite(friction_coefficient),
                 ExcMessage("Obstacle: 'Friction coefficient' must be >= 0, "
                            "got " +
                            format_number(friction_coefficient) + "."));

@@ -22,7 +22,7 @@ namespace impactfe
                                       const std::string          &node_file)
     : system(system)
   {
-    const auto        &bodies = system.bodies();
+    const auto        &bodies   = system.bodies();
     const unsigned int n_bodies = bodies.size();
     initial_momentum.resize(n_bodies);
     external_force.resize(n_bodies);
@@ -46,8 +46,8 @@ namespace impactfe
         // not a contact or external impulse, so the balance is not checked.
         if (bodies[b]->material().rayleigh_mass > 0.)
           run.impulse_balance_checked = false;
-        initial_load_term += bodies[b]->external_force() *
-                             system.state().displacement.block(b);
+        initial_load_term +=
+          bodies[b]->external_force() * system.state().displacement.block(b);
         run.with_loads |= bodies[b]->external_force().linfty_norm() > 0.;
       }
     initial_energy        = total_energy();
@@ -64,8 +64,8 @@ namespace impactfe
       {
         const ElasticBody<dim>     &body = *bodies[c.body_a];
         const SparseMatrix<double> &M    = body.mass_matrix();
-        const auto row = body.vertex_dof(c.vertex_a, 0);
-        double     mass = 0.;
+        const auto                  row  = body.vertex_dof(c.vertex_a, 0);
+        double                      mass = 0.;
         for (auto entry = M.begin(row); entry != M.end(row); ++entry)
           mass += std::abs(entry->value());
         smallest_nodal_mass = std::min(smallest_nodal_mass, mass);
@@ -93,7 +93,9 @@ namespace impactfe
   std::vector<std::string>
   ContactMonitor<dim>::history_columns() const
   {
-    std::vector<std::string> columns = {"time", "normal_force", "tangential_force"};
+    std::vector<std::string> columns = {"time",
+                                        "normal_force",
+                                        "tangential_force"};
     for (unsigned int d = 0; d < dim; ++d)
       columns.push_back(std::string("force_") + axis_name[d]);
     for (unsigned int d = 0; d < dim; ++d)
@@ -159,9 +161,9 @@ namespace impactfe
   std::vector<double>
   ContactMonitor<dim>::history_values(const StepReport &report) const
   {
-    std::vector<double> values = {system.state().time,
-                                  report.normal_force,
-                                  report.tangential_force};
+    std::vector<double>  values = {system.state().time,
+                                   report.normal_force,
+                                   report.tangential_force};
     const Tensor<1, dim> f = total_contact_force(), p = total_momentum();
     for (unsigned int d = 0; d < dim; ++d)
       values.push_back(f[d]);
@@ -203,9 +205,9 @@ namespace impactfe
   void
   ContactMonitor<dim>::record(const StepReport &report)
   {
-    const TimeIntegrator &scheme = system.integrator();
-    const double          h      = scheme.time_step();
-    const double          w      = scheme.contact_force_weight();
+    const TimeIntegrator &scheme   = system.integrator();
+    const double          h        = scheme.time_step();
+    const double          w        = scheme.contact_force_weight();
     const ContactSet     &contacts = system.contacts();
     const unsigned int    nd       = contacts.n_directions();
     const double          t        = system.state().time;
@@ -237,8 +239,8 @@ namespace impactfe
 
     // Coulomb, with V_T^{i+1} from the new velocity.
     contacts.local_velocities(system.state().velocity, local_velocity);
-    const std::vector<double> &P = system.impulses();
-    const double force_factor    = scheme.force_per_impulse();
+    const std::vector<double> &P            = system.impulses();
+    const double               force_factor = scheme.force_per_impulse();
     for (unsigned int c = 0; c < contacts.n_candidates(); ++c)
       {
         impulse_scale = std::max(impulse_scale, P[c * nd]);
@@ -252,9 +254,9 @@ namespace impactfe
     // nodes of a body resting on a plane never move: their velocities alone
     // would be a scale of round-off itself, and every sticking node would
     // count as sliding.)
-    velocity_scale = std::max({velocity_scale,
-                               system.state().velocity.linfty_norm(),
-                               largest_inverse_nodal_mass * impulse_scale});
+    velocity_scale                  = std::max({velocity_scale,
+                                                system.state().velocity.linfty_norm(),
+                                                largest_inverse_nodal_mass * impulse_scale});
     const double impulse_tolerance  = 1e-9 * impulse_scale;
     const double velocity_tolerance = 1e-8 * velocity_scale;
     for (unsigned int c = 0; c < contacts.n_candidates(); ++c)
@@ -280,10 +282,10 @@ namespace impactfe
             // Frictionless candidates carry no tangential unknown: they
             // slide freely.
             const bool backwards = nd > 1 && local_velocity[c * nd + 1] < 0.;
-            s = (nd == 1 || v_t > velocity_tolerance) ?
-                  (backwards ? ContactState::slip_negative :
-                               ContactState::slip_positive) :
-                  ContactState::stick;
+            s                    = (nd == 1 || v_t > velocity_tolerance) ?
+                                     (backwards ? ContactState::slip_negative :
+                                                  ContactState::slip_positive) :
+                                     ContactState::stick;
             if (nd > 1 && is_sliding(s) &&
                 (p_dot_v > impulse_tolerance * v_t ||
                  p_t < mu * p_n - impulse_tolerance))
@@ -300,8 +302,7 @@ namespace impactfe
               *node_output << "," << contacts.candidate(c).position[d];
             // Signed tangential values in 2D (along t = n turned by +90
             // degrees); magnitudes in 3D.
-            const double signed_p_t =
-              nd == 2 ? P[c * nd + 1] : p_t;
+            const double signed_p_t = nd == 2 ? P[c * nd + 1] : p_t;
             const double signed_v_t =
               nd == 2 ? local_velocity[c * nd + 1] : v_t;
             *node_output << "," << force_factor * p_n << ","
@@ -323,10 +324,9 @@ namespace impactfe
     if (run.energy_scale > 0.)
       {
         run.max_energy_increase = largest_increase / run.energy_scale;
-        run.energy_ratio =
-          run.energy_scale_is_initial ?
-            energy / initial_energy :
-            1. + (energy - initial_energy) / run.energy_scale;
+        run.energy_ratio        = run.energy_scale_is_initial ?
+                                    energy / initial_energy :
+                                    1. + (energy - initial_energy) / run.energy_scale;
       }
     last_energy = energy;
 
@@ -337,7 +337,8 @@ namespace impactfe
           run.first_contact = t;
         run.last_contact = t;
       }
-    run.peak_normal_force = std::max(run.peak_normal_force, report.normal_force);
+    run.peak_normal_force =
+      std::max(run.peak_normal_force, report.normal_force);
     run.normal_impulse += h * report.normal_force;
     run.tangential_impulse += h * report.tangential_force;
   }
@@ -513,11 +514,14 @@ namespace impactfe
                         s.impulse_balance_error,
                         "<=",
                         bounds.max_impulse_balance_error);
-    ok &= print_check(out, "penetration", s.max_penetration, "<=",
-                      bounds.max_penetration);
+    ok &= print_check(
+      out, "penetration", s.max_penetration, "<=", bounds.max_penetration);
     if (frictional)
       {
-        ok &= print_check(out, "Coulomb excess", s.coulomb_excess, "<=",
+        ok &= print_check(out,
+                          "Coulomb excess",
+                          s.coulomb_excess,
+                          "<=",
                           bounds.max_coulomb_excess);
         if (s.wrong_slip_count > 0)
           {
@@ -527,12 +531,15 @@ namespace impactfe
             ok = false;
           }
       }
-    ok &= print_check(out, "energy increase in a step", s.max_energy_increase,
-                      "<=", bounds.max_energy_increase);
-    ok &= print_check(out, "energy ratio", s.energy_ratio, ">=",
-                      bounds.min_energy_ratio);
-    ok &= print_check(out, "energy ratio", s.energy_ratio, "<=",
-                      bounds.max_energy_ratio);
+    ok &= print_check(out,
+                      "energy increase in a step",
+                      s.max_energy_increase,
+                      "<=",
+                      bounds.max_energy_increase);
+    ok &= print_check(
+      out, "energy ratio", s.energy_ratio, ">=", bounds.min_energy_ratio);
+    ok &= print_check(
+      out, "energy ratio", s.energy_ratio, "<=", bounds.max_energy_ratio);
     return ok;
   }
 

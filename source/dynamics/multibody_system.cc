@@ -153,7 +153,7 @@ namespace impactfe
   {
     AssertThrow(!body_list.empty(), ExcMessage("The scene has no body."));
     const unsigned int n_bodies = body_list.size();
-    costs = CostBreakdown();
+    costs                       = CostBreakdown();
     CostClock clock(measure_costs);
 
     operators.mass.clear();
@@ -167,19 +167,21 @@ namespace impactfe
         const ElasticBody<dim> &body = *body_list[b];
         operators.mass.push_back(&body.mass_matrix());
         operators.stiffness.push_back(&body.stiffness_matrix());
-        operators.damping.push_back(body.has_damping() ? &body.damping_matrix() :
-                                                         nullptr);
+        operators.damping.push_back(
+          body.has_damping() ? &body.damping_matrix() : nullptr);
         operators.external_force.block(b) = body.external_force();
 
         auto step_matrix =
           std::make_unique<SparseMatrix<double>>(body.sparsity_pattern());
         step_matrix->copy_from(body.mass_matrix());
-        step_matrix->add(scheme->stiffness_coefficient(), body.stiffness_matrix());
+        step_matrix->add(scheme->stiffness_coefficient(),
+                         body.stiffness_matrix());
         if (body.has_damping())
-          step_matrix->add(scheme->damping_coefficient(), body.damping_matrix());
+          step_matrix->add(scheme->damping_coefficient(),
+                           body.damping_matrix());
         auto solver = std::make_unique<SparseCholesky>();
-        solver->factorize(*step_matrix, "the step matrix of body '" +
-                                          body.name() + "'");
+        solver->factorize(*step_matrix,
+                          "the step matrix of body '" + body.name() + "'");
         step_matrices.push_back(std::move(step_matrix));
         step_solvers.push_back(std::move(solver));
       }
@@ -188,7 +190,7 @@ namespace impactfe
       {
         unit_fields[d] = make_block_vector();
         Tensor<1, dim> e;
-        e[d] = 1.;
+        e[d]                = 1.;
         mass_unit_fields[d] = make_block_vector();
         for (unsigned int b = 0; b < n_bodies; ++b)
           {
@@ -206,12 +208,12 @@ namespace impactfe
     const unsigned int n_columns = contact_set.n_columns();
     delassus.reinit(n_columns, n_columns);
     delassus_ready.assign(contact_set.n_candidates(), false);
-    column_work = make_block_vector();
+    column_work              = make_block_vector();
     const std::size_t n_dofs = column_work.size();
     const std::size_t n_slots =
       std::min<std::size_t>(n_columns,
-                            column_storage_budget / (8 * std::max<std::size_t>(
-                                                           n_dofs, 1)));
+                            column_storage_budget /
+                              (8 * std::max<std::size_t>(n_dofs, 1)));
     stored_columns.assign(n_slots, column_work);
     stored_column_slot.assign(n_columns, -1);
     n_stored_columns = 0;
@@ -279,13 +281,10 @@ namespace impactfe
     if (columns.empty())
       return;
 
-    const std::size_t  n_dofs = column_work.size();
-    const unsigned int block_size =
-      std::max<std::size_t>(1,
-                            std::min<std::size_t>(128,
-                                                  (std::size_t(256) << 20) /
-                                                    (8 * n_dofs)));
-    const unsigned int n_bodies = body_list.size();
+    const std::size_t  n_dofs     = column_work.size();
+    const unsigned int block_size = std::max<std::size_t>(
+      1, std::min<std::size_t>(128, (std::size_t(256) << 20) / (8 * n_dofs)));
+    const unsigned int               n_bodies = body_list.size();
     std::vector<std::vector<double>> rhs(n_bodies);
     for (std::size_t first = 0; first < columns.size(); first += block_size)
       {
@@ -313,7 +312,7 @@ namespace impactfe
             for (unsigned int b = 0; b < n_bodies; ++b)
               {
                 Vector<double> &block = column_work.block(b);
-                const auto start = rhs[b].begin() + r * block.size();
+                const auto      start = rhs[b].begin() + r * block.size();
                 std::copy(start, start + block.size(), block.begin());
               }
             for (unsigned int i = 0; i < contact_set.n_columns(); ++i)
@@ -336,7 +335,8 @@ namespace impactfe
   // when frictionless, Klarbring's 3 n_c form in 2D, the facet form in 3D).
   template <int dim>
   void
-  MultibodySystem<dim>::build_contact_problem(lcp::ContactProblem &problem) const
+  MultibodySystem<dim>::build_contact_problem(
+    lcp::ContactProblem &problem) const
   {
     const unsigned int nd = contact_set.n_directions();
     const unsigned int n  = lcp_candidates.size();
@@ -353,7 +353,8 @@ namespace impactfe
         problem.mu[a]         = contact_set.candidate(ca).friction_coefficient;
         for (unsigned int k = 0; k < nd; ++k)
           {
-            problem.free_velocity[a * nd + k] = local_free_velocity[ca * nd + k];
+            problem.free_velocity[a * nd + k] =
+              local_free_velocity[ca * nd + k];
             for (unsigned int b = 0; b < n; ++b)
               for (unsigned int l = 0; l < nd; ++l)
                 problem.W(a * nd + k, b * nd + l) =
@@ -391,7 +392,8 @@ namespace impactfe
       solution = lcp::solve_contact_problem(problem);
     if (solution.lcp.status == lcp::Status::solved)
       {
-        std::fill(last_contact_states.begin(), last_contact_states.end(),
+        std::fill(last_contact_states.begin(),
+                  last_contact_states.end(),
                   ContactState::open);
         for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
           last_contact_states[lcp_candidates[a]] = solution.states[a];
@@ -425,8 +427,8 @@ namespace impactfe
   MultibodySystem<dim>::do_time_step()
   {
     ++step_number;
-    const double h  = scheme->time_step();
-    const unsigned int nd = contact_set.n_directions();
+    const double       h            = scheme->time_step();
+    const unsigned int nd           = contact_set.n_directions();
     const unsigned int n_candidates = contact_set.n_candidates();
 
     StepReport report;
@@ -453,8 +455,9 @@ namespace impactfe
       {
         const double w_free = local_free_velocity[c * nd] + gap_terms[c];
         in_lcp[c]           = (w_free < 0.) || active[c];
-        scale = std::max({scale, std::abs(local_free_velocity[c * nd]),
-                          std::abs(gap_terms[c])});
+        scale               = std::max({scale,
+                                        std::abs(local_free_velocity[c * nd]),
+                                        std::abs(gap_terms[c])});
       }
     const double tolerance = 1e-12 * scale;
     std::fill(local_impulses.begin(), local_impulses.end(), 0.);
@@ -472,7 +475,7 @@ namespace impactfe
         clock.charge(costs.delassus);
 
         const lcp::Result result = solve_contact_lcp();
-        report.lcp_size   = last_lcp_size;
+        report.lcp_size          = last_lcp_size;
         report.lcp_pivots += result.pivots;
         if (result.status != lcp::Status::solved)
           {
@@ -481,18 +484,18 @@ namespace impactfe
                  << ".dat";
             dump_lcp(name.str());
             std::ostringstream message;
-            message << "The contact LCP of step " << step_number << " (t = "
-                    << report.time << " s, " << lcp_candidates.size()
+            message << "The contact LCP of step " << step_number
+                    << " (t = " << report.time << " s, "
+                    << lcp_candidates.size()
                     << " contact candidates) was not solved: "
-                    << lcp::to_string(result.status) << ". "
-                    << result.message << " The LCP was written to "
-                    << name.str() << " (replay: lcp-solve " << name.str()
-                    << ").";
+                    << lcp::to_string(result.status) << ". " << result.message
+                    << " The LCP was written to " << name.str()
+                    << " (replay: lcp-solve " << name.str() << ").";
             throw ContactSolverFailure(message.str());
           }
         if (solver_parameters.dump_step == static_cast<int>(step_number))
-          dump_lcp(dump_directory + "/lcp_step_" +
-                   std::to_string(step_number) + ".dat");
+          dump_lcp(dump_directory + "/lcp_step_" + std::to_string(step_number) +
+                   ".dat");
 
         bool grown = false;
         for (unsigned int c = 0; c < n_candidates; ++c)
@@ -501,7 +504,8 @@ namespace impactfe
               double w = local_free_velocity[c * nd] + gap_terms[c];
               for (const unsigned int a : lcp_candidates)
                 for (unsigned int k = 0; k < nd; ++k)
-                  w += delassus(c * nd, a * nd + k) * local_impulses[a * nd + k];
+                  w +=
+                    delassus(c * nd, a * nd + k) * local_impulses[a * nd + k];
               if (w < -tolerance)
                 {
                   in_lcp[c] = true;

@@ -15,7 +15,7 @@ namespace impactfe
   // the next.
   struct SparseCholesky::Data
   {
-    cholmod_common common;
+    cholmod_common  common;
     cholmod_factor *factor   = nullptr;
     cholmod_dense  *rhs      = nullptr;
     cholmod_dense  *solution = nullptr;
@@ -159,14 +159,14 @@ namespace impactfe
       return;
     const std::size_t n = data->factor->n;
     cholmod_dense     block;
-    block.nrow  = n;
-    block.ncol  = n_columns;
-    block.nzmax = n * n_columns;
-    block.d     = n;
-    block.x     = columns;
-    block.z     = nullptr;
-    block.xtype = CHOLMOD_REAL;
-    block.dtype = CHOLMOD_DOUBLE;
+    block.nrow   = n;
+    block.ncol   = n_columns;
+    block.nzmax  = n * n_columns;
+    block.d      = n;
+    block.x      = columns;
+    block.z      = nullptr;
+    block.xtype  = CHOLMOD_REAL;
+    block.dtype  = CHOLMOD_DOUBLE;
     const int ok = cholmod_solve2(CHOLMOD_A,
                                   data->factor,
                                   &block,
@@ -197,7 +197,6 @@ namespace impactfe
     if (data->factor == nullptr)
       return 0;
     // Supernodal factors count their entries in xsize; simplicial in nzmax.
-    return data->factor->is_super ? data->factor->xsize :
-                                    data->factor->nzmax;
+    return data->factor->is_super ? data->factor->xsize : data->factor->nzmax;
   }
 } // namespace impactfe

@@ -12,56 +12,70 @@ namespace impactfe
   StabilityBounds::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Verification");
-    prm.declare_entry("Start of the final phase", "-1", Patterns::Double(),
+    prm.declare_entry("Start of the final phase",
+                      "-1",
+                      Patterns::Double(),
                       "Time from which the run counts as its final phase "
                       "(at rest, or in a steady regime), where the gap "
                       "drift, the penetration, the active-set changes and "
                       "the mean reaction are measured [s]. -1: half the "
                       "end time.");
-    prm.declare_entry("Maximum gap drift", "-1", Patterns::Double(),
+    prm.declare_entry("Maximum gap drift",
+                      "-1",
+                      Patterns::Double(),
                       "Fail the run if the mean gap of the plane's "
                       "contact nodes at the end differs from its value at "
                       "the start of the final phase by more than this "
                       "[m]. -1: no check.");
-    prm.declare_entry("Maximum penetration in the final phase", "-1",
+    prm.declare_entry("Maximum penetration in the final phase",
+                      "-1",
                       Patterns::Double(),
                       "Fail the run if a gap goes below minus this during "
                       "the final phase [m]. -1: no check.");
-    prm.declare_entry("Maximum active-set changes per step", "-1",
+    prm.declare_entry("Maximum active-set changes per step",
+                      "-1",
                       Patterns::Double(),
                       "Fail the run if the contact nodes change between "
                       "active and inactive more often than this per step "
                       "during the final phase (chattering) [1/step]. -1: "
                       "no check.");
-    prm.declare_entry("Maximum reaction error", "-1", Patterns::Double(),
+    prm.declare_entry("Maximum reaction error",
+                      "-1",
+                      Patterns::Double(),
                       "Fail the run if the mean plane reaction over the "
                       "final phase differs from the normal load (weight "
                       "of the blocks and push) by more than this fraction "
                       "[-]. -1: no check.");
-    prm.declare_entry("Maximum stick time error", "-1", Patterns::Double(),
+    prm.declare_entry("Maximum stick time error",
+                      "-1",
+                      Patterns::Double(),
                       "Fail the run if the time at which the block's mean "
                       "velocity along the plane reaches 0 differs from the "
                       "rigid-block value v0 / (mu N/m - a_t) by more than "
                       "this fraction [-]. -1: no check.");
-    prm.declare_entry("Maximum sliding distance error", "-1",
+    prm.declare_entry("Maximum sliding distance error",
+                      "-1",
                       Patterns::Double(),
                       "Fail the run if the distance slid by the block's "
                       "centre of mass differs from the rigid-block value "
                       "by more than this fraction [-]. -1: no check.");
-    prm.declare_entry("Maximum final velocity error", "-1",
+    prm.declare_entry("Maximum final velocity error",
+                      "-1",
                       Patterns::Double(),
                       "Fail the run if, for a block that never sticks, "
                       "the mean velocity along the plane at the end "
                       "differs from the rigid-block value v0 - d T by more "
                       "than this fraction [-]. -1: no check.");
-    prm.declare_entry("Maximum static compression error", "-1",
+    prm.declare_entry("Maximum static compression error",
+                      "-1",
                       Patterns::Double(),
                       "Fail the run if the time-averaged sinking of the "
                       "block's top over the final phase differs from "
                       "rho g H^2 / (2 E) by more than this fraction "
                       "(Poisson's ratio 0, block at rest) [-]. -1: no "
                       "check.");
-    prm.declare_entry("Maximum energy increase in round-offs", "-1",
+    prm.declare_entry("Maximum energy increase in round-offs",
+                      "-1",
                       Patterns::Double(),
                       "Fail the run if the largest energy increase in a "
                       "step exceeds this many times the round-off of the "
@@ -69,11 +83,15 @@ namespace impactfe
                       "(entry-wise absolute values, largest over the run) "
                       "[-]. The bound for schemes that cannot increase the "
                       "energy. -1: no check.");
-    prm.declare_entry("Minimum restitution", "-1", Patterns::Double(),
+    prm.declare_entry("Minimum restitution",
+                      "-1",
+                      Patterns::Double(),
                       "Fail the run if the apparent restitution of the "
                       "first impact (mean normal velocity after / before) "
                       "is below this [-]. -1: no check.");
-    prm.declare_entry("Maximum restitution", "-1", Patterns::Double(),
+    prm.declare_entry("Maximum restitution",
+                      "-1",
+                      Patterns::Double(),
                       "Fail the run if the apparent restitution of the "
                       "first impact exceeds this [-]. -1: no check.");
     prm.leave_subsection();
@@ -81,24 +99,25 @@ namespace impactfe
 
 
 
-
   void
   StabilityBounds::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Verification");
-    final_phase_start      = prm.get_double("Start of the final phase");
-    max_gap_drift          = prm.get_double("Maximum gap drift");
-    max_final_penetration  = prm.get_double("Maximum penetration in the final phase");
-    max_active_set_changes = prm.get_double("Maximum active-set changes per step");
-    max_reaction_error     = prm.get_double("Maximum reaction error");
-    max_stick_time_error   = prm.get_double("Maximum stick time error");
-    max_distance_error     = prm.get_double("Maximum sliding distance error");
+    final_phase_start = prm.get_double("Start of the final phase");
+    max_gap_drift     = prm.get_double("Maximum gap drift");
+    max_final_penetration =
+      prm.get_double("Maximum penetration in the final phase");
+    max_active_set_changes =
+      prm.get_double("Maximum active-set changes per step");
+    max_reaction_error       = prm.get_double("Maximum reaction error");
+    max_stick_time_error     = prm.get_double("Maximum stick time error");
+    max_distance_error       = prm.get_double("Maximum sliding distance error");
     max_final_velocity_error = prm.get_double("Maximum final velocity error");
-    max_compression_error  = prm.get_double("Maximum static compression error");
+    max_compression_error = prm.get_double("Maximum static compression error");
     max_energy_increase_in_round_offs =
       prm.get_double("Maximum energy increase in round-offs");
-    min_restitution        = prm.get_double("Minimum restitution");
-    max_restitution        = prm.get_double("Maximum restitution");
+    min_restitution = prm.get_double("Minimum restitution");
+    max_restitution = prm.get_double("Maximum restitution");
     prm.leave_subsection();
   }
 
@@ -108,7 +127,9 @@ namespace impactfe
   declare_figures_entry(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
-    prm.declare_entry("Print figures of merit", "true", Patterns::Bool(),
+    prm.declare_entry("Print figures of merit",
+                      "true",
+                      Patterns::Bool(),
                       "Print the figures of merit of the run. false prints "
                       "only the checks of 'Verification' and whether they "
                       "hold: for runs whose figures depend on round-off "
@@ -221,7 +242,7 @@ namespace impactfe
       {
         const ElasticBody<dim> &body = *system.bodies()[b];
         const Vector<double>   &u    = system.state().displacement.block(b),
-                             &v    = system.state().velocity.block(b);
+                             &v      = system.state().velocity.block(b);
         round_off += absolute_quadratic_form(body.stiffness_matrix(), u) +
                      absolute_quadratic_form(body.mass_matrix(), v);
         for (unsigned int i = 0; i < u.size(); ++i)
@@ -231,8 +252,8 @@ namespace impactfe
       std::max(energy_round_off,
                std::numeric_limits<double>::epsilon() * round_off);
     active_set_changes += changes;
-    if (report.step > 0 && system.state().time >=
-                             phase_start - 1e-9 * time_step)
+    if (report.step > 0 &&
+        system.state().time >= phase_start - 1e-9 * time_step)
       final_active_set_changes += changes;
     return changes;
   }
@@ -243,7 +264,7 @@ namespace impactfe
   void
   StabilityMonitor<dim>::after_record(const StepReport          &report,
                                       const ContactMonitor<dim> &monitor,
-                                      const double measured_value)
+                                      const double               measured_value)
   {
     if (report.step == 0)
       return;
@@ -259,7 +280,10 @@ namespace impactfe
       {
         const ContactState state = monitor.state(c);
         final_state_changes +=
-          (in_final && contact_mode(state) != contact_mode(previous_states[c])) ? 1 : 0;
+          (in_final &&
+           contact_mode(state) != contact_mode(previous_states[c])) ?
+            1 :
+            0;
         previous_states[c] = state;
       }
     if (in_final)
@@ -356,17 +380,21 @@ namespace impactfe
         << final_active_set_changes << ", contact state changes "
         << final_state_changes << std::endl;
     ok &= print_check(out, "gap drift", gap_drift, "<=", bounds.max_gap_drift);
-    ok &= print_check(out, "penetration in the final phase", final_penetration,
-                      "<=", bounds.max_final_penetration);
-    ok &= print_check(out, "active-set changes per step in the final phase",
-                      final_changes_per_step, "<=",
+    ok &= print_check(out,
+                      "penetration in the final phase",
+                      final_penetration,
+                      "<=",
+                      bounds.max_final_penetration);
+    ok &= print_check(out,
+                      "active-set changes per step in the final phase",
+                      final_changes_per_step,
+                      "<=",
                       bounds.max_active_set_changes);
 
     // Mean reaction against the normal load, if the bodies are on the
     // obstacle in the final phase.
-    const double mean_reaction =
-      reaction_sum / std::max(1u, final_phase_steps);
-    double reaction_error = -1.;
+    const double mean_reaction = reaction_sum / std::max(1u, final_phase_steps);
+    double       reaction_error = -1.;
     if (normal_load > 0. && final_contact_steps > 0)
       {
         reaction_error = std::abs(mean_reaction - normal_load) / normal_load;
@@ -374,7 +402,10 @@ namespace impactfe
             << format_figure(mean_reaction) << " N, normal load "
             << format_figure(normal_load) << " N: relative error "
             << format_figure(reaction_error, 1e-9) << std::endl;
-        ok &= print_check(out, "reaction error", reaction_error, "<=",
+        ok &= print_check(out,
+                          "reaction error",
+                          reaction_error,
+                          "<=",
                           bounds.max_reaction_error);
       }
 

@@ -1,13 +1,13 @@
 #include <impactfe/lcp/contact_routes.h>
 #include <impactfe/lcp/lu.h>
 
-#include "floating_point_mode.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
 #include <sstream>
+
+#include "floating_point_mode.h"
 
 namespace impactfe
 {
@@ -18,7 +18,10 @@ namespace impactfe
       bool
       frictionless(const ContactProblem &p)
       {
-        return p.n_directions == 1 || std::all_of(p.mu.begin(), p.mu.end(), [](double m) { return m == 0.; });
+        return p.n_directions == 1 ||
+               std::all_of(p.mu.begin(), p.mu.end(), [](double m) {
+                 return m == 0.;
+               });
       }
 
       /// The form whose LCP matrix is copositive for a positive semidefinite
@@ -27,13 +30,16 @@ namespace impactfe
       copositive_form(const ContactProblem &p, const ContactOptions &options)
       {
         ContactOptions o = options;
-        o.form           = frictionless(p) ? FrictionForm::frictionless : FrictionForm::facets;
+        o.form =
+          frictionless(p) ? FrictionForm::frictionless : FrictionForm::facets;
         return o;
       }
 
       /// Lemke on an assembled form; impulses and states if solved.
       ContactSolution
-      solve_assembled(const ContactProblem &p, const ContactLCP &lcp, const Result &r)
+      solve_assembled(const ContactProblem &p,
+                      const ContactLCP     &lcp,
+                      const Result         &r)
       {
         ContactSolution s;
         s.form     = lcp.form;
@@ -66,7 +72,9 @@ namespace impactfe
        * O(g^4) for g guessed indices: only used for g <= max_size.
        */
       std::vector<bool>
-      independent_guess(const DenseMatrix &M, const std::vector<double> &z, const std::size_t max_size)
+      independent_guess(const DenseMatrix         &M,
+                        const std::vector<double> &z,
+                        const std::size_t          max_size)
       {
         std::vector<std::size_t> candidates;
         for (std::size_t i = 0; i < z.size(); ++i)
@@ -79,8 +87,11 @@ namespace impactfe
               guess[i] = true;
             return guess;
           }
-        std::stable_sort(candidates.begin(), candidates.end(),
-                         [&](std::size_t a, std::size_t b) { return z[a] > z[b]; });
+        std::stable_sort(candidates.begin(),
+                         candidates.end(),
+                         [&](std::size_t a, std::size_t b) {
+                           return z[a] > z[b];
+                         });
         std::vector<std::size_t> kept;
         for (const std::size_t i : candidates)
           {
@@ -109,7 +120,9 @@ namespace impactfe
     } // namespace
 
     Status
-    lcp_feasibility(const DenseMatrix &M, const std::vector<double> &q, const LemkeOptions &options);
+    lcp_feasibility(const DenseMatrix         &M,
+                    const std::vector<double> &q,
+                    const LemkeOptions        &options);
 
     namespace
     {
@@ -126,31 +139,38 @@ namespace impactfe
        *   is accepted only if the form is feasible (lcp_feasibility()).
        */
       std::string
-      objection_to(const ContactProblem &p, const ContactOptions &options, const ContactSolution &s,
-                   const bool regularised)
+      objection_to(const ContactProblem  &p,
+                   const ContactOptions  &options,
+                   const ContactSolution &s,
+                   const bool             regularised)
       {
         if (s.form == FrictionForm::klarbring)
           {
-            const double tol = std::max(options.lemke.verification_tolerance_factor *
-                                          std::numeric_limits<double>::epsilon() * 4. * std::max(p.n_contacts, 1u),
-                                        1e-10);
+            const double tol =
+              std::max(options.lemke.verification_tolerance_factor *
+                         std::numeric_limits<double>::epsilon() * 4. *
+                         std::max(p.n_contacts, 1u),
+                       1e-10);
             const ContactVerification v = verify_contact_solution(p, s.P, tol);
             if (!v.ok)
               {
                 std::ostringstream m;
-                m << "the Klarbring impulses fail the contact conditions (Signorini " << v.max_signorini_violation
-                  << ", cone " << v.max_cone_violation << ", sliding " << v.max_sliding_violation
-                  << "): W_TT^{-1} ill-conditioned";
+                m << "the Klarbring impulses fail the contact conditions (Signorini "
+                  << v.max_signorini_violation << ", cone "
+                  << v.max_cone_violation << ", sliding "
+                  << v.max_sliding_violation << "): W_TT^{-1} ill-conditioned";
                 return m.str();
               }
           }
-        const double normW = p.W.max_abs(), qmax = max_abs(p.free_velocity) + max_abs(p.gap_term);
-        const bool   huge  = max_abs(s.P) > 1e6 * (normW > 0. ? qmax / normW : 0.);
+        const double normW = p.W.max_abs(),
+                     qmax  = max_abs(p.free_velocity) + max_abs(p.gap_term);
+        const bool huge = max_abs(s.P) > 1e6 * (normW > 0. ? qmax / normW : 0.);
         if (regularised || huge)
           {
-            ContactOptions o = copositive_form(p, options);
+            ContactOptions   o   = copositive_form(p, options);
             const ContactLCP lcp = assemble_contact_lcp(p, o);
-            if (lcp_feasibility(lcp.M, lcp.q, options.lemke) == Status::ray_termination)
+            if (lcp_feasibility(lcp.M, lcp.q, options.lemke) ==
+                Status::ray_termination)
               {
                 std::ostringstream m;
                 m << "impulses up to " << max_abs(s.P)
@@ -166,10 +186,12 @@ namespace impactfe
 
 
     Status
-    lcp_feasibility(const DenseMatrix &M, const std::vector<double> &q, const LemkeOptions &options)
+    lcp_feasibility(const DenseMatrix         &M,
+                    const std::vector<double> &q,
+                    const LemkeOptions        &options)
     {
-      const std::size_t n = q.size();
-      DenseMatrix       A(2 * n, 2 * n, 0.);
+      const std::size_t   n = q.size();
+      DenseMatrix         A(2 * n, 2 * n, 0.);
       std::vector<double> b(2 * n, 0.);
       for (std::size_t i = 0; i < n; ++i)
         {
@@ -190,13 +212,16 @@ namespace impactfe
                                     const ContactOptions  &options,
                                     const ContactSolution *first_attempt)
     {
-      const internal::FlushSubnormalsScope flush_subnormals; // see floating_point_mode.h
+      const internal::FlushSubnormalsScope
+        flush_subnormals; // see floating_point_mode.h
       check_contact_problem(p);
       RoutedContactSolution out;
       unsigned int          total_pivots = 0;
 
       // Record one route; true if it gave a verified solution.
-      auto record = [&](const std::string &kind, const std::string &route, ContactSolution &&s) {
+      auto record = [&](const std::string &kind,
+                        const std::string &route,
+                        ContactSolution  &&s) {
         RouteAttempt a;
         a.kind    = kind;
         a.route   = route;
@@ -206,7 +231,8 @@ namespace impactfe
         total_pivots += s.lcp.pivots;
         if (s.lcp.status == Status::solved)
           {
-            const std::string objection = objection_to(p, options, s, kind == "regularised");
+            const std::string objection =
+              objection_to(p, options, s, kind == "regularised");
             if (!objection.empty())
               {
                 a.status      = Status::numerical_failure;
@@ -233,9 +259,11 @@ namespace impactfe
         for (std::size_t i = 0; i < out.attempts.size(); ++i)
           {
             const RouteAttempt &a = out.attempts[i];
-            m << (i ? "; " : "") << "route " << i + 1 << " (" << a.route << "): " << to_string(a.status);
+            m << (i ? "; " : "") << "route " << i + 1 << " (" << a.route
+              << "): " << to_string(a.status);
             if (a.status != Status::infeasible)
-              m << " after " << a.pivots << (a.pivots == 1 ? " pivot" : " pivots");
+              m << " after " << a.pivots
+                << (a.pivots == 1 ? " pivot" : " pivots");
             if (a.status != Status::solved && !a.message.empty())
               m << " [" << a.message << "]";
           }
@@ -253,17 +281,27 @@ namespace impactfe
           if (record("requested", "as requested", std::move(s)))
             return finish();
         }
-      else if (record("requested", form_name(first) + (first.message.find("singular") != std::string::npos ?
-                                            " (W_TT singular: facets instead of Klarbring)" :
-                                            ""),
-                      solve_assembled(p, first, solve_lemke(first.M, first.q, options.lemke))))
+      else if (record(
+                 "requested",
+                 form_name(first) +
+                   (first.message.find("singular") != std::string::npos ?
+                      " (W_TT singular: facets instead of Klarbring)" :
+                      ""),
+                 solve_assembled(p,
+                                 first,
+                                 solve_lemke(first.M, first.q, options.lemke))))
         return finish();
 
       // 2. The copositive form, if that is not what route 1 solved.
       const ContactOptions copositive = copositive_form(p, options);
       const ContactLCP     lcp        = assemble_contact_lcp(p, copositive);
-      if (first_attempt != nullptr || lcp.form != first.form || lcp.n_facets != first.n_facets)
-        if (record("copositive", form_name(lcp), solve_assembled(p, lcp, solve_lemke(lcp.M, lcp.q, options.lemke))))
+      if (first_attempt != nullptr || lcp.form != first.form ||
+          lcp.n_facets != first.n_facets)
+        if (record("copositive",
+                   form_name(lcp),
+                   solve_assembled(p,
+                                   lcp,
+                                   solve_lemke(lcp.M, lcp.q, options.lemke))))
           return finish();
 
       // 3. A smaller pivot tolerance. The candidate test y_p > tol * eps *
@@ -274,7 +312,8 @@ namespace impactfe
       {
         LemkeOptions o           = options.lemke;
         o.pivot_tolerance_factor = 1e-2 * options.lemke.pivot_tolerance_factor;
-        if (record("small-tolerance", form_name(lcp) + ", pivot tolerance / 100",
+        if (record("small-tolerance",
+                   form_name(lcp) + ", pivot tolerance / 100",
                    solve_assembled(p, lcp, solve_lemke(lcp.M, lcp.q, o))))
           return finish();
       }
@@ -284,8 +323,10 @@ namespace impactfe
         LemkeOptions o = options.lemke;
         o.covering_vector.resize(lcp.q.size());
         for (std::size_t i = 0; i < lcp.q.size(); ++i)
-          o.covering_vector[i] = 1. + 0.5 * std::sin(1. + static_cast<double>(i));
-        if (record("covering", form_name(lcp) + ", covering vector 1 + sin(1 + i) / 2",
+          o.covering_vector[i] =
+            1. + 0.5 * std::sin(1. + static_cast<double>(i));
+        if (record("covering",
+                   form_name(lcp) + ", covering vector 1 + sin(1 + i) / 2",
                    solve_assembled(p, lcp, solve_lemke(lcp.M, lcp.q, o))))
           return finish();
       }
@@ -295,24 +336,28 @@ namespace impactfe
       //    method processes its copositive form; its basis, reduced to
       //    independent columns, starts Lemke on the original form.
       {
-        const double      tau = std::max(p.W.max_abs(), std::numeric_limits<double>::min());
-        const std::size_t m   = p.W.n_rows();
+        const double tau =
+          std::max(p.W.max_abs(), std::numeric_limits<double>::min());
+        const std::size_t m         = p.W.n_rows();
         double            asymmetry = 0.;
         for (std::size_t i = 0; i < m; ++i)
           for (std::size_t j = 0; j < i; ++j)
             asymmetry = std::max(asymmetry, std::abs(p.W(i, j) - p.W(j, i)));
         for (const double base : {1e-10, 1e-6})
           {
-            const double   eps = base + static_cast<double>(m) * asymmetry / tau;
+            const double eps = base + static_cast<double>(m) * asymmetry / tau;
             ContactProblem regularised = p;
             for (std::size_t i = 0; i < m; ++i)
               regularised.W(i, i) += eps * tau;
-            const ContactLCP   rlcp = assemble_contact_lcp(regularised, copositive);
-            LemkeOptions       o    = options.lemke;
-            o.pivot_tolerance_factor = 1e-2 * options.lemke.pivot_tolerance_factor;
-            const Result       r    = solve_lemke(rlcp.M, rlcp.q, o);
+            const ContactLCP rlcp =
+              assemble_contact_lcp(regularised, copositive);
+            LemkeOptions o = options.lemke;
+            o.pivot_tolerance_factor =
+              1e-2 * options.lemke.pivot_tolerance_factor;
+            const Result       r = solve_lemke(rlcp.M, rlcp.q, o);
             std::ostringstream name;
-            name << form_name(lcp) << " warm-started from W + " << eps << " max|W| I";
+            name << form_name(lcp) << " warm-started from W + " << eps
+                 << " max|W| I";
             if (r.status != Status::solved)
               {
                 ContactSolution s;
@@ -322,8 +367,8 @@ namespace impactfe
                 continue;
               }
             const std::vector<bool> guess = independent_guess(lcp.M, r.z, 400);
-            ContactSolution         s =
-              solve_assembled(p, lcp, solve_lemke_warm(lcp.M, lcp.q, guess, options.lemke));
+            ContactSolution         s     = solve_assembled(
+              p, lcp, solve_lemke_warm(lcp.M, lcp.q, guess, options.lemke));
             s.lcp.pivots += r.pivots;
             if (record("regularised", name.str(), std::move(s)))
               return finish();
@@ -335,23 +380,25 @@ namespace impactfe
       if (feasibility == Status::ray_termination)
         {
           ContactSolution s;
-          s.form        = lcp.form;
-          s.n_facets    = lcp.n_facets;
-          s.lcp.status  = Status::infeasible;
-          s.lcp.message = "no z >= 0 with M z + q >= 0 in the " + form_name(lcp) +
-                          " (ray of Lemke's method on the skew-symmetric LCP of that linear program): "
-                          "the problem has no solution";
+          s.form       = lcp.form;
+          s.n_facets   = lcp.n_facets;
+          s.lcp.status = Status::infeasible;
+          s.lcp.message =
+            "no z >= 0 with M z + q >= 0 in the " + form_name(lcp) +
+            " (ray of Lemke's method on the skew-symmetric LCP of that linear program): "
+            "the problem has no solution";
           record("feasibility", "feasibility test", std::move(s));
         }
       else
         {
           RouteAttempt a;
-          a.kind    = "feasibility";
-          a.route   = "feasibility test";
-          a.status  = feasibility;
-          a.message = feasibility == Status::solved ?
-                        "the " + form_name(lcp) + " is feasible: not proven unsolvable" :
-                        "undecided";
+          a.kind   = "feasibility";
+          a.route  = "feasibility test";
+          a.status = feasibility;
+          a.message =
+            feasibility == Status::solved ?
+              "the " + form_name(lcp) + " is feasible: not proven unsolvable" :
+              "undecided";
           out.attempts.push_back(a);
         }
       return finish();

@@ -10,13 +10,13 @@
 #include <impactfe/lcp/lemke.h>
 #include <impactfe/lcp/lu.h>
 
-#include "floating_point_mode.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+
+#include "floating_point_mode.h"
 
 namespace impactfe
 {
@@ -87,7 +87,9 @@ namespace impactfe
       }
 
       void
-      check_input(const DenseMatrix &M, const std::vector<double> &q, const LemkeOptions &options)
+      check_input(const DenseMatrix         &M,
+                  const std::vector<double> &q,
+                  const LemkeOptions        &options)
       {
         if (M.n_rows() != M.n_cols())
           throw std::invalid_argument("LCP: M is not square");
@@ -99,10 +101,12 @@ namespace impactfe
         if (!d.empty())
           {
             if (d.size() != q.size())
-              throw std::invalid_argument("LCP: covering vector has the wrong size");
+              throw std::invalid_argument(
+                "LCP: covering vector has the wrong size");
             for (const double v : d)
               if (!(v > 0.) || !std::isfinite(v))
-                throw std::invalid_argument("LCP: covering vector must be positive");
+                throw std::invalid_argument(
+                  "LCP: covering vector must be positive");
           }
       }
 
@@ -111,7 +115,9 @@ namespace impactfe
       class LemkeEngine
       {
       public:
-        LemkeEngine(const DenseMatrix &M_, const std::vector<double> &q_, const LemkeOptions &options_)
+        LemkeEngine(const DenseMatrix         &M_,
+                    const std::vector<double> &q_,
+                    const LemkeOptions        &options_)
           : n(static_cast<int>(q_.size()))
           , M(M_)
           , q(q_)
@@ -203,7 +209,7 @@ namespace impactfe
         void
         run(const unsigned int cap, Result &result)
         {
-          const int z0 = 2 * n;
+          const int           z0 = 2 * n;
           std::vector<double> y(n);
 
           // --- the artificial variable enters
@@ -211,7 +217,9 @@ namespace impactfe
           int r = initial_ratio_test(y);
           if (r < 0)
             {
-              fail(result, Status::numerical_failure, "no row can start the path (is d > 0?)");
+              fail(result,
+                   Status::numerical_failure,
+                   "no row can start the path (is d > 0?)");
               return;
             }
           int leaving = basic[r];
@@ -224,7 +232,8 @@ namespace impactfe
               if (result.pivots >= cap)
                 {
                   std::ostringstream s;
-                  s << "pivot cap " << cap << " reached; z0 = " << x[position[z0]];
+                  s << "pivot cap " << cap
+                    << " reached; z0 = " << x[position[z0]];
                   fail(result, Status::pivot_limit, s.str());
                   return;
                 }
@@ -232,29 +241,36 @@ namespace impactfe
               compute_column(entering, y);
               if (!all_finite(y))
                 {
-                  fail(result, Status::numerical_failure, "non-finite entering column");
+                  fail(result,
+                       Status::numerical_failure,
+                       "non-finite entering column");
                   return;
                 }
               r = ratio_test(y);
               if (r < 0)
                 {
                   std::ostringstream s;
-                  s << "ray termination after " << result.pivots << " pivots: "
-                    << (entering < n ? "w_" : "z_") << (entering % n)
-                    << " cannot enter (no positive entry in its column); z0 = " << x[position[z0]];
+                  s << "ray termination after " << result.pivots
+                    << " pivots: " << (entering < n ? "w_" : "z_")
+                    << (entering % n)
+                    << " cannot enter (no positive entry in its column); z0 = "
+                    << x[position[z0]];
                   // z0 within rounding of 0 (a degenerate end of the path,
                   // e.g. a singular W): the point without z0 may already
                   // solve the LCP. Accepted only if it passes verify().
                   std::vector<double> z_end, w_end;
                   extract(z_end, w_end);
-                  const Verification v = verify(M, q, z_end, w_end, options.verification_tolerance_factor);
+                  const Verification v = verify(
+                    M, q, z_end, w_end, options.verification_tolerance_factor);
                   if (v.ok)
                     {
                       result.status       = Status::solved;
                       result.verification = v;
-                      note = "; at the last pivot the entering column had no positive entry, but z0 = " +
-                             std::to_string(x[position[z0]]) + " was within rounding of 0 and the point "
-                             "without it passed verification";
+                      note =
+                        "; at the last pivot the entering column had no positive entry, but z0 = " +
+                        std::to_string(x[position[z0]]) +
+                        " was within rounding of 0 and the point "
+                        "without it passed verification";
                       return;
                     }
                   result.driving_variable = entering;
@@ -267,9 +283,10 @@ namespace impactfe
               ++since_refactor;
 
               // --- keep the basis inverse accurate
-              const unsigned int K = options.refactor_interval > 0 ?
-                                       options.refactor_interval :
-                                       std::max<unsigned int>(100u, static_cast<unsigned int>(n));
+              const unsigned int K =
+                options.refactor_interval > 0 ?
+                  options.refactor_interval :
+                  std::max<unsigned int>(100u, static_cast<unsigned int>(n));
               bool do_refactor = (since_refactor >= K);
               if (!do_refactor && options.drift_check_interval > 0 &&
                   result.pivots % options.drift_check_interval == 0)
@@ -279,7 +296,9 @@ namespace impactfe
                   since_refactor = 0;
                   if (!refactor())
                     {
-                      fail(result, Status::numerical_failure, "basis became singular at refactorisation");
+                      fail(result,
+                           Status::numerical_failure,
+                           "basis became singular at refactorisation");
                       return;
                     }
                 }
@@ -418,7 +437,9 @@ namespace impactfe
 
         /// out += alpha * (system column of variable v)
         void
-        add_column(const int v, const double alpha, std::vector<double> &out) const
+        add_column(const int            v,
+                   const double         alpha,
+                   std::vector<double> &out) const
         {
           if (v < n)
             out[v] += alpha;
@@ -475,7 +496,8 @@ namespace impactfe
 
         /// Lexicographic tie-break among the rows T (divisors delta).
         int
-        lexico_break(std::vector<int> &T, const std::vector<double> &delta) const
+        lexico_break(std::vector<int>          &T,
+                     const std::vector<double> &delta) const
         {
           const double tie = options.tie_tolerance_factor * eps;
           for (int c = 0; c < n && T.size() > 1; ++c)
@@ -485,7 +507,8 @@ namespace impactfe
                 umin = std::min(umin, binv_entry(p, c) / delta[p]);
               std::vector<int> keep;
               for (const int p : T)
-                if (binv_entry(p, c) / delta[p] <= umin + tie * binv_max / delta[p])
+                if (binv_entry(p, c) / delta[p] <=
+                    umin + tie * binv_max / delta[p])
                   keep.push_back(p);
               T.swap(keep);
             }
@@ -511,7 +534,8 @@ namespace impactfe
           const double     tie   = options.tie_tolerance_factor * eps;
           std::vector<int> T;
           for (int p = 0; p < n; ++p)
-            if (delta[p] > ptol && x[p] / delta[p] - vmin <= tie * (std::abs(vmin) + xnorm / delta[p]))
+            if (delta[p] > ptol && x[p] / delta[p] - vmin <=
+                                     tie * (std::abs(vmin) + xnorm / delta[p]))
               T.push_back(p);
           return lexico_break(T, delta);
         }
@@ -531,7 +555,8 @@ namespace impactfe
           const double     tie   = options.tie_tolerance_factor * eps;
           std::vector<int> T;
           for (int p = 0; p < n; ++p)
-            if (y[p] > ptol && std::max(x[p], 0.) / y[p] - vmin <= tie * (vmin + xnorm / y[p]))
+            if (y[p] > ptol &&
+                std::max(x[p], 0.) / y[p] - vmin <= tie * (vmin + xnorm / y[p]))
               T.push_back(p);
           const int pz0 = position[2 * n];
           for (const int p : T)
@@ -567,13 +592,13 @@ namespace impactfe
                   col[p] -= f * y[p];
                   binv_max = std::max(binv_max, std::abs(col[p]));
                 }
-              col[r] = f;
+              col[r]   = f;
               binv_max = std::max(binv_max, std::abs(f));
             }
           if (leaving < n)
             {
               // the unit column of the leaving slack becomes dense
-              const int c = leaving;
+              const int c  = leaving;
               slack_pos[c] = -1;
               double *col  = &binv[static_cast<std::size_t>(c) * n];
               for (int p = 0; p < n; ++p)
@@ -589,9 +614,9 @@ namespace impactfe
           if (entering < n)
             {
               // B^{-1} e_c = e_r exactly once w_c is basic at position r
-              const int c    = entering;
-              const int idx  = dense_index[c];
-              const int last = dense_cols.back();
+              const int c       = entering;
+              const int idx     = dense_index[c];
+              const int last    = dense_cols.back();
               dense_cols[idx]   = last;
               dense_index[last] = idx;
               dense_cols.pop_back();
@@ -639,7 +664,9 @@ namespace impactfe
         }
 
         void
-        fail(Result &result, const Status status, const std::string &message) const
+        fail(Result            &result,
+             const Status       status,
+             const std::string &message) const
         {
           result.status = status;
           result.z.clear();
@@ -654,32 +681,42 @@ namespace impactfe
       unsigned int
       pivot_cap(const LemkeOptions &options, const std::size_t n)
       {
-        return options.max_pivots > 0 ? options.max_pivots :
-                                        options.pivot_factor * static_cast<unsigned int>(n + 1);
+        return options.max_pivots > 0 ?
+                 options.max_pivots :
+                 options.pivot_factor * static_cast<unsigned int>(n + 1);
       }
 
 
 
       /// After a successful run: extract, verify, refactorise once if needed.
       void
-      finish(LemkeEngine &engine, const DenseMatrix &M, const std::vector<double> &q,
-             const LemkeOptions &options, Result &result)
+      finish(LemkeEngine               &engine,
+             const DenseMatrix         &M,
+             const std::vector<double> &q,
+             const LemkeOptions        &options,
+             Result                    &result)
       {
         engine.extract(result.z, result.w);
-        result.verification = verify(M, q, result.z, result.w, options.verification_tolerance_factor);
+        result.verification = verify(
+          M, q, result.z, result.w, options.verification_tolerance_factor);
         if (!result.verification.ok)
           {
             if (engine.refactor())
               {
                 engine.extract(result.z, result.w);
                 result.verification =
-                  verify(M, q, result.z, result.w, options.verification_tolerance_factor);
+                  verify(M,
+                         q,
+                         result.z,
+                         result.w,
+                         options.verification_tolerance_factor);
               }
             if (!result.verification.ok)
               {
                 std::ostringstream s;
-                s << "the final point failed verification (min z " << result.verification.min_z
-                  << ", min w " << result.verification.min_w << ", residual "
+                s << "the final point failed verification (min z "
+                  << result.verification.min_z << ", min w "
+                  << result.verification.min_w << ", residual "
                   << result.verification.residual << ", max |z_i w_i| "
                   << result.verification.max_complementarity << ")";
                 result.status = Status::numerical_failure;
@@ -694,26 +731,31 @@ namespace impactfe
 
 
       bool
-      trivial(const DenseMatrix &M, const std::vector<double> &q, const LemkeOptions &options,
-              Result &result)
+      trivial(const DenseMatrix         &M,
+              const std::vector<double> &q,
+              const LemkeOptions        &options,
+              Result                    &result)
       {
         for (const double v : q)
           if (v < 0.)
             return false;
-        result.status       = Status::solved;
+        result.status = Status::solved;
         result.z.assign(q.size(), 0.);
         result.w            = q;
         result.pivots       = 0;
-        result.verification = verify(M, q, result.z, result.w, options.verification_tolerance_factor);
-        result.message      = "q >= 0: z = 0 is the solution";
+        result.verification = verify(
+          M, q, result.z, result.w, options.verification_tolerance_factor);
+        result.message = "q >= 0: z = 0 is the solution";
         return true;
       }
 
 
 
       void
-      solve_cold(const DenseMatrix &M, const std::vector<double> &q, const LemkeOptions &options,
-                 Result &result)
+      solve_cold(const DenseMatrix         &M,
+                 const std::vector<double> &q,
+                 const LemkeOptions        &options,
+                 Result                    &result)
       {
         const std::size_t   n = q.size();
         std::vector<double> d = options.covering_vector;
@@ -728,7 +770,8 @@ namespace impactfe
             if (result.status == Status::solved)
               {
                 std::ostringstream s;
-                s << "solved by Lemke's method in " << result.pivots << " pivots" << engine.note;
+                s << "solved by Lemke's method in " << result.pivots
+                  << " pivots" << engine.note;
                 result.message = s.str();
               }
           }
@@ -757,7 +800,8 @@ namespace impactfe
             r -= mi[j] * z[j];
           residual[i] = r;
         }
-      return verify_with_residual(M.linfty_norm(), q, z, w, residual, tolerance_factor);
+      return verify_with_residual(
+        M.linfty_norm(), q, z, w, residual, tolerance_factor);
     }
 
 
@@ -790,23 +834,30 @@ namespace impactfe
         }
       v.relative_complementarity = (sum == 0. ? 0. : sum / (zmax * s));
       auto rel                   = [](const double a, const double b) {
-        return a <= 0. ? 0. : (b > 0. ? a / b : std::numeric_limits<double>::infinity());
+        return a <= 0. ?
+                                   0. :
+                                   (b > 0. ? a / b : std::numeric_limits<double>::infinity());
       };
-      v.relative_error = std::max({v.relative_complementarity, rel(v.residual, s), rel(-v.min_z, zmax),
+      v.relative_error = std::max({v.relative_complementarity,
+                                   rel(v.residual, s),
+                                   rel(-v.min_z, zmax),
                                    rel(-v.min_w, s)});
-      const double t             = v.tolerance;
-      v.ok = std::isfinite(sum) && std::isfinite(v.residual) && all_finite(z) && all_finite(w) &&
-             v.min_z >= -t * zmax && v.min_w >= -t * s && v.residual <= t * s &&
-             v.max_complementarity <= t * zmax * s;
+      const double t   = v.tolerance;
+      v.ok = std::isfinite(sum) && std::isfinite(v.residual) && all_finite(z) &&
+             all_finite(w) && v.min_z >= -t * zmax && v.min_w >= -t * s &&
+             v.residual <= t * s && v.max_complementarity <= t * zmax * s;
       return v;
     }
 
 
 
     Result
-    solve_lemke(const DenseMatrix &M, const std::vector<double> &q, const LemkeOptions &options)
+    solve_lemke(const DenseMatrix         &M,
+                const std::vector<double> &q,
+                const LemkeOptions        &options)
     {
-      const internal::FlushSubnormalsScope flush_subnormals; // see floating_point_mode.h
+      const internal::FlushSubnormalsScope
+        flush_subnormals; // see floating_point_mode.h
       check_input(M, q, options);
       Result result;
       result.start_path = StartPath::cold;
@@ -824,7 +875,8 @@ namespace impactfe
                      const std::vector<bool>   &guess,
                      const LemkeOptions        &options)
     {
-      const internal::FlushSubnormalsScope flush_subnormals; // see floating_point_mode.h
+      const internal::FlushSubnormalsScope
+        flush_subnormals; // see floating_point_mode.h
       check_input(M, q, options);
       if (guess.size() != q.size())
         throw std::invalid_argument("LCP: the guess has the wrong size");
@@ -846,7 +898,8 @@ namespace impactfe
                 finish(engine, M, q, options, result);
                 if (result.status == Status::solved)
                   {
-                    result.message = "the guessed complementary basis is the solution (0 pivots)";
+                    result.message =
+                      "the guessed complementary basis is the solution (0 pivots)";
                     return result;
                   }
                 why = "guessed basis looked feasible but failed verification";
@@ -862,8 +915,8 @@ namespace impactfe
                 if (warm.status == Status::solved)
                   {
                     std::ostringstream s;
-                    s << "solved by Lemke's method from the guessed basis in " << warm.pivots
-                      << " pivots" << engine.note;
+                    s << "solved by Lemke's method from the guessed basis in "
+                      << warm.pivots << " pivots" << engine.note;
                     warm.message = s.str();
                     return warm;
                   }
@@ -883,7 +936,7 @@ namespace impactfe
       result.pivots += warm_pivots;
       result.refactorisations += warm_refac;
       result.start_path = StartPath::guess_fallback_cold;
-      result.message    = "guess rejected (" + why + "); cold: " + result.message;
+      result.message = "guess rejected (" + why + "); cold: " + result.message;
       return result;
     }
   } // namespace lcp

@@ -10,7 +10,8 @@ namespace impactfe
   namespace lcp
   {
     bool
-    LUFactorization::factorize(const DenseMatrix &A, const double relative_pivot_tolerance)
+    LUFactorization::factorize(const DenseMatrix &A,
+                               const double       relative_pivot_tolerance)
     {
       n  = A.n_rows();
       lu = A;
@@ -19,7 +20,7 @@ namespace impactfe
         permutation[i] = i;
 
       const double amax = A.max_abs();
-      pivot_ratio       = (n == 0 ? 1. : std::numeric_limits<double>::infinity());
+      pivot_ratio = (n == 0 ? 1. : std::numeric_limits<double>::infinity());
       if (n == 0)
         return true;
       if (!(amax > 0.) || !std::isfinite(amax))
@@ -41,7 +42,8 @@ namespace impactfe
           const std::size_t ke = std::min(n, kb + panel);
           for (std::size_t k = kb; k < ke; ++k)
             {
-              // partial pivoting: the largest entry of column k at or below row k
+              // partial pivoting: the largest entry of column k at or below row
+              // k
               std::size_t p    = k;
               double      pmax = std::abs(lu(k, k));
               for (std::size_t i = k + 1; i < n; ++i)
@@ -98,11 +100,13 @@ namespace impactfe
               std::size_t k  = kb;
               for (; k + 4 <= ke; k += 4)
                 {
-                  const double  l0 = ri[k], l1 = ri[k + 1], l2 = ri[k + 2], l3 = ri[k + 3];
-                  const double *r0 = lu.row(k), *r1 = lu.row(k + 1), *r2 = lu.row(k + 2),
-                               *r3 = lu.row(k + 3);
+                  const double l0 = ri[k], l1 = ri[k + 1], l2 = ri[k + 2],
+                               l3  = ri[k + 3];
+                  const double *r0 = lu.row(k), *r1 = lu.row(k + 1),
+                               *r2 = lu.row(k + 2), *r3 = lu.row(k + 3);
                   for (std::size_t j = ke; j < n; ++j)
-                    ri[j] = (((ri[j] - l0 * r0[j]) - l1 * r1[j]) - l2 * r2[j]) - l3 * r3[j];
+                    ri[j] = (((ri[j] - l0 * r0[j]) - l1 * r1[j]) - l2 * r2[j]) -
+                            l3 * r3[j];
                 }
               for (; k < ke; ++k)
                 {
@@ -197,10 +201,11 @@ namespace impactfe
 
 
     bool
-    CholeskyFactorization::factorize(const DenseMatrix &A, const double relative_pivot_tolerance)
+    CholeskyFactorization::factorize(const DenseMatrix &A,
+                                     const double relative_pivot_tolerance)
     {
-      n = A.n_rows();
-      u = A;
+      n           = A.n_rows();
+      u           = A;
       double dmax = 0.;
       for (std::size_t i = 0; i < n; ++i)
         dmax = std::max(dmax, u(i, i));
@@ -219,7 +224,8 @@ namespace impactfe
           for (std::size_t k = kb; k < ke; ++k)
             {
               double *rk = u.row(k);
-              if (!(rk[k] > relative_pivot_tolerance * dmax) || !std::isfinite(rk[k]))
+              if (!(rk[k] > relative_pivot_tolerance * dmax) ||
+                  !std::isfinite(rk[k]))
                 return false;
               const double pivot = std::sqrt(rk[k]);
               rk[k]              = pivot;
@@ -241,10 +247,12 @@ namespace impactfe
               std::size_t k  = kb;
               for (; k + 4 <= ke; k += 4)
                 {
-                  const double *r0 = u.row(k), *r1 = u.row(k + 1), *r2 = u.row(k + 2), *r3 = u.row(k + 3);
-                  const double  l0 = r0[i], l1 = r1[i], l2 = r2[i], l3 = r3[i];
+                  const double *r0 = u.row(k), *r1 = u.row(k + 1),
+                               *r2 = u.row(k + 2), *r3 = u.row(k + 3);
+                  const double l0 = r0[i], l1 = r1[i], l2 = r2[i], l3 = r3[i];
                   for (std::size_t j = i; j < n; ++j)
-                    ri[j] = (((ri[j] - l0 * r0[j]) - l1 * r1[j]) - l2 * r2[j]) - l3 * r3[j];
+                    ri[j] = (((ri[j] - l0 * r0[j]) - l1 * r1[j]) - l2 * r2[j]) -
+                            l3 * r3[j];
                 }
               for (; k < ke; ++k)
                 {

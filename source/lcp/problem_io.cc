@@ -91,7 +91,10 @@ namespace impactfe
         /// An integer token followed by an optional trailing character
         /// (CSparse writes "3822," and "1334-by-1334,").
         long
-        integer_with_suffix(const std::string &what, const long min, const long max, const char suffix)
+        integer_with_suffix(const std::string &what,
+                            const long         min,
+                            const long         max,
+                            const char         suffix)
         {
           if (!at_end() && !tokens[pos].empty() && tokens[pos].back() == suffix)
             {
@@ -111,7 +114,7 @@ namespace impactfe
           std::string t = tokens[pos];
           if (!t.empty() && t.back() == ',')
             t.pop_back();
-          const std::size_t by = t.find("-by-");
+          const std::size_t by  = t.find("-by-");
           bool              ok0 = false, ok1 = false;
           double            r = 0., c = 0.;
           if (by != std::string::npos)
@@ -119,11 +122,12 @@ namespace impactfe
               r = parse(t.substr(0, by), ok0);
               c = parse(t.substr(by + 4), ok1);
             }
-          if (!ok0 || !ok1 || r != std::floor(r) || c != std::floor(c) || r < 0 || c < 0)
+          if (!ok0 || !ok1 || r != std::floor(r) || c != std::floor(c) ||
+              r < 0 || c < 0)
             error("expected 'rows-by-columns,' for " + what);
           if (r != rows || c != columns)
-            error(what + " differs from the storage header (" + std::to_string(rows) + " x " +
-                  std::to_string(columns) + ")");
+            error(what + " differs from the storage header (" +
+                  std::to_string(rows) + " x " + std::to_string(columns) + ")");
           ++pos;
         }
 
@@ -159,7 +163,8 @@ namespace impactfe
           if (!ok || v != std::floor(v) || v < min || v > max)
             {
               std::ostringstream s;
-              s << "expected an integer in [" << min << ", " << max << "] for " << what;
+              s << "expected an integer in [" << min << ", " << max << "] for "
+                << what;
               error(s.str());
             }
           ++pos;
@@ -170,15 +175,15 @@ namespace impactfe
         static double
         parse(const std::string &t, bool &ok)
         {
-          const char *b = t.c_str();
-          char       *e = nullptr;
-          errno         = 0;
+          const char *b  = t.c_str();
+          char       *e  = nullptr;
+          errno          = 0;
           const double v = std::strtod(b, &e);
           // ERANGE on underflow (a subnormal or a value that rounds to 0,
           // e.g. far-field entries of an FE Delassus operator) is fine: the
           // value is the closest double. Overflow is not.
           const bool overflow = (errno == ERANGE && std::abs(v) > 1.);
-          ok                  = (e != b && *e == '\0' && !overflow && std::isfinite(v));
+          ok = (e != b && *e == '\0' && !overflow && std::isfinite(v));
           return v;
         }
 
@@ -213,8 +218,12 @@ namespace impactfe
       {
         long origin = 0;
         // the optional origin stands alone on its line
-        if (t.peek_text() == "1" || t.peek_text() == "2" || t.peek_text() == "3")
-          origin = t.integer("the sparse matrix origin (1 triplet, 2 CSC, 3 CSR)", 1, 3);
+        if (t.peek_text() == "1" || t.peek_text() == "2" ||
+            t.peek_text() == "3")
+          origin =
+            t.integer("the sparse matrix origin (1 triplet, 2 CSC, 3 CSR)",
+                      1,
+                      3);
         if (t.peek_text() == "(null)")
           t.error("the sparse matrix was written as (null)");
         if (t.peek_text() == "CSparse" || t.peek_text() == "CXSparse")
@@ -223,9 +232,11 @@ namespace impactfe
         if (triplet)
           t.expect("triplet:", "");
         if (origin == 1 && !triplet)
-          t.error("origin 1 (triplet) announced, but the header is not 'triplet: ...'");
+          t.error(
+            "origin 1 (triplet) announced, but the header is not 'triplet: ...'");
         if (triplet && origin > 1)
-          t.error("a triplet header, but origin " + std::to_string(origin) + " (compressed) announced");
+          t.error("a triplet header, but origin " + std::to_string(origin) +
+                  " (compressed) announced");
         const bool by_rows = (origin == 3);
         t.dimensions("the sparse matrix size", size0, size1);
         t.expect("nzmax:", "in the sparse matrix header");
@@ -241,7 +252,8 @@ namespace impactfe
 
         auto entry = [&](const long i, const long j, const double v) {
           if (i < 0 || i >= size0 || j < 0 || j >= size1)
-            t.error("entry (" + std::to_string(i) + ", " + std::to_string(j) + ") outside the matrix");
+            t.error("entry (" + std::to_string(i) + ", " + std::to_string(j) +
+                    ") outside the matrix");
           M(i, j) += v;
         };
 
@@ -250,7 +262,8 @@ namespace impactfe
             for (long p = 0; p < nnz; ++p)
               {
                 const long i = t.integer("a triplet row index", 0, size0 - 1);
-                const long j = t.integer("a triplet column index", 0, size1 - 1);
+                const long j =
+                  t.integer("a triplet column index", 0, size1 - 1);
                 t.expect(":", "after a triplet's indices");
                 entry(i, j, t.number("a triplet value"));
               }
@@ -261,14 +274,17 @@ namespace impactfe
         long       next    = 0; // the location the next column must start at
         for (long j = 0; j < n_outer; ++j)
           {
-            t.expect("col", by_rows ? "(row " + std::to_string(j) + " of a compressed-row matrix)" :
-                                      "(column " + std::to_string(j) + ")");
+            t.expect("col",
+                     by_rows ? "(row " + std::to_string(j) +
+                                 " of a compressed-row matrix)" :
+                               "(column " + std::to_string(j) + ")");
             t.integer("the column number", j, j);
             t.expect(":", "after the column number");
             t.expect("locations", "in a column header");
             t.integer("the first location of the column", next, next);
             t.expect("to", "in a column header");
-            const long last = t.integer("the last location of the column", next - 1, nnz - 1);
+            const long last =
+              t.integer("the last location of the column", next - 1, nnz - 1);
             for (long p = next; p <= last; ++p)
               {
                 const long i = t.integer("a row index", 0, n_inner - 1);
@@ -282,16 +298,17 @@ namespace impactfe
             next = last + 1;
           }
         if (next != nnz)
-          t.error("the columns hold " + std::to_string(next) + " entries, the header says nnz = " +
-                  std::to_string(nnz));
+          t.error("the columns hold " + std::to_string(next) +
+                  " entries, the header says nnz = " + std::to_string(nnz));
       }
 
       DenseMatrix
       read_numerics_matrix(Tokens &t)
       {
         const long storage = t.integer("the matrix storage type", 0, 2);
-        const long size0   = t.integer("the number of matrix rows", 0, max_size);
-        const long size1   = t.integer("the number of matrix columns", 0, max_size);
+        const long size0 = t.integer("the number of matrix rows", 0, max_size);
+        const long size1 =
+          t.integer("the number of matrix columns", 0, max_size);
         DenseMatrix M(size0, size1, 0.);
         if (storage == 2)
           {
@@ -300,8 +317,10 @@ namespace impactfe
           }
         if (storage == 0)
           {
-            const long r = t.integer("the dense matrix row count", size0, size0);
-            const long c = t.integer("the dense matrix column count", size1, size1);
+            const long r =
+              t.integer("the dense matrix row count", size0, size0);
+            const long c =
+              t.integer("the dense matrix column count", size1, size1);
             for (long j = 0; j < c; ++j) // column-major
               for (long i = 0; i < r; ++i)
                 M(i, j) = t.number("a matrix entry");
@@ -311,20 +330,25 @@ namespace impactfe
         const long nbblocks = t.integer("nbblocks", 0, max_size);
         if (nbblocks == 0)
           return M;
-        const long          bn0 = t.integer("blocknumber0", 1, size0);
-        const long          bn1 = t.integer("blocknumber1", 1, size1);
-        std::vector<long>   rs(bn0), cs(bn1);
+        const long        bn0 = t.integer("blocknumber0", 1, size0);
+        const long        bn1 = t.integer("blocknumber1", 1, size1);
+        std::vector<long> rs(bn0), cs(bn1);
         for (long i = 0; i < bn0; ++i)
-          rs[i] = t.integer("a cumulative block row size", i == 0 ? 1 : rs[i - 1] + 1, size0);
+          rs[i] = t.integer("a cumulative block row size",
+                            i == 0 ? 1 : rs[i - 1] + 1,
+                            size0);
         for (long i = 0; i < bn1; ++i)
-          cs[i] = t.integer("a cumulative block column size", i == 0 ? 1 : cs[i - 1] + 1, size1);
+          cs[i] = t.integer("a cumulative block column size",
+                            i == 0 ? 1 : cs[i - 1] + 1,
+                            size1);
         if (rs.back() != size0 || cs.back() != size1)
           t.error("block sizes do not add up to the matrix size");
         const long        filled1 = t.integer("filled1", bn0 + 1, bn0 + 1);
         const long        filled2 = t.integer("filled2", nbblocks, nbblocks);
         std::vector<long> index1(filled1), index2(filled2);
         for (long i = 0; i < filled1; ++i)
-          index1[i] = t.integer("index1_data", i == 0 ? 0 : index1[i - 1], filled2);
+          index1[i] =
+            t.integer("index1_data", i == 0 ? 0 : index1[i - 1], filled2);
         if (index1[0] != 0 || index1.back() != filled2)
           t.error("index1_data must run from 0 to filled2");
         for (long i = 0; i < filled2; ++i)
@@ -348,7 +372,9 @@ namespace impactfe
       /// A NumericsMatrix in the requested storage, at full precision (17
       /// significant digits, unlike Siconos' %g for sparse matrices).
       void
-      write_matrix(std::ostream &out, const DenseMatrix &M, const MatrixStorage storage)
+      write_matrix(std::ostream       &out,
+                   const DenseMatrix  &M,
+                   const MatrixStorage storage)
       {
         if (storage == MatrixStorage::dense)
           {
@@ -362,7 +388,7 @@ namespace impactfe
               }
             return;
           }
-        std::size_t nnz = 0;
+        std::size_t nnz   = 0;
         double      norm1 = 0.;
         for (std::size_t j = 0; j < M.n_cols(); ++j)
           {
@@ -376,14 +402,17 @@ namespace impactfe
             norm1 = std::max(norm1, column_sum);
           }
         const bool triplet = (storage == MatrixStorage::triplet);
-        out << 2 << '\n' << M.n_rows() << '\n' << M.n_cols() << '\n' << (triplet ? 1 : 2) << '\n';
+        out << 2 << '\n'
+            << M.n_rows() << '\n'
+            << M.n_cols() << '\n'
+            << (triplet ? 1 : 2) << '\n';
         out << "CSparse Version 3.1.9 text layout, written by impactfe\n";
         if (triplet)
-          out << "triplet: " << M.n_rows() << "-by-" << M.n_cols() << ", nzmax: " << nnz << " nnz: " << nnz
-              << '\n';
+          out << "triplet: " << M.n_rows() << "-by-" << M.n_cols()
+              << ", nzmax: " << nnz << " nnz: " << nnz << '\n';
         else
-          out << M.n_rows() << "-by-" << M.n_cols() << ", nzmax: " << nnz << " nnz: " << nnz
-              << ", 1-norm: " << norm1 << '\n';
+          out << M.n_rows() << "-by-" << M.n_cols() << ", nzmax: " << nnz
+              << " nnz: " << nnz << ", 1-norm: " << norm1 << '\n';
         std::size_t location = 0;
         for (std::size_t j = 0; j < M.n_cols(); ++j)
           {
@@ -415,12 +444,15 @@ namespace impactfe
       if (t.at_end())
         t.error("empty file");
       bool         ok[4];
-      const double a0 = t.peek_number(0, ok[0]), a1 = t.peek_number(1, ok[1]), a2 = t.peek_number(2, ok[2]),
-                   a3 = t.peek_number(3, ok[3]);
+      const double a0 = t.peek_number(0, ok[0]), a1 = t.peek_number(1, ok[1]),
+                   a2 = t.peek_number(2, ok[2]), a3 = t.peek_number(3, ok[3]);
       if (!(ok[0] && ok[1] && ok[2] && ok[3]))
-        t.error("not a Siconos LCP or friction-contact file: it must start with four integers");
-      const bool is_lcp = (a1 == 0 || a1 == 1 || a1 == 2) && a2 == a0 && a3 == a0;
-      const bool is_fc  = (a0 == 1 || a0 == 2 || a0 == 3) && (a2 == 0 || a2 == 1 || a2 == 2) && a3 == a0 * a1;
+        t.error(
+          "not a Siconos LCP or friction-contact file: it must start with four integers");
+      const bool is_lcp =
+        (a1 == 0 || a1 == 1 || a1 == 2) && a2 == a0 && a3 == a0;
+      const bool is_fc = (a0 == 1 || a0 == 2 || a0 == 3) &&
+                         (a2 == 0 || a2 == 1 || a2 == 2) && a3 == a0 * a1;
 
       ProblemFile file;
       if (is_lcp)
@@ -428,7 +460,8 @@ namespace impactfe
           file.type    = ProblemType::lcp;
           const long n = t.integer("the LCP size", 0, max_size);
           file.lcp.M   = read_numerics_matrix(t);
-          if (file.lcp.M.n_rows() != std::size_t(n) || file.lcp.M.n_cols() != std::size_t(n))
+          if (file.lcp.M.n_rows() != std::size_t(n) ||
+              file.lcp.M.n_cols() != std::size_t(n))
             t.error("the matrix is not n x n");
           file.lcp.q.resize(n);
           for (auto &v : file.lcp.q)
@@ -437,11 +470,13 @@ namespace impactfe
         }
       if (is_fc)
         {
-          file.type       = ProblemType::friction_contact;
+          file.type         = ProblemType::friction_contact;
           ContactProblem &p = file.contact;
-          p.n_directions  = static_cast<unsigned int>(t.integer("the contact dimension", 1, 3));
-          p.n_contacts    = static_cast<unsigned int>(t.integer("the number of contacts", 0, max_size));
-          p.W             = read_numerics_matrix(t);
+          p.n_directions =
+            static_cast<unsigned int>(t.integer("the contact dimension", 1, 3));
+          p.n_contacts = static_cast<unsigned int>(
+            t.integer("the number of contacts", 0, max_size));
+          p.W                 = read_numerics_matrix(t);
           const std::size_t m = std::size_t(p.n_contacts) * p.n_directions;
           if (p.W.n_rows() != m || p.W.n_cols() != m)
             t.error("the matrix is not (d n_c) x (d n_c)");
@@ -458,7 +493,8 @@ namespace impactfe
           p.gap_term.assign(p.n_contacts, 0.);
           return file;
         }
-      t.error("not a Siconos LCP (n, storage, n, n, ...) or friction-contact (d, n_c, storage, d n_c, ...) file");
+      t.error(
+        "not a Siconos LCP (n, storage, n, n, ...) or friction-contact (d, n_c, storage, d n_c, ...) file");
     }
 
 
@@ -468,14 +504,18 @@ namespace impactfe
     {
       std::ifstream in(filename);
       if (!in)
-        throw std::runtime_error(filename + ": cannot open the file for reading");
+        throw std::runtime_error(filename +
+                                 ": cannot open the file for reading");
       return read_problem(in, filename);
     }
 
 
 
     void
-    write_lcp(std::ostream &out, const DenseMatrix &M, const std::vector<double> &q, const MatrixStorage storage)
+    write_lcp(std::ostream              &out,
+              const DenseMatrix         &M,
+              const std::vector<double> &q,
+              const MatrixStorage        storage)
     {
       if (M.n_rows() != q.size() || M.n_cols() != q.size())
         throw std::invalid_argument("write_lcp: inconsistent sizes");
@@ -491,7 +531,9 @@ namespace impactfe
 
 
     void
-    write_friction_contact(std::ostream &out, const ContactProblem &p, const MatrixStorage storage)
+    write_friction_contact(std::ostream         &out,
+                           const ContactProblem &p,
+                           const MatrixStorage   storage)
     {
       check_contact_problem(p);
       const auto old = out.precision(17);
@@ -499,7 +541,9 @@ namespace impactfe
       write_matrix(out, p.W, storage);
       for (unsigned int c = 0; c < p.n_contacts; ++c)
         for (unsigned int a = 0; a < p.n_directions; ++a)
-          out << p.free_velocity[c * p.n_directions + a] + (a == 0 ? p.gap_term[c] : 0.) << ' ';
+          out << p.free_velocity[c * p.n_directions + a] +
+                   (a == 0 ? p.gap_term[c] : 0.)
+              << ' ';
       out << '\n';
       for (unsigned int c = 0; c < p.n_contacts; ++c)
         out << (p.mu.empty() ? 0. : p.mu[c]) << ' ';
@@ -517,7 +561,8 @@ namespace impactfe
     {
       std::ofstream out(filename);
       if (!out)
-        throw std::runtime_error(filename + ": cannot open the file for writing");
+        throw std::runtime_error(filename +
+                                 ": cannot open the file for writing");
       write_lcp(out, M, q, storage);
       if (!out)
         throw std::runtime_error(filename + ": write error");
@@ -532,7 +577,8 @@ namespace impactfe
     {
       std::ofstream out(filename);
       if (!out)
-        throw std::runtime_error(filename + ": cannot open the file for writing");
+        throw std::runtime_error(filename +
+                                 ": cannot open the file for writing");
       write_friction_contact(out, problem, storage);
       if (!out)
         throw std::runtime_error(filename + ": write error");

@@ -42,12 +42,13 @@ namespace impactfe
                       Patterns::Bool(),
                       "Draw the PNG plots at the end of the run (needs "
                       "python3 with matplotlib).");
-    prm.declare_entry("Print performance data",
-                      "true",
-                      Patterns::Bool(),
-                      "Print CPU times and LCP pivot counts on the screen (they "
-                      "are always in summary.json). Tests set this to false so "
-                      "that the screen output is reproducible.");
+    prm.declare_entry(
+      "Print performance data",
+      "true",
+      Patterns::Bool(),
+      "Print CPU times and LCP pivot counts on the screen (they "
+      "are always in summary.json). Tests set this to false so "
+      "that the screen output is reproducible.");
     prm.declare_entry("Shape snapshot times",
                       "",
                       Patterns::Anything(),
@@ -63,10 +64,10 @@ namespace impactfe
   OutputParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
-    directory       = prm.get("Output directory");
-    vtu_output      = prm.get_bool("VTU output");
-    output_interval = prm.get_integer("Output interval");
-    plot            = prm.get_bool("Plot");
+    directory         = prm.get("Output directory");
+    vtu_output        = prm.get_bool("VTU output");
+    output_interval   = prm.get_integer("Output interval");
+    plot              = prm.get_bool("Plot");
     print_performance = prm.get_bool("Print performance data");
     shape_times =
       parse_time_list(prm.get("Shape snapshot times"), "Shape snapshot times");
@@ -165,7 +166,7 @@ namespace impactfe
   JsonObject::str(const unsigned int indent) const
   {
     const std::string pad(indent + 2, ' ');
-    std::string       s = "{\n";
+    std::string       s            = "{\n";
     unsigned int      nested_index = 0;
     for (unsigned int i = 0; i < entries.size(); ++i)
       {
@@ -201,9 +202,9 @@ namespace impactfe
   SolutionWriter<dim>::write(const MultibodySystem<dim> &system,
                              const unsigned int          step)
   {
-    const auto        &bodies   = system.bodies();
-    const auto        &state    = system.state();
-    const ContactSet  &contacts = system.contacts();
+    const auto         &bodies   = system.bodies();
+    const auto         &state    = system.state();
+    const ContactSet   &contacts = system.contacts();
     std::vector<double> gaps;
     contacts.gaps(state.displacement, gaps);
 
@@ -223,10 +224,11 @@ namespace impactfe
           numbers::invalid_dof_index);
         for (const auto &cell : scalar_dofs.active_cell_iterators())
           for (const unsigned int v : cell->vertex_indices())
-            vertex_to_scalar[cell->vertex_index(v)] = cell->vertex_dof_index(v, 0);
+            vertex_to_scalar[cell->vertex_index(v)] =
+              cell->vertex_dof_index(v, 0);
         for (unsigned int c = 0; c < contacts.n_candidates(); ++c)
           {
-            const ContactCandidate &cand = contacts.candidate(c);
+            const ContactCandidate &cand   = contacts.candidate(c);
             unsigned int            vertex = numbers::invalid_unsigned_int;
             if (cand.body_a == b)
               vertex = cand.vertex_a;
@@ -242,8 +244,10 @@ namespace impactfe
         MappingQEulerian<dim> deformed(1, body.dof_handler(), u);
         DataOut<dim>          data_out;
         data_out.attach_dof_handler(body.dof_handler());
-        const std::vector<DataComponentInterpretation::DataComponentInterpretation>
-          vector_field(dim, DataComponentInterpretation::component_is_part_of_vector);
+        const std::vector<
+          DataComponentInterpretation::DataComponentInterpretation>
+          vector_field(
+            dim, DataComponentInterpretation::component_is_part_of_vector);
         data_out.add_data_vector(u,
                                  std::vector<std::string>(dim, "displacement"),
                                  DataOut<dim>::type_dof_data,
@@ -306,7 +310,7 @@ namespace impactfe
   {
     if (dim != 2)
       return;
-    const double t = system.state().time;
+    const double t   = system.state().time;
     bool         due = false;
     while (next < times.size() && t >= times[next] - 0.5 * time_step)
       {
@@ -317,10 +321,11 @@ namespace impactfe
       return;
     for (unsigned int b = 0; b < system.bodies().size(); ++b)
       {
-        const ElasticBody<dim> &body = *system.bodies()[b];
-        const Vector<double>   &u    = system.state().displacement.block(b);
-        const auto deformed = [&](const unsigned int vertex) {
-          Point<dim> x = body.dof_handler().get_triangulation().get_vertices()[vertex];
+        const ElasticBody<dim> &body     = *system.bodies()[b];
+        const Vector<double>   &u        = system.state().displacement.block(b);
+        const auto              deformed = [&](const unsigned int vertex) {
+          Point<dim> x =
+            body.dof_handler().get_triangulation().get_vertices()[vertex];
           for (unsigned int d = 0; d < dim; ++d)
             x[d] += body.nodal_value(u, vertex, d);
           return x;
@@ -362,8 +367,8 @@ namespace impactfe
                                    "' is not a number."));
           }
         AssertThrow(value >= 0. && std::isfinite(value),
-                    ExcMessage("'" + entry_name + "': times must be >= 0, got " +
-                               item + "."));
+                    ExcMessage("'" + entry_name +
+                               "': times must be >= 0, got " + item + "."));
         times.push_back(value);
       }
     std::sort(times.begin(), times.end());
@@ -386,7 +391,8 @@ namespace impactfe
         why_not = "the plot script " + script + " is missing";
         return "";
       }
-    if (std::system("/usr/bin/python3 -c 'import matplotlib' > /dev/null 2>&1") != 0)
+    if (std::system(
+          "/usr/bin/python3 -c 'import matplotlib' > /dev/null 2>&1") != 0)
       {
         why_not = "python3-matplotlib is not installed (apt-get install "
                   "python3-matplotlib)";

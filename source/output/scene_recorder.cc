@@ -3,9 +3,10 @@
 namespace impactfe
 {
   template <int dim>
-  SceneRecorder<dim>::SceneRecorder(const MultibodySystem<dim>     &system,
-                                    const OutputParameters         &output,
-                                    const std::vector<std::string> &extra_columns)
+  SceneRecorder<dim>::SceneRecorder(
+    const MultibodySystem<dim>     &system,
+    const OutputParameters         &output,
+    const std::vector<std::string> &extra_columns)
     : system(system)
     , output(output)
     , contact_monitor(system, output.directory + "/contact_nodes.csv")
@@ -13,12 +14,12 @@ namespace impactfe
   {
     std::vector<std::string> columns = contact_monitor.history_columns();
     columns.insert(columns.end(), extra_columns.begin(), extra_columns.end());
-    history =
-      std::make_unique<HistoryWriter>(output.directory + "/history.csv", columns);
+    history = std::make_unique<HistoryWriter>(output.directory + "/history.csv",
+                                              columns);
     if (!output.shape_times.empty())
-      shape_writer = std::make_unique<ShapeWriter<dim>>(output.directory +
-                                                          "/shapes.csv",
-                                                        output.shape_times);
+      shape_writer =
+        std::make_unique<ShapeWriter<dim>>(output.directory + "/shapes.csv",
+                                           output.shape_times);
   }
 
 

@@ -12,9 +12,6 @@ namespace impactfe
 
 
 
-
-
-
   // @sect3{Parameters}
   //
   // The program's subsections; `Obstacle`, `Material`, the common ones and
@@ -26,16 +23,21 @@ namespace impactfe
       for (const std::string axis : {"x", "y"})
         prm.declare_entry(axis == "x" ? "Horizontal velocity" :
                                         "Vertical velocity",
-                          "0", Patterns::Double(),
+                          "0",
+                          Patterns::Double(),
                           "Velocity of the " + what + " along " + axis +
                             " at t = 0 [m/s].");
     };
     prm.enter_subsection("Geometry");
     BlockParameters::declare_parameters(prm, "block");
-    prm.declare_entry("Thickness", "0.01", Patterns::Double(),
+    prm.declare_entry("Thickness",
+                      "0.01",
+                      Patterns::Double(),
                       "Out-of-plane thickness of both blocks [m]. Must be > "
                       "0.");
-    prm.declare_entry("Initial gap", "0", Patterns::Double(),
+    prm.declare_entry("Initial gap",
+                      "0",
+                      Patterns::Double(),
                       "Distance of the block's lower side from the plane at "
                       "t = 0 [m]. Must be >= 0. The block is centred on the "
                       "Obstacle's 'Point on plane'.");
@@ -44,27 +46,35 @@ namespace impactfe
     velocity_entries("block");
     prm.leave_subsection();
     prm.enter_subsection("Loads");
-    prm.declare_entry("Gravity", "0, -9.81",
+    prm.declare_entry("Gravity",
+                      "0, -9.81",
                       Patterns::List(Patterns::Double(), 2, 2),
                       "Acceleration of gravity g, x and y components "
                       "[m/s^2]; it acts on both blocks as the body force rho "
                       "g.");
-    prm.declare_entry("Push force", "0, 0",
+    prm.declare_entry("Push force",
+                      "0, 0",
                       Patterns::List(Patterns::Double(), 2, 2),
                       "Constant total force on the block (body 1), x and y "
                       "components [N], spread uniformly over its volume.");
     prm.leave_subsection();
     prm.enter_subsection("Body 2");
-    prm.declare_entry("Enabled", "false", Patterns::Bool(),
+    prm.declare_entry("Enabled",
+                      "false",
+                      Patterns::Bool(),
                       "Whether a second block lies above the first one. Its "
                       "material is subsection 'Material of body 2'.");
     BlockParameters::declare_parameters(prm, "second block");
     velocity_entries("second block");
-    prm.declare_entry("Gap above body 1", "0.01", Patterns::Double(),
+    prm.declare_entry("Gap above body 1",
+                      "0.01",
+                      Patterns::Double(),
                       "Distance between the first block's upper side and "
                       "the second block's lower side at t = 0 [m]. Must be "
                       ">= 0.");
-    prm.declare_entry("Friction coefficient", "0", Patterns::Double(),
+    prm.declare_entry("Friction coefficient",
+                      "0",
+                      Patterns::Double(),
                       "Coulomb friction coefficient between the two blocks "
                       "[-]. Must be >= 0.");
     prm.leave_subsection();
@@ -145,19 +155,24 @@ namespace impactfe
   void
   BlockOnPlaneScene::make_bodies()
   {
-    const Point<2> p(obstacle_parameters.point[0], obstacle_parameters.point[1]);
-    normal = Tensor<1, 2>({obstacle_parameters.normal[0],
-                           obstacle_parameters.normal[1]});
+    const Point<2> p(obstacle_parameters.point[0],
+                     obstacle_parameters.point[1]);
+    normal = Tensor<1, 2>(
+      {obstacle_parameters.normal[0], obstacle_parameters.normal[1]});
     AssertThrow(normal.norm() > 0.,
                 ExcMessage("Obstacle: 'Normal' must not be zero: it also "
                            "orients the block."));
     normal /= normal.norm();
     tangent = Tensor<1, 2>({normal[1], -normal[0]});
-    block.make_mesh(add_body("block", material, thickness).triangulation(), p,
-                    normal, initial_gap);
+    block.make_mesh(add_body("block", material, thickness).triangulation(),
+                    p,
+                    normal,
+                    initial_gap);
     if (body_2)
       block_2.make_mesh(
-        add_body("block_2", material_2, thickness).triangulation(), p, normal,
+        add_body("block_2", material_2, thickness).triangulation(),
+        p,
+        normal,
         initial_gap + block.height + gap_2);
   }
 
@@ -192,10 +207,13 @@ namespace impactfe
   void
   BlockOnPlaneScene::add_contacts(ContactSet &contacts)
   {
-    obstacle           = obstacle_parameters.create<2>(block.width);
-    n_plane_candidates = contacts.add_node_to_obstacle(
-      system().bodies(), 0, 2, *obstacle,
-      obstacle_parameters.friction_coefficient);
+    obstacle = obstacle_parameters.create<2>(block.width);
+    n_plane_candidates =
+      contacts.add_node_to_obstacle(system().bodies(),
+                                    0,
+                                    2,
+                                    *obstacle,
+                                    obstacle_parameters.friction_coefficient);
     if (body_2)
       contacts.add_node_to_segment(system().bodies(), 1, 2, 0, 3, mu_2);
   }
@@ -237,7 +255,8 @@ namespace impactfe
           top.insert(face->vertex_index(v));
     top_vertices.assign(top.begin(), top.end());
     const TimeSteppingParameters &ts = parameters.time_stepping;
-    stability = std::make_unique<StabilityMonitor<2>>(system(), bounds,
+    stability = std::make_unique<StabilityMonitor<2>>(system(),
+                                                      bounds,
                                                       ts.end_time,
                                                       n_plane_candidates);
     tracker =
@@ -252,8 +271,8 @@ namespace impactfe
   BlockOnPlaneScene::mean_velocity() const
   {
     const Vector<double> &v = system().state().velocity.block(0);
-    return Tensor<1, 2>({(mass_weights[0] * v) / mass_1,
-                         (mass_weights[1] * v) / mass_1});
+    return Tensor<1, 2>(
+      {(mass_weights[0] * v) / mass_1, (mass_weights[1] * v) / mass_1});
   }
 
   // Mean over the upper side's nodes of -u.n.
@@ -278,8 +297,11 @@ namespace impactfe
   std::vector<std::string>
   BlockOnPlaneScene::history_columns() const
   {
-    return {"mean_velocity_x", "mean_velocity_y", "plane_reaction",
-            "total_energy", "active_set_changes"};
+    return {"mean_velocity_x",
+            "mean_velocity_y",
+            "plane_reaction",
+            "total_energy",
+            "active_set_changes"};
   }
 
   // A state that is not finite stops the run at once, with the step.
@@ -293,8 +315,10 @@ namespace impactfe
                            " (t = " + format_number(report.time) +
                            " s): the state is not finite (NaN or inf)."));
     const unsigned int changes = stability->before_record(report);
-    return {mean_velocity()[0], mean_velocity()[1],
-            stability->obstacle_reaction(), monitor().total_energy(),
+    return {mean_velocity()[0],
+            mean_velocity()[1],
+            stability->obstacle_reaction(),
+            monitor().total_energy(),
             double(changes)};
   }
 
@@ -314,7 +338,7 @@ namespace impactfe
   BlockOnPlaneScene::mean_displacement() const
   {
     const Vector<double> &u = system().state().displacement.block(0);
-    return Tensor<1, 2>({(mass_weights[0] * u) / mass_1,
-                         (mass_weights[1] * u) / mass_1});
+    return Tensor<1, 2>(
+      {(mass_weights[0] * u) / mass_1, (mass_weights[1] * u) / mass_1});
   }
 } // namespace impactfe

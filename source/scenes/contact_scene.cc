@@ -177,10 +177,9 @@ namespace impactfe
 
     if (parameters.output.print_performance)
       out << "  CPU seconds: set-up " << setup_cpu_seconds << ", time loop "
-          << loop_cpu_seconds
-          << "; LCP: " << multibody_system->total_pivots()
-          << " pivots in total, largest LCP "
-          << multibody_system->largest_lcp() << std::endl;
+          << loop_cpu_seconds << "; LCP: " << multibody_system->total_pivots()
+          << " pivots in total, largest LCP " << multibody_system->largest_lcp()
+          << std::endl;
     recorder->report_files(out,
                            plot_columns(),
                            title() + ", " + to_string(ts.scheme));
@@ -233,11 +232,8 @@ namespace impactfe
                               const MaterialParameters &material,
                               const double              out_of_plane_measure)
   {
-    body_list.push_back(
-      std::make_unique<ElasticBody<dim>>(name,
-                                         material,
-                                         parameters.discretization,
-                                         out_of_plane_measure));
+    body_list.push_back(std::make_unique<ElasticBody<dim>>(
+      name, material, parameters.discretization, out_of_plane_measure));
     return *body_list.back();
   }
 

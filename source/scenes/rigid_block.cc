@@ -1,27 +1,35 @@
-#include <impactfe/scenes/rigid_block.h>
-#include <impactfe/utilities/program.h>
-
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
+
+#include <impactfe/scenes/rigid_block.h>
+#include <impactfe/utilities/program.h>
 
 #include <cmath>
 
 namespace impactfe
 {
   void
-  BlockParameters::declare_parameters(ParameterHandler &prm,
+  BlockParameters::declare_parameters(ParameterHandler  &prm,
                                       const std::string &what)
   {
-    prm.declare_entry("Width", "0.1", Patterns::Double(),
+    prm.declare_entry("Width",
+                      "0.1",
+                      Patterns::Double(),
                       "Width of the " + what +
                         ", along the plane [m]. Must be > 0.");
-    prm.declare_entry("Height", "0.05", Patterns::Double(),
+    prm.declare_entry("Height",
+                      "0.05",
+                      Patterns::Double(),
                       "Height of the " + what +
                         ", along the plane's normal [m]. Must be > 0.");
-    prm.declare_entry("Number of cells across", "8", Patterns::Integer(1),
+    prm.declare_entry("Number of cells across",
+                      "8",
+                      Patterns::Integer(1),
                       "Q1 cells along the width of the " + what +
                         " [-]; the lower side has one more node.");
-    prm.declare_entry("Number of cells up", "4", Patterns::Integer(1),
+    prm.declare_entry("Number of cells up",
+                      "4",
+                      Patterns::Integer(1),
                       "Q1 cells along the height of the " + what + " [-].");
   }
 
@@ -36,8 +44,9 @@ namespace impactfe
     n_across = prm.get_integer("Number of cells across");
     n_up     = prm.get_integer("Number of cells up");
     AssertThrow(width > 0. && height > 0.,
-                ExcMessage(subsection + ": 'Width' and 'Height' must be > 0, "
-                                        "got " +
+                ExcMessage(subsection +
+                           ": 'Width' and 'Height' must be > 0, "
+                           "got " +
                            format_number(width) + " and " +
                            format_number(height) + "."));
   }
@@ -51,13 +60,12 @@ namespace impactfe
                              const double        lower_side) const
   {
     const Tensor<1, 2> tangent({normal[1], -normal[0]});
-    GridGenerator::subdivided_hyper_rectangle(tria,
-                                              {n_across, n_up},
-                                              Point<2>(-0.5 * width,
-                                                       lower_side),
-                                              Point<2>(0.5 * width,
-                                                       lower_side + height),
-                                              /*colorize=*/true);
+    GridGenerator::subdivided_hyper_rectangle(
+      tria,
+      {n_across, n_up},
+      Point<2>(-0.5 * width, lower_side),
+      Point<2>(0.5 * width, lower_side + height),
+      /*colorize=*/true);
     GridTools::transform(
       [&](const Point<2> &q) {
         return origin + q[0] * tangent + q[1] * normal;
@@ -162,8 +170,8 @@ namespace impactfe
     if (first_stop_time < 0. && previous_tangential_velocity != 0. &&
         v_t * previous_tangential_velocity <= 0.)
       first_stop_time = t - time_step +
-                            time_step * previous_tangential_velocity /
-                              (previous_tangential_velocity - v_t);
+                        time_step * previous_tangential_velocity /
+                          (previous_tangential_velocity - v_t);
     previous_tangential_velocity = v_t;
   }
 
@@ -180,7 +188,7 @@ namespace impactfe
                                          const double           final_velocity,
                                          const double           T,
                                          const StabilityBounds &bounds,
-                                         JsonObject &stability) const
+                                         JsonObject            &stability) const
   {
     double stick_error = -1., velocity_error = -1.;
     out << "  Rigid-block sliding: v0 = " << format_figure(rigid.v0)
@@ -192,8 +200,8 @@ namespace impactfe
             << " s; measured (mean velocity reaches 0): ";
         if (first_stop_time >= 0.)
           {
-            stick_error = std::abs(first_stop_time - rigid.stick_time) /
-                          rigid.stick_time;
+            stick_error =
+              std::abs(first_stop_time - rigid.stick_time) / rigid.stick_time;
             out << format_figure(first_stop_time) << " s, relative error "
                 << format_figure(stick_error, 1e-4);
           }
@@ -223,13 +231,20 @@ namespace impactfe
         << format_figure(rigid.distance) << " m, measured "
         << format_figure(distance) << " m, relative error "
         << format_figure(distance_error, 1e-4) << std::endl;
-    bool ok = print_check(out, "stick time error",
-                          rigid.sticks() ? stick_error : 0., "<=",
+    bool ok = print_check(out,
+                          "stick time error",
+                          rigid.sticks() ? stick_error : 0.,
+                          "<=",
                           rigid.sticks() ? bounds.max_stick_time_error : -1.);
-    ok &= print_check(out, "final velocity error",
-                      rigid.sticks() ? 0. : velocity_error, "<=",
+    ok &= print_check(out,
+                      "final velocity error",
+                      rigid.sticks() ? 0. : velocity_error,
+                      "<=",
                       rigid.sticks() ? -1. : bounds.max_final_velocity_error);
-    ok &= print_check(out, "sliding distance error", distance_error, "<=",
+    ok &= print_check(out,
+                      "sliding distance error",
+                      distance_error,
+                      "<=",
                       bounds.max_distance_error);
     stability.add("measured_stick_time", first_stop_time)
       .add("stick_time_error", stick_error)
@@ -261,10 +276,10 @@ namespace impactfe
           out << "the block never leaves the plane";
         out << ": apparent restitution " << format_figure(restitution, 1e-6)
             << std::endl;
-        ok &= print_check(out, "restitution", restitution, ">=",
-                          bounds.min_restitution);
-        ok &= print_check(out, "restitution", restitution, "<=",
-                          bounds.max_restitution);
+        ok &= print_check(
+          out, "restitution", restitution, ">=", bounds.min_restitution);
+        ok &= print_check(
+          out, "restitution", restitution, "<=", bounds.max_restitution);
       }
     stability.add("restitution", restitution);
     return ok;

@@ -53,8 +53,8 @@ namespace impactfe
                      const double contact_velocity,
                      const double normal_force)
   {
-    sum_v += std::abs(contact_velocity - exact.contact_velocity(t)) /
-             (0.5 * exact.v0);
+    sum_v +=
+      std::abs(contact_velocity - exact.contact_velocity(t)) / (0.5 * exact.v0);
     sum_f +=
       std::abs(normal_force - exact.normal_force(t)) / exact.contact_force;
     ++n;

@@ -17,15 +17,21 @@ namespace impactfe
     declare_geometry(prm);
     MaterialParameters::declare_parameters(prm, dim);
     prm.enter_subsection("Initial conditions");
-    prm.declare_entry("Impact velocity", "5.13588", Patterns::Double(),
+    prm.declare_entry("Impact velocity",
+                      "5.13588",
+                      Patterns::Double(),
                       "Velocity v0 of bar 1 towards bar 2 at t = 0 [m/s]. "
                       "Must be > 0.");
     prm.leave_subsection();
     prm.enter_subsection("Verification");
-    prm.declare_entry("Maximum err_v", "-1", Patterns::Double(),
+    prm.declare_entry("Maximum err_v",
+                      "-1",
+                      Patterns::Double(),
                       "Fail the run if err_v against the 1D exact solution "
                       "exceeds this [-]. -1: no check.");
-    prm.declare_entry("Maximum err_f", "-1", Patterns::Double(),
+    prm.declare_entry("Maximum err_f",
+                      "-1",
+                      Patterns::Double(),
                       "Fail the run if err_f against the 1D exact solution "
                       "exceeds this [-]. -1: no check.");
     prm.leave_subsection();
@@ -94,8 +100,8 @@ namespace impactfe
   void
   TwoBarsScene<dim>::prepare_run()
   {
-    const double c = std::sqrt(bar_material.youngs_modulus /
-                               bar_material.density);
+    const double c =
+      std::sqrt(bar_material.youngs_modulus / bar_material.density);
     exact  = TwoBarsExactSolution(impact_velocity,
                                  initial_gap(),
                                  bar_length(),
@@ -187,8 +193,8 @@ namespace impactfe
         << header_details() << std::endl;
     report_geometry(out, summary);
     out << "  Exact solution (1D): contact from t = " << exact.t_contact
-        << " s to " << exact.t_contact + exact.duration
-        << " s, contact force " << exact.contact_force << " N" << std::endl;
+        << " s to " << exact.t_contact + exact.duration << " s, contact force "
+        << exact.contact_force << " N" << std::endl;
     out << "  Against it: err_v = " << errors->err_v()
         << ", err_f = " << errors->err_f() << std::endl;
     bool ok = this->print_contact_checks(out);

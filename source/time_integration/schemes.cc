@@ -62,8 +62,14 @@ namespace impactfe
                       "0.5",
                       Patterns::Double(),
                       "Newmark gamma [-], in [0.5, 1].");
-    prm.declare_entry("Time step", "1e-3", Patterns::Double(), "Time step h [s]. Must be > 0.");
-    prm.declare_entry("End time", "1", Patterns::Double(), "End time T [s]. Must be > 0.");
+    prm.declare_entry("Time step",
+                      "1e-3",
+                      Patterns::Double(),
+                      "Time step h [s]. Must be > 0.");
+    prm.declare_entry("End time",
+                      "1",
+                      Patterns::Double(),
+                      "End time T [s]. Must be > 0.");
     prm.leave_subsection();
   }
 
@@ -74,15 +80,15 @@ namespace impactfe
   {
     prm.enter_subsection("Time stepping");
     const std::string name = prm.get("Scheme");
-    scheme = name == "theta"          ? Scheme::theta :
-             name == "theta-euler"    ? Scheme::theta_euler :
-             name == "modified-theta" ? Scheme::modified_theta :
-                                        Scheme::newmark;
-    theta         = prm.get_double("Theta");
-    newmark_beta  = prm.get_double("Newmark beta");
-    newmark_gamma = prm.get_double("Newmark gamma");
-    time_step     = prm.get_double("Time step");
-    end_time      = prm.get_double("End time");
+    scheme                 = name == "theta"          ? Scheme::theta :
+                             name == "theta-euler"    ? Scheme::theta_euler :
+                             name == "modified-theta" ? Scheme::modified_theta :
+                                                        Scheme::newmark;
+    theta                  = prm.get_double("Theta");
+    newmark_beta           = prm.get_double("Newmark beta");
+    newmark_gamma          = prm.get_double("Newmark gamma");
+    time_step              = prm.get_double("Time step");
+    end_time               = prm.get_double("End time");
     prm.leave_subsection();
 
     AssertThrow(theta > 0. && theta <= 1.,
@@ -154,8 +160,8 @@ namespace impactfe
   }
 
   void
-  TimeIntegrator::add_vmult(BlockVector<double>                             &out,
-                            const double                                     alpha,
+  TimeIntegrator::add_vmult(BlockVector<double> &out,
+                            const double         alpha,
                             const std::vector<const SparseMatrix<double> *> &A,
                             const BlockVector<double>                       &x)
   {
@@ -233,7 +239,7 @@ namespace impactfe
       complete_step(const MechanicalState &old_state,
                     MechanicalState       &new_state) const override
       {
-        const double theta = parameters.theta;
+        const double theta     = parameters.theta;
         new_state.displacement = old_state.displacement;
         new_state.displacement.add(h * theta,
                                    new_state.velocity,

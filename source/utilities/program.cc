@@ -40,7 +40,8 @@ namespace impactfe
               << "----------------------------------------------------"
               << std::endl
               << "Exception on processing: " << std::endl;
-    if (const auto *deal_exc = dynamic_cast<const dealii::ExceptionBase *>(&exc))
+    if (const auto *deal_exc =
+          dynamic_cast<const dealii::ExceptionBase *>(&exc))
       deal_exc->print_info(std::cerr);
     else
       std::cerr << exc.what() << std::endl;

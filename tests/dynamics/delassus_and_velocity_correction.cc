@@ -16,14 +16,15 @@
 //    impulses H P (the plane is the only external force), per step.
 
 #include <deal.II/grid/grid_generator.h>
+
 #include <deal.II/lac/sparse_direct.h>
 
 #include <impactfe/bodies/elastic_body.h>
 #include <impactfe/dynamics/multibody_system.h>
 
-#include "../tests.h"
-
 #include <memory>
+
+#include "../tests.h"
 
 using namespace impactfe;
 using namespace impactfe_tests;
@@ -32,8 +33,8 @@ namespace
 {
   struct Scene
   {
-    std::unique_ptr<ElasticBody<2>>        block;
-    std::unique_ptr<MultibodySystem<2>>    system;
+    std::unique_ptr<ElasticBody<2>>     block;
+    std::unique_ptr<MultibodySystem<2>> system;
 
     explicit Scene(const std::size_t column_storage_budget)
     {
@@ -43,8 +44,8 @@ namespace
       material.poissons_ratio = 0.3;
       material.plane_model    = PlaneModel::plane_strain;
       DiscretizationParameters discretization;
-      block = std::make_unique<ElasticBody<2>>("block", material,
-                                               discretization, 1.);
+      block =
+        std::make_unique<ElasticBody<2>>("block", material, discretization, 1.);
       GridGenerator::subdivided_hyper_rectangle(block->triangulation(),
                                                 std::vector<unsigned int>{6, 3},
                                                 Point<2>(0., 0.),
@@ -97,12 +98,13 @@ main()
                   block.stiffness_matrix());
   SparseDirectUMFPACK lu;
   lu.factorize(step_matrix);
-  const ContactSet  &contacts  = stored.system->contacts();
-  const unsigned int n_columns = contacts.n_columns();
-  BlockVector<double> column(std::vector<types::global_dof_index>{block.n_dofs()});
+  const ContactSet   &contacts  = stored.system->contacts();
+  const unsigned int  n_columns = contacts.n_columns();
+  BlockVector<double> column(
+    std::vector<types::global_dof_index>{block.n_dofs()});
 
   double max_abs_difference = 0., max_steps_difference = 0.,
-         max_balance_error  = 0.;
+         max_balance_error         = 0.;
   unsigned int n_state_differences = 0, max_active = 0, n_sliding_steps = 0;
   const Tensor<1, 2> p0 = stored.system->momentum(0);
   Tensor<1, 2>       impulse;
@@ -141,14 +143,13 @@ main()
           max_entry      = std::max(max_entry, std::abs(w));
           max_abs_difference =
             std::max(max_abs_difference, std::abs(W(i, j) - w));
-          max_asymmetry =
-            std::max(max_asymmetry, std::abs(W(i, j) - W(j, i)));
+          max_asymmetry = std::max(max_asymmetry, std::abs(W(i, j) - W(j, i)));
         }
     }
 
-  deallog << "Block 6 x 3 cells, " << contacts.n_candidates()
-          << " candidates, " << n_columns << " columns of W; up to "
-          << max_active << " active contacts, " << n_sliding_steps
+  deallog << "Block 6 x 3 cells, " << contacts.n_candidates() << " candidates, "
+          << n_columns << " columns of W; up to " << max_active
+          << " active contacts, " << n_sliding_steps
           << " of 60 steps with a tangential force" << std::endl;
   check(max_active == contacts.n_candidates(),
         "all bottom nodes come into contact");

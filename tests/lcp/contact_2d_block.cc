@@ -12,6 +12,7 @@
 #include <impactfe/lcp/contact_problem.h>
 
 #include "../tests.h"
+
 #include "lcp_test_tools.h"
 
 using namespace impactfe::lcp;
@@ -19,8 +20,13 @@ using namespace impactfe::lcp;
 namespace
 {
   ContactProblem
-  block(const double w_nn, const double w_nt, const double w_tt, const double vn, const double vt,
-        const double bn, const double mu)
+  block(const double w_nn,
+        const double w_nt,
+        const double w_tt,
+        const double vn,
+        const double vt,
+        const double bn,
+        const double mu)
   {
     ContactProblem p;
     p.n_directions  = 2;
@@ -33,10 +39,13 @@ namespace
   }
 
   void
-  run(const std::string &name, const ContactProblem &p, const std::vector<double> &expected_P,
-      const std::string &expected_state)
+  run(const std::string         &name,
+      const ContactProblem      &p,
+      const std::vector<double> &expected_P,
+      const std::string         &expected_state)
   {
-    for (const FrictionForm form : {FrictionForm::klarbring, FrictionForm::facets})
+    for (const FrictionForm form :
+         {FrictionForm::klarbring, FrictionForm::facets})
       {
         ContactOptions o;
         o.form                   = form;
@@ -46,11 +55,16 @@ namespace
         p.W.vmult(V, s.P);
         for (unsigned int i = 0; i < 2; ++i)
           V[i] += p.free_velocity[i];
-        const std::string state = cv.n_sliding ? "slide" : cv.n_sticking ? "stick" : "separated";
-        dealii::deallog << name << " [" << to_string(s.form) << "]: P = " << lcp_test::str(s.P)
-                        << ", V = " << lcp_test::str(V) << ", " << state << std::endl;
+        const std::string state = cv.n_sliding  ? "slide" :
+                                  cv.n_sticking ? "stick" :
+                                                  "separated";
+        dealii::deallog << name << " [" << to_string(s.form)
+                        << "]: P = " << lcp_test::str(s.P)
+                        << ", V = " << lcp_test::str(V) << ", " << state
+                        << std::endl;
         impactfe_tests::check(s.lcp.status == Status::solved && cv.ok &&
-                                lcp_test::max_diff(s.P, expected_P) < 1e-12 && state == expected_state,
+                                lcp_test::max_diff(s.P, expected_P) < 1e-12 &&
+                                state == expected_state,
                               name + " " + to_string(form));
       }
   }
@@ -61,30 +75,52 @@ main()
 {
   impactfe_tests::initlog();
   const double mu = 0.5;
-  run("W=I, v_T=0.2 (below mu)", block(1, 0, 1, -1, 0.2, 0, mu), {1, -0.2}, "stick");
+  run("W=I, v_T=0.2 (below mu)",
+      block(1, 0, 1, -1, 0.2, 0, mu),
+      {1, -0.2},
+      "stick");
   run("W=I, v_T=2 (above mu)", block(1, 0, 1, -1, 2, 0, mu), {1, -mu}, "slide");
   run("W=I, v_T=-2", block(1, 0, 1, -1, -2, 0, mu), {1, mu}, "slide");
-  run("W=I, v_T=0.5 (= mu P_N)", block(1, 0, 1, -1, 0.5, 0, mu), {1, -0.5}, "stick");
+  run("W=I, v_T=0.5 (= mu P_N)",
+      block(1, 0, 1, -1, 0.5, 0, mu),
+      {1, -0.5},
+      "stick");
   run("W=I, separating", block(1, 0, 1, 1, 2, 0, mu), {0, 0}, "separated");
-  run("W=I, gap term 0.3", block(1, 0, 1, -1, 0.2, 0.3, mu), {0.7, -0.2}, "stick");
+  run("W=I, gap term 0.3",
+      block(1, 0, 1, -1, 0.2, 0.3, mu),
+      {0.7, -0.2},
+      "stick");
 
-  // coupled, mu = 1, v_T = 0.1: the stick solution W^{-1}(1, -0.1) = (0.6, -0.4)
-  run("coupled, mu=1, stick", block(2, 0.5, 1, -1, 0.1, 0, 1.), {0.6, -0.4}, "stick");
+  // coupled, mu = 1, v_T = 0.1: the stick solution W^{-1}(1, -0.1) = (0.6,
+  // -0.4)
+  run("coupled, mu=1, stick",
+      block(2, 0.5, 1, -1, 0.1, 0, 1.),
+      {0.6, -0.4},
+      "stick");
   // coupled, mu = 0.3: sliding forward and backward
   {
     const double m  = 0.3;
     const double pf = 1. / (2. - 0.5 * m);
-    run("coupled, mu=0.3, v_T=0.1", block(2, 0.5, 1, -1, 0.1, 0, m), {pf, -m * pf}, "slide");
+    run("coupled, mu=0.3, v_T=0.1",
+        block(2, 0.5, 1, -1, 0.1, 0, m),
+        {pf, -m * pf},
+        "slide");
     const double pb = 1. / (2. + 0.5 * m);
-    run("coupled, mu=0.3, v_T=-0.5", block(2, 0.5, 1, -1, -0.5, 0, m), {pb, m * pb}, "slide");
+    run("coupled, mu=0.3, v_T=-0.5",
+        block(2, 0.5, 1, -1, -0.5, 0, m),
+        {pb, m * pb},
+        "slide");
   }
 
   // automatic: mu = 0 gives the frictionless form (normal block only)
   {
-    const ContactSolution s = solve_contact_problem(block(2, 0.5, 1, -1, 0.1, 0, 0.));
-    dealii::deallog << "mu = 0, automatic: " << to_string(s.form) << ", n = " << s.lcp.z.size()
+    const ContactSolution s =
+      solve_contact_problem(block(2, 0.5, 1, -1, 0.1, 0, 0.));
+    dealii::deallog << "mu = 0, automatic: " << to_string(s.form)
+                    << ", n = " << s.lcp.z.size()
                     << ", P = " << lcp_test::str(s.P) << std::endl;
-    impactfe_tests::check(s.form == FrictionForm::frictionless && s.lcp.z.size() == 1 &&
+    impactfe_tests::check(s.form == FrictionForm::frictionless &&
+                            s.lcp.z.size() == 1 &&
                             lcp_test::max_diff(s.P, {0.5, 0.}) < 1e-14,
                           "frictionless when mu == 0");
   }

@@ -25,6 +25,7 @@
 #include <impactfe/lcp/lu.h>
 
 #include "../tests.h"
+
 #include "lcp_test_tools.h"
 
 using namespace impactfe::lcp;
@@ -53,19 +54,24 @@ namespace
   /// max(||b||, (||V_free|| + ||b_N||) / ||W||), so that answers that are
   /// both zero up to rounding compare equal.
   double
-  relative_difference(const ContactProblem &p, const std::vector<double> &a, const std::vector<double> &b)
+  relative_difference(const ContactProblem      &p,
+                      const std::vector<double> &a,
+                      const std::vector<double> &b)
   {
     const double scale = std::max(lcp_test::linfty(b),
-                                  (lcp_test::linfty(p.free_velocity) + lcp_test::linfty(p.gap_term)) /
+                                  (lcp_test::linfty(p.free_velocity) +
+                                   lcp_test::linfty(p.gap_term)) /
                                     p.W.linfty_norm());
     return lcp_test::max_diff(a, b) / scale;
   }
 
   ContactProblem
-  random_problem(lcp_test::Rng &rng, const unsigned int nc, const double mu_max = 1.,
-                 const bool diagonally_dominant = false)
+  random_problem(lcp_test::Rng     &rng,
+                 const unsigned int nc,
+                 const double       mu_max              = 1.,
+                 const bool         diagonally_dominant = false)
   {
-    DenseMatrix B(2 * nc, 2 * nc);
+    DenseMatrix  B(2 * nc, 2 * nc);
     const double b = diagonally_dominant ? 1. / std::sqrt(2. * nc) : 1.;
     for (unsigned int i = 0; i < 2 * nc; ++i)
       for (unsigned int j = 0; j < 2 * nc; ++j)
@@ -73,7 +79,7 @@ namespace
     ContactProblem p;
     p.n_directions = 2;
     p.n_contacts   = nc;
-    p.W            = lcp_test::gram_plus_shift(B, diagonally_dominant ? 1. : 0.5);
+    p.W = lcp_test::gram_plus_shift(B, diagonally_dominant ? 1. : 0.5);
     p.free_velocity.resize(2 * nc);
     p.gap_term.resize(nc);
     p.mu.resize(nc);
@@ -108,23 +114,24 @@ main()
   //    contact 3: V_free = (-1, -2): slip-, P = (1, 0.5), V_T = -1.5.
   {
     ContactProblem p;
-    p.n_directions  = 2;
-    p.n_contacts    = 4;
-    p.W             = DenseMatrix(8, 8, 0.);
+    p.n_directions = 2;
+    p.n_contacts   = 4;
+    p.W            = DenseMatrix(8, 8, 0.);
     for (unsigned int i = 0; i < 8; ++i)
       p.W(i, i) = 1.;
-    p.free_velocity = {1., 2., -1., 0.2, -1., 2., -1., -2.};
-    p.gap_term      = {0., 0., 0., 0.};
-    p.mu            = {0.5, 0.5, 0.5, 0.5};
+    p.free_velocity                    = {1., 2., -1., 0.2, -1., 2., -1., -2.};
+    p.gap_term                         = {0., 0., 0., 0.};
+    p.mu                               = {0.5, 0.5, 0.5, 0.5};
     const std::vector<double> expected = {0., 0., 1., -0.2, 1., -0.5, 1., 0.5};
 
     const ContactSolution cold = solve_contact_problem(p);
     dealii::deallog << "decoupled, cold: P = " << lcp_test::str(cold.P)
                     << ", states = " << states_string(cold.states) << std::endl;
-    check(cold.lcp.status == Status::solved && lcp_test::max_diff(cold.P, expected) < 1e-14,
+    check(cold.lcp.status == Status::solved &&
+            lcp_test::max_diff(cold.P, expected) < 1e-14,
           "decoupled, cold Lemke");
-    dealii::deallog << "contact_states(P) = " << states_string(contact_states(p, cold.P))
-                    << std::endl;
+    dealii::deallog << "contact_states(P) = "
+                    << states_string(contact_states(p, cold.P)) << std::endl;
 
     unsigned int n_ok = 0, n_block = 0, n_exact_states = 0;
     for (unsigned int code = 0; code < 256; ++code)
@@ -138,15 +145,19 @@ main()
         n_block += (s.lcp.start_path == StartPath::block_pivoting);
         n_exact_states += (s.states == cold.states);
       }
-    dealii::deallog << "decoupled, 256 guesses: " << n_ok << " solved with the expected P, " << n_block
-                    << " by block pivoting, " << n_exact_states << " with the states of the answer"
-                    << std::endl;
-    check(n_ok == 256 && n_block == 256 && n_exact_states == 256, "decoupled, every guess");
+    dealii::deallog << "decoupled, 256 guesses: " << n_ok
+                    << " solved with the expected P, " << n_block
+                    << " by block pivoting, " << n_exact_states
+                    << " with the states of the answer" << std::endl;
+    check(n_ok == 256 && n_block == 256 && n_exact_states == 256,
+          "decoupled, every guess");
 
     const ContactSolution exact = solve_contact_problem(p, {}, cold.states);
-    dealii::deallog << "decoupled, exact guess: " << to_string(exact.lcp.start_path) << ", "
-                    << exact.block_pivoting_iterations << " solve, form " << to_string(exact.form)
-                    << " (k = " << exact.n_facets << "), z = " << lcp_test::str(exact.lcp.z) << std::endl;
+    dealii::deallog << "decoupled, exact guess: "
+                    << to_string(exact.lcp.start_path) << ", "
+                    << exact.block_pivoting_iterations << " solve, form "
+                    << to_string(exact.form) << " (k = " << exact.n_facets
+                    << "), z = " << lcp_test::str(exact.lcp.z) << std::endl;
     dealii::deallog << "  w = " << lcp_test::str(exact.lcp.w) << std::endl;
   }
 
@@ -158,11 +169,14 @@ main()
       for (unsigned int trial = 0; trial < 300; ++trial)
         {
           const ContactProblem p =
-            compare ? random_problem(rng, 1 + rng.integer(25), 0.2, true) : random_problem(rng, 1 + rng.integer(25));
+            compare ? random_problem(rng, 1 + rng.integer(25), 0.2, true) :
+                      random_problem(rng, 1 + rng.integer(25));
           const ContactSolution cold = solve_contact_problem(p);
           if (cold.lcp.status != Status::solved)
             {
-              dealii::deallog << "trial " << trial << ": cold Lemke failed: " << cold.message << std::endl;
+              dealii::deallog << "trial " << trial
+                              << ": cold Lemke failed: " << cold.message
+                              << std::endl;
               continue;
             }
           ++n_problems;
@@ -177,25 +191,33 @@ main()
           bool all = true;
           for (unsigned int g = 0; g < guesses.size(); ++g)
             {
-              const ContactSolution s = solve_contact_problem(p, {}, guesses[g]);
+              const ContactSolution s =
+                solve_contact_problem(p, {}, guesses[g]);
               if (g == 0)
                 n_exact_one_solve +=
-                  (s.lcp.start_path == StartPath::block_pivoting && s.block_pivoting_iterations == 1);
-              const bool ok = s.lcp.status == Status::solved && s.lcp.verification.ok &&
-                              verify_contact_solution(p, s.P).ok &&
-                              (!compare || relative_difference(p, s.P, cold.P) <= 1e-9);
+                  (s.lcp.start_path == StartPath::block_pivoting &&
+                   s.block_pivoting_iterations == 1);
+              const bool ok =
+                s.lcp.status == Status::solved && s.lcp.verification.ok &&
+                verify_contact_solution(p, s.P).ok &&
+                (!compare || relative_difference(p, s.P, cold.P) <= 1e-9);
               if (!ok)
-                dealii::deallog << "trial " << trial << ", guess " << g << ": " << s.message << std::endl;
+                dealii::deallog << "trial " << trial << ", guess " << g << ": "
+                                << s.message << std::endl;
               all = all && ok;
             }
           n_ok += all;
         }
-      const std::string name = compare ? "random, mu <= 0.2, W diagonally dominant: P == cold P" :
-                                         "random, mu <= 1: verified";
-      dealii::deallog << name << ": " << n_ok << " of " << n_problems
-                      << " problems from all 4 guesses; the answer's states in one block pivoting solve: "
-                      << n_exact_one_solve << std::endl;
-      check(n_problems == 300 && n_ok == n_problems && n_exact_one_solve == n_problems, name);
+      const std::string name =
+        compare ? "random, mu <= 0.2, W diagonally dominant: P == cold P" :
+                  "random, mu <= 1: verified";
+      dealii::deallog
+        << name << ": " << n_ok << " of " << n_problems
+        << " problems from all 4 guesses; the answer's states in one block pivoting solve: "
+        << n_exact_one_solve << std::endl;
+      check(n_problems == 300 && n_ok == n_problems &&
+              n_exact_one_solve == n_problems,
+            name);
     }
 
   // 2b. W not symmetric (W + 0.01 K, K skew): one LU per block pivoting
@@ -205,8 +227,8 @@ main()
     unsigned int  n_ok = 0;
     for (unsigned int trial = 0; trial < 100; ++trial)
       {
-        ContactProblem     p = random_problem(rng, 1 + rng.integer(20), 0.5);
-        const std::size_t  m = p.W.n_rows();
+        ContactProblem    p = random_problem(rng, 1 + rng.integer(20), 0.5);
+        const std::size_t m = p.W.n_rows();
         for (std::size_t i = 0; i < m; ++i)
           for (std::size_t j = 0; j < i; ++j)
             {
@@ -218,7 +240,8 @@ main()
         for (ContactState &s : guess)
           s = all_states[rng.integer(4)];
         const ContactSolution s = solve_contact_problem(p, {}, guess);
-        n_ok += (s.lcp.status == Status::solved && s.lcp.verification.ok && verify_contact_solution(p, s.P).ok);
+        n_ok += (s.lcp.status == Status::solved && s.lcp.verification.ok &&
+                 verify_contact_solution(p, s.P).ok);
       }
     check(n_ok == 100, "non-symmetric W: 100 problems verified");
   }
@@ -255,7 +278,8 @@ main()
       }
     DenseMatrix not_definite = A;
     not_definite(7, 7)       = -1.;
-    check(factorised && difference <= 1e-10 * size && !CholeskyFactorization().factorize(not_definite),
+    check(factorised && difference <= 1e-10 * size &&
+            !CholeskyFactorization().factorize(not_definite),
           "Cholesky == LU on an SPD matrix; indefinite matrix refused");
   }
 
@@ -267,11 +291,17 @@ main()
     ContactOptions        o;
     o.max_block_pivoting_iterations = 1;
     const ContactSolution s =
-      solve_contact_problem(p, o, std::vector<ContactState>(8, ContactState::open));
-    dealii::deallog << "fallback: path " << to_string(s.lcp.start_path) << ", form " << to_string(s.form)
-                    << ", block pivoting solves " << s.block_pivoting_iterations << std::endl;
-    check(s.lcp.status == Status::solved && s.lcp.start_path != StartPath::block_pivoting &&
-            s.form == FrictionForm::klarbring && relative_difference(p, s.P, cold.P) <= 1e-9 &&
+      solve_contact_problem(p,
+                            o,
+                            std::vector<ContactState>(8, ContactState::open));
+    dealii::deallog << "fallback: path " << to_string(s.lcp.start_path)
+                    << ", form " << to_string(s.form)
+                    << ", block pivoting solves " << s.block_pivoting_iterations
+                    << std::endl;
+    check(s.lcp.status == Status::solved &&
+            s.lcp.start_path != StartPath::block_pivoting &&
+            s.form == FrictionForm::klarbring &&
+            relative_difference(p, s.P, cold.P) <= 1e-9 &&
             s.message.find("block pivoting gave up") != std::string::npos,
           "fallback to Lemke");
   }
@@ -285,15 +315,17 @@ main()
         ContactProblem p = random_problem(rng, 1 + rng.integer(20));
         for (double &m : p.mu)
           m = 0.;
-        const ContactSolution cold = solve_contact_problem(p);
+        const ContactSolution     cold = solve_contact_problem(p);
         std::vector<ContactState> guess(p.n_contacts);
         for (ContactState &s : guess)
           s = all_states[rng.integer(2)];
         const ContactSolution s = solve_contact_problem(p, {}, guess);
         const ContactSolution e = solve_contact_problem(p, {}, cold.states);
-        n_ok += (s.lcp.status == Status::solved && s.form == FrictionForm::frictionless &&
-                 relative_difference(p, s.P, cold.P) <= 1e-9 &&
-                 e.lcp.pivots == 0 && relative_difference(p, e.P, cold.P) <= 1e-9);
+        n_ok +=
+          (s.lcp.status == Status::solved &&
+           s.form == FrictionForm::frictionless &&
+           relative_difference(p, s.P, cold.P) <= 1e-9 && e.lcp.pivots == 0 &&
+           relative_difference(p, e.P, cold.P) <= 1e-9);
       }
     check(n_ok == 50, "frictionless, warm from states == cold");
   }
@@ -301,22 +333,26 @@ main()
   // 5. guess_from_states() and verify_with_residual().
   {
     ContactProblem p;
-    p.n_directions  = 2;
-    p.n_contacts    = 4;
-    p.W             = DenseMatrix(8, 8, 0.);
+    p.n_directions = 2;
+    p.n_contacts   = 4;
+    p.W            = DenseMatrix(8, 8, 0.);
     for (unsigned int i = 0; i < 8; ++i)
       p.W(i, i) = 2.;
-    p.free_velocity = {0., 0., 0., 0., 0., 0., 0., 0.};
-    p.gap_term      = {0., 0., 0., 0.};
-    p.mu            = {0.5, 0.5, 0.5, 0.5};
+    p.free_velocity                        = {0., 0., 0., 0., 0., 0., 0., 0.};
+    p.gap_term                             = {0., 0., 0., 0.};
+    p.mu                                   = {0.5, 0.5, 0.5, 0.5};
     const std::vector<ContactState> states = all_states;
-    for (const FrictionForm form : {FrictionForm::frictionless, FrictionForm::klarbring, FrictionForm::facets})
+    for (const FrictionForm form : {FrictionForm::frictionless,
+                                    FrictionForm::klarbring,
+                                    FrictionForm::facets})
       {
         ContactOptions o;
         o.form               = form;
         const ContactLCP lcp = assemble_contact_lcp(p, o);
-        dealii::deallog << "guess_from_states(" << states_string(states) << ") [" << to_string(form)
-                        << "] = " << bools(guess_from_states(lcp, states)) << std::endl;
+        dealii::deallog << "guess_from_states(" << states_string(states)
+                        << ") [" << to_string(form)
+                        << "] = " << bools(guess_from_states(lcp, states))
+                        << std::endl;
       }
 
     lcp_test::Rng       rng(3);
@@ -337,9 +373,12 @@ main()
           residual[i] -= M(i, j) * z[j];
       }
     const Verification a = verify(M, q, z, w);
-    const Verification b = verify_with_residual(M.linfty_norm(), q, z, w, residual);
-    check(a.ok == b.ok && a.residual == b.residual && a.relative_error == b.relative_error &&
-            a.max_complementarity == b.max_complementarity && a.min_z == b.min_z && a.min_w == b.min_w,
+    const Verification b =
+      verify_with_residual(M.linfty_norm(), q, z, w, residual);
+    check(a.ok == b.ok && a.residual == b.residual &&
+            a.relative_error == b.relative_error &&
+            a.max_complementarity == b.max_complementarity &&
+            a.min_z == b.min_z && a.min_w == b.min_w,
           "verify_with_residual == verify");
   }
 

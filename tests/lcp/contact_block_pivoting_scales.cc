@@ -42,14 +42,13 @@ main()
                                 std::make_pair("guess (stick, open)", &warm)})
     {
       const ContactVerification v = verify_contact_solution(p, s->P, 1e-10);
-      dealii::deallog << name << ": " << to_string(s->lcp.status)
-                      << ", states " << to_string(s->states[0]) << " "
+      dealii::deallog << name << ": " << to_string(s->lcp.status) << ", states "
+                      << to_string(s->states[0]) << " "
                       << to_string(s->states[1]) << ", P_0 = ("
                       << impactfe_tests::rounded(s->P[0]) << ", "
                       << impactfe_tests::rounded(s->P[1]) << "), P_1 = ("
                       << impactfe_tests::rounded(s->P[2]) << ", "
-                      << impactfe_tests::rounded(s->P[3])
-                      << "), |P_T| / P_N = "
+                      << impactfe_tests::rounded(s->P[3]) << "), |P_T| / P_N = "
                       << impactfe_tests::rounded(std::abs(s->P[1]) / s->P[0])
                       << std::endl;
       impactfe_tests::check(v.ok && v.max_cone_violation <= 1e-10,

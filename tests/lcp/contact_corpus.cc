@@ -20,12 +20,13 @@
 #include <impactfe/lcp/contact_routes.h>
 #include <impactfe/lcp/problem_io.h>
 
-#include "../tests.h"
-#include "lcp_test_tools.h"
-
 #include <cstdio>
 #include <iostream>
 #include <map>
+
+#include "../tests.h"
+
+#include "lcp_test_tools.h"
 
 using namespace impactfe::lcp;
 
@@ -40,7 +41,9 @@ namespace
 
   /// Contact directions of random bodies: H is ndof x (dim n_c).
   DenseMatrix
-  random_directions(lcp_test::Rng &rng, const unsigned int ndof, const unsigned int rows)
+  random_directions(lcp_test::Rng     &rng,
+                    const unsigned int ndof,
+                    const unsigned int rows)
   {
     DenseMatrix H(ndof, rows);
     for (unsigned int i = 0; i < ndof; ++i)
@@ -51,8 +54,11 @@ namespace
 
   /// W = H^T diag(inverse_mass) H (exactly symmetric), q = H^T v.
   ContactProblem
-  lagrangian_problem(const DenseMatrix &H, const std::vector<double> &inverse_mass, const std::vector<double> &v,
-                     const unsigned int dim, const std::vector<double> &mu)
+  lagrangian_problem(const DenseMatrix         &H,
+                     const std::vector<double> &inverse_mass,
+                     const std::vector<double> &v,
+                     const unsigned int         dim,
+                     const std::vector<double> &mu)
   {
     const unsigned int ndof = H.n_rows(), rows = H.n_cols();
     ContactProblem     p;
@@ -85,7 +91,7 @@ namespace
     std::vector<double> mu(nc, 0.3), inverse_mass(ndof, 1.), v(ndof);
     for (double &x : v)
       x = rng.uniform(-1., 1.);
-    DenseMatrix H = random_directions(rng, ndof, rows);
+    DenseMatrix         H = random_directions(rng, ndof, rows);
     std::vector<double> gap(nc, 0.);
 
     if (kind == "redundant")
@@ -202,7 +208,10 @@ namespace
   /// facet form gives the maximal dissipation over the inscribed polygon
   /// with k facets: P_T . V_T <= -mu P_N |V_T| cos(pi / k) (up to tol).
   bool
-  check_solution(const ContactProblem &p, const std::vector<double> &P, const unsigned int k, std::string &why)
+  check_solution(const ContactProblem      &p,
+                 const std::vector<double> &P,
+                 const unsigned int         k,
+                 std::string               &why)
   {
     const unsigned int d = p.n_directions, nc = p.n_contacts, m = d * nc;
     if (P.size() != m)
@@ -237,15 +246,27 @@ namespace
             VT2 += V[c * d + a] * V[c * d + a];
             PV += P[c * d + a] * V[c * d + a];
           }
-        const double PT = std::sqrt(PT2), VT = std::sqrt(VT2), mu = d > 1 ? p.mu[c] : 0.;
-        char         b[200];
-        if (PN < -tol * sP || VN < -tol * sV || std::abs(PN * VN) > tol * sP * sV)
-          std::snprintf(b, sizeof(b), "contact %u: Signorini (P_N %g, V_N %g)", c, PN, VN);
+        const double PT = std::sqrt(PT2), VT = std::sqrt(VT2),
+                     mu = d > 1 ? p.mu[c] : 0.;
+        char b[200];
+        if (PN < -tol * sP || VN < -tol * sV ||
+            std::abs(PN * VN) > tol * sP * sV)
+          std::snprintf(
+            b, sizeof(b), "contact %u: Signorini (P_N %g, V_N %g)", c, PN, VN);
         else if (PT > mu * PN + tol * sP)
-          std::snprintf(b, sizeof(b), "contact %u: outside the cone (|P_T| %g, mu P_N %g)", c, PT, mu * PN);
+          std::snprintf(b,
+                        sizeof(b),
+                        "contact %u: outside the cone (|P_T| %g, mu P_N %g)",
+                        c,
+                        PT,
+                        mu * PN);
         else if (VT > tol * sV && PN > tol * sP &&
-                 PV > -mu * PN * VT * (d == 2 ? 1. : std::cos(pi / k)) + tol * sP * sV)
-          std::snprintf(b, sizeof(b), "contact %u: sliding without maximal dissipation", c);
+                 PV > -mu * PN * VT * (d == 2 ? 1. : std::cos(pi / k)) +
+                        tol * sP * sV)
+          std::snprintf(b,
+                        sizeof(b),
+                        "contact %u: sliding without maximal dissipation",
+                        c);
         else
           continue;
         why = b;
@@ -262,14 +283,24 @@ main()
   lcp_test::Rng rng(20261123);
 
   const std::vector<std::pair<std::string, bool>> kinds = {
-    {"singular", true}, {"redundant", true}, {"nearly-singular", true}, {"mu=0", true},
-    {"large-mu", true}, {"mixed-mu-gaps", true}, {"grazing", true}, {"scales", true},
-    {"pinched", false}, {"stuck", false}};
-  const unsigned int per_class = 14;
-  const MatrixStorage storages[] = {MatrixStorage::dense, MatrixStorage::compressed_column, MatrixStorage::triplet};
+    {"singular", true},
+    {"redundant", true},
+    {"nearly-singular", true},
+    {"mu=0", true},
+    {"large-mu", true},
+    {"mixed-mu-gaps", true},
+    {"grazing", true},
+    {"scales", true},
+    {"pinched", false},
+    {"stuck", false}};
+  const unsigned int  per_class  = 14;
+  const MatrixStorage storages[] = {MatrixStorage::dense,
+                                    MatrixStorage::compressed_column,
+                                    MatrixStorage::triplet};
 
   unsigned int total = 0, total_ok = 0;
-  std::map<std::string, unsigned int> route_share; // kind of route -> problems solved by it
+  std::map<std::string, unsigned int>
+    route_share; // kind of route -> problems solved by it
   for (const unsigned int dim : {2u, 3u})
     for (const auto &kind : kinds)
       {
@@ -277,8 +308,9 @@ main()
         for (unsigned int i = 0; i < per_class; ++i, ++total)
           {
             const ContactProblem generated = generate(kind.first, dim, rng);
-            const std::string    file =
-              "corpus_" + std::to_string(dim) + "d_" + kind.first + "_" + std::to_string(i) + ".dat";
+            const std::string    file = "corpus_" + std::to_string(dim) + "d_" +
+                                     kind.first + "_" + std::to_string(i) +
+                                     ".dat";
             write_friction_contact_file(file, generated, storages[total % 3]);
             const ProblemFile f = read_problem_file(file);
             std::remove(file.c_str());
@@ -292,13 +324,17 @@ main()
                 if (check_solution(p, r.solution.P, r.solution.n_facets, why))
                   {
                     ++solved;
-                    ++route_share[std::to_string(dim) + "D " + r.attempts[r.successful_route].kind + " (" +
-                                  r.attempts[r.successful_route].route.substr(0, 18) + ")"];
+                    ++route_share[std::to_string(dim) + "D " +
+                                  r.attempts[r.successful_route].kind + " (" +
+                                  r.attempts[r.successful_route].route.substr(
+                                    0, 18) +
+                                  ")"];
                   }
                 else
                   {
                     ++wrong;
-                    std::cout << file << ": solved but fails the check: " << why << std::endl;
+                    std::cout << file << ": solved but fails the check: " << why
+                              << std::endl;
                   }
               }
             else if (status == Status::infeasible)
@@ -312,16 +348,22 @@ main()
         // Never a wrong answer, never a solvable problem called infeasible,
         // every unsolvable one reported infeasible. (Solvable problems left
         // unsolved are counted in the line above: see doc/lcp.md.)
-        const bool ok = (wrong == 0) && (kind.second ? (infeasible == 0) : (infeasible == per_class));
+        const bool ok =
+          (wrong == 0) &&
+          (kind.second ? (infeasible == 0) : (infeasible == per_class));
         total_ok += (kind.second ? solved : infeasible);
-        dealii::deallog << dim << "D " << kind.first << ": " << per_class << " problems, " << solved
-                        << " solved and verified, " << infeasible << " proven infeasible, " << other
+        dealii::deallog << dim << "D " << kind.first << ": " << per_class
+                        << " problems, " << solved << " solved and verified, "
+                        << infeasible << " proven infeasible, " << other
                         << " neither, " << wrong << " wrong" << std::endl;
-        impactfe_tests::check(ok, std::to_string(dim) + "D " + kind.first +
-                                    (kind.second ? ": no wrong answer, none called infeasible" :
-                                                   ": every problem reported infeasible"));
+        impactfe_tests::check(ok,
+                              std::to_string(dim) + "D " + kind.first +
+                                (kind.second ?
+                                   ": no wrong answer, none called infeasible" :
+                                   ": every problem reported infeasible"));
       }
-  dealii::deallog << total << " problems, " << total_ok << " answered as expected" << std::endl;
+  dealii::deallog << total << " problems, " << total_ok
+                  << " answered as expected" << std::endl;
   for (const auto &s : route_share)
     std::cout << "solved by " << s.first << ": " << s.second << std::endl;
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;

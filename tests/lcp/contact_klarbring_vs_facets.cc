@@ -13,6 +13,7 @@
 #include <impactfe/lcp/contact_problem.h>
 
 #include "../tests.h"
+
 #include "lcp_test_tools.h"
 
 using namespace impactfe::lcp;
@@ -54,17 +55,22 @@ main()
           of.form                  = FrictionForm::facets;
           const ContactSolution sk = solve_contact_problem(p, ok);
           const ContactSolution sf = solve_contact_problem(p, of);
-          if (sk.lcp.status != Status::solved || sf.lcp.status != Status::solved)
+          if (sk.lcp.status != Status::solved ||
+              sf.lcp.status != Status::solved)
             continue;
-          if (verify_contact_solution(p, sk.P).ok && verify_contact_solution(p, sf.P).ok)
+          if (verify_contact_solution(p, sk.P).ok &&
+              verify_contact_solution(p, sf.P).ok)
             ++n_ok;
-          if (lcp_test::max_diff(sk.P, sf.P) < 1e-9 * std::max(1., lcp_test::linfty(sk.P)))
+          if (lcp_test::max_diff(sk.P, sf.P) <
+              1e-9 * std::max(1., lcp_test::linfty(sk.P)))
             ++n_same;
         }
-      dealii::deallog << "n_c = " << nc << ": " << n_problems << " problems, both forms satisfy the contact laws in "
+      dealii::deallog << "n_c = " << nc << ": " << n_problems
+                      << " problems, both forms satisfy the contact laws in "
                       << n_ok << ", same (P_N, P_T) in " << n_same << std::endl;
       impactfe_tests::check(n_ok == n_problems && n_same == n_problems,
-                            "Klarbring == facets(k=2), n_c = " + std::to_string(nc));
+                            "Klarbring == facets(k=2), n_c = " +
+                              std::to_string(nc));
     }
 
   // singular W_TT
@@ -82,23 +88,29 @@ main()
       for (unsigned int j = 0; j < 4; ++j)
         for (unsigned int k = 0; k < 3; ++k)
           p.W(i, j) += H(k, i) * H(k, j);
-    p.free_velocity = {-1., 2., -1., 2.};
-    p.gap_term      = {0., 0.};
-    p.mu            = {0.3, 0.3};
+    p.free_velocity          = {-1., 2., -1., 2.};
+    p.gap_term               = {0., 0.};
+    p.mu                     = {0.3, 0.3};
     const ContactSolution s  = solve_contact_problem(p);
     const auto            cv = verify_contact_solution(p, s.P);
-    dealii::deallog << "singular W_TT: form " << to_string(s.form) << ", k = " << s.n_facets
-                    << ", status " << to_string(s.lcp.status) << ", P = " << lcp_test::str(s.P)
+    dealii::deallog << "singular W_TT: form " << to_string(s.form)
+                    << ", k = " << s.n_facets << ", status "
+                    << to_string(s.lcp.status) << ", P = " << lcp_test::str(s.P)
                     << std::endl;
     dealii::deallog << "message mentions the fallback: "
-                    << (s.message.find("W_TT is singular") != std::string::npos ? "yes" : "no") << std::endl;
+                    << (s.message.find("W_TT is singular") !=
+                            std::string::npos ?
+                          "yes" :
+                          "no")
+                    << std::endl;
     // By hand: each normal row is decoupled (W_NN = I), so P_N = (1, 1);
     // the common tangential velocity is 2 + P_T0 + P_T1 and both contacts
     // slide backwards against it with |P_T| = 0.3: P_T = (-0.3, -0.3),
     // V_T = 1.4 > 0.
     impactfe_tests::check(s.form == FrictionForm::facets && s.n_facets == 2 &&
                             s.lcp.status == Status::solved && cv.ok &&
-                            lcp_test::max_diff(s.P, {1., -0.3, 1., -0.3}) < 1e-12,
+                            lcp_test::max_diff(s.P, {1., -0.3, 1., -0.3}) <
+                              1e-12,
                           "singular W_TT handled by the facet form");
   }
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;

@@ -56,8 +56,10 @@ namespace lcp_test
   /// Solve A x = b by Gaussian elimination with partial pivoting.
   /// Returns false if a pivot is below tol * max|A|.
   inline bool
-  gauss_solve(std::vector<std::vector<double>> A, std::vector<double> b, std::vector<double> &x,
-              const double tol = 1e-12)
+  gauss_solve(std::vector<std::vector<double>> A,
+              std::vector<double>              b,
+              std::vector<double>             &x,
+              const double                     tol = 1e-12)
   {
     const std::size_t n    = b.size();
     double            amax = 0.;
@@ -96,7 +98,9 @@ namespace lcp_test
   /// All solutions z of LCP(q, M) found on nonsingular complementary bases
   /// (2^n linear solves), feasibility to the tolerance tol (relative).
   inline std::vector<std::vector<double>>
-  enumerate(const DenseMatrix &M, const std::vector<double> &q, const double tol = 1e-10)
+  enumerate(const DenseMatrix         &M,
+            const std::vector<double> &q,
+            const double               tol = 1e-10)
   {
     const std::size_t                n = q.size();
     std::vector<std::vector<double>> solutions;
@@ -112,7 +116,8 @@ namespace lcp_test
         std::vector<double> z(n, 0.);
         if (!act.empty())
           {
-            std::vector<std::vector<double>> A(act.size(), std::vector<double>(act.size()));
+            std::vector<std::vector<double>> A(act.size(),
+                                               std::vector<double>(act.size()));
             std::vector<double>              b(act.size()), x;
             for (std::size_t a = 0; a < act.size(); ++a)
               {
@@ -171,8 +176,8 @@ namespace lcp_test
           r = 0.;
         else
           {
-            const double sc =
-              std::pow(10., 5 - static_cast<int>(std::floor(std::log10(std::abs(r)))));
+            const double sc = std::pow(
+              10., 5 - static_cast<int>(std::floor(std::log10(std::abs(r)))));
             r = std::round(r * sc) / sc;
           }
         s << (i ? " " : "") << r;

@@ -21,6 +21,7 @@
 #include <impactfe/lcp/lemke.h>
 
 #include "../tests.h"
+
 #include "lcp_test_tools.h"
 
 using namespace impactfe::lcp;
@@ -29,8 +30,11 @@ using lcp_test::matrix;
 namespace
 {
   void
-  run(const std::string &name, const DenseMatrix &M, const std::vector<double> &q,
-      const std::vector<double> &expected, const unsigned int expected_pivots)
+  run(const std::string         &name,
+      const DenseMatrix         &M,
+      const std::vector<double> &q,
+      const std::vector<double> &expected,
+      const unsigned int         expected_pivots)
   {
     const Result r = solve_lemke(M, q);
     dealii::deallog << name << ": " << to_string(r.status) << " in " << r.pivots
@@ -39,7 +43,8 @@ namespace
     for (const auto &s : lcp_test::enumerate(M, q))
       in_enumeration = in_enumeration || lcp_test::max_diff(s, r.z) < 1e-10;
     impactfe_tests::check(r.status == Status::solved && r.verification.ok &&
-                            (expected.empty() || lcp_test::max_diff(r.z, expected) < 1e-12) &&
+                            (expected.empty() ||
+                             lcp_test::max_diff(r.z, expected) < 1e-12) &&
                             in_enumeration && r.pivots == expected_pivots,
                           name);
   }
@@ -55,29 +60,41 @@ main()
     const std::vector<double> q = {-1, -1};
     run("CPS remark 4.1.14", M, q, {}, 2);
     const Result r = solve_lemke(M, q);
-    impactfe_tests::check(std::abs(r.z[0] + r.z[1] - 1.) < 1e-14, "z_1 + z_2 = 1");
+    impactfe_tests::check(std::abs(r.z[0] + r.z[1] - 1.) < 1e-14,
+                          "z_1 + z_2 = 1");
   }
   run("QP (lcp_CPS_4)",
-      matrix({{11, 0, 10, -1}, {0, 11, 10, -1}, {10, 10, 21, -1}, {1, 1, 1, 0}}),
-      {50, 50, 10, -6}, {2, 2, 2, 92}, 5);
-  run("LP", matrix({{0, 0, -1, -3}, {0, 0, -2, -1}, {1, 2, 0, 0}, {3, 1, 0, 0}}), {1, 1, -2, -3},
-      {0.8, 0.6, 0.4, 0.2}, 5);
+      matrix(
+        {{11, 0, 10, -1}, {0, 11, 10, -1}, {10, 10, 21, -1}, {1, 1, 1, 0}}),
+      {50, 50, 10, -6},
+      {2, 2, 2, 92},
+      5);
+  run("LP",
+      matrix({{0, 0, -1, -3}, {0, 0, -2, -1}, {1, 2, 0, 0}, {3, 1, 0, 0}}),
+      {1, 1, -2, -3},
+      {0.8, 0.6, 0.4, 0.2},
+      5);
   run("2x2 SPD", matrix({{2, 1}, {1, 2}}), {-5, -6}, {4. / 3, 7. / 3}, 3);
-  run("cyclic P-matrix", matrix({{1, 2, 0}, {0, 1, 2}, {2, 0, 1}}), {-1, -1, -1},
-      {1. / 3, 1. / 3, 1. / 3}, 4);
+  run("cyclic P-matrix",
+      matrix({{1, 2, 0}, {0, 1, 2}, {2, 0, 1}}),
+      {-1, -1, -1},
+      {1. / 3, 1. / 3, 1. / 3},
+      4);
 
   // The trivial case: q >= 0.
   {
     const Result r = solve_lemke(matrix({{-1, 5}, {3, -2}}), {0, 2});
     dealii::deallog << "q >= 0: " << to_string(r.status) << " in " << r.pivots
                     << " pivots, z = " << lcp_test::str(r.z) << std::endl;
-    impactfe_tests::check(r.status == Status::solved && r.pivots == 0 && r.z == std::vector<double>{0, 0},
+    impactfe_tests::check(r.status == Status::solved && r.pivots == 0 &&
+                            r.z == std::vector<double>{0, 0},
                           "trivial exit");
   }
   // Scale invariance: M and q scaled by 1e-9 (a Delassus operator in SI units
   // can be that small) give the same z and pivots.
   {
-    DenseMatrix M = matrix({{11, 0, 10, -1}, {0, 11, 10, -1}, {10, 10, 21, -1}, {1, 1, 1, 0}});
+    DenseMatrix M = matrix(
+      {{11, 0, 10, -1}, {0, 11, 10, -1}, {10, 10, 21, -1}, {1, 1, 1, 0}});
     std::vector<double> q = {50, 50, 10, -6};
     for (unsigned int i = 0; i < 4; ++i)
       {

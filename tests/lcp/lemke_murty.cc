@@ -15,6 +15,7 @@
 #include <impactfe/lcp/lemke.h>
 
 #include "../tests.h"
+
 #include "lcp_test_tools.h"
 
 using namespace impactfe::lcp;
@@ -38,10 +39,13 @@ main()
 
       std::vector<double> expected(n, 0.);
       expected[0] = 1.;
-      dealii::deallog << "n = " << n << ": status " << to_string(r.status) << ", pivots " << r.pivots
-                      << " (2^n = " << (1u << n) << ")" << std::endl;
-      impactfe_tests::check(r.status == Status::solved && r.pivots == (1u << n) &&
-                              lcp_test::max_diff(r.z, expected) < 1e-12 && r.verification.ok,
+      dealii::deallog << "n = " << n << ": status " << to_string(r.status)
+                      << ", pivots " << r.pivots << " (2^n = " << (1u << n)
+                      << ")" << std::endl;
+      impactfe_tests::check(r.status == Status::solved &&
+                              r.pivots == (1u << n) &&
+                              lcp_test::max_diff(r.z, expected) < 1e-12 &&
+                              r.verification.ok,
                             "murty n=" + std::to_string(n));
     }
 
@@ -54,10 +58,11 @@ main()
       for (unsigned int j = 0; j <= i; ++j)
         M(i, j) = (i == j ? 1. : 2.);
     const Result r = solve_lemke(M, std::vector<double>(n, -1.));
-    dealii::deallog << "n = 12, default cap: status " << to_string(r.status) << ", pivots "
-                    << r.pivots << std::endl;
-    impactfe_tests::check(r.status == Status::pivot_limit && r.pivots == 50 * 13 && r.z.empty() &&
-                            r.w.empty() && !r.verification.ok,
+    dealii::deallog << "n = 12, default cap: status " << to_string(r.status)
+                    << ", pivots " << r.pivots << std::endl;
+    impactfe_tests::check(r.status == Status::pivot_limit &&
+                            r.pivots == 50 * 13 && r.z.empty() && r.w.empty() &&
+                            !r.verification.ok,
                           "pivot cap reported, no solution returned");
   }
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;

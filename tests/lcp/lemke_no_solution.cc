@@ -15,6 +15,7 @@
 #include <impactfe/lcp/lemke.h>
 
 #include "../tests.h"
+
 #include "lcp_test_tools.h"
 
 using namespace impactfe::lcp;
@@ -23,14 +24,19 @@ using lcp_test::matrix;
 namespace
 {
   void
-  run(const std::string &name, const DenseMatrix &M, const std::vector<double> &q,
-      const unsigned int expected_pivots, const int expected_driving_variable)
+  run(const std::string         &name,
+      const DenseMatrix         &M,
+      const std::vector<double> &q,
+      const unsigned int         expected_pivots,
+      const int                  expected_driving_variable)
   {
     const Result r = solve_lemke(M, q);
-    dealii::deallog << name << ": " << to_string(r.status) << " after " << r.pivots
-                    << " pivots, driving variable " << r.driving_variable << std::endl;
-    impactfe_tests::check(r.status == Status::ray_termination && r.z.empty() && r.w.empty() &&
-                            !r.verification.ok && r.pivots == expected_pivots &&
+    dealii::deallog << name << ": " << to_string(r.status) << " after "
+                    << r.pivots << " pivots, driving variable "
+                    << r.driving_variable << std::endl;
+    impactfe_tests::check(r.status == Status::ray_termination && r.z.empty() &&
+                            r.w.empty() && !r.verification.ok &&
+                            r.pivots == expected_pivots &&
                             r.driving_variable == expected_driving_variable &&
                             !r.message.empty(),
                           name);
@@ -43,11 +49,16 @@ main()
   impactfe_tests::initlog();
   run("skew, infeasible", matrix({{0, -1}, {1, 0}}), {-1, -1}, 3, 1);
   run("PSD, infeasible", matrix({{1, -1}, {-1, 1}}), {-1, -1}, 2, 2);
-  run("not copositive-plus, solvable", matrix({{-1, 2}, {2, -1}}), {-1, -1}, 1, 3);
-  impactfe_tests::check(lcp_test::enumerate(matrix({{0, -1}, {1, 0}}), {-1, -1}).empty() &&
-                          lcp_test::enumerate(matrix({{1, -1}, {-1, 1}}), {-1, -1}).empty() &&
-                          lcp_test::enumerate(matrix({{-1, 2}, {2, -1}}), {-1, -1}).size() == 1,
-                        "enumeration agrees: none, none, one solution");
+  run("not copositive-plus, solvable",
+      matrix({{-1, 2}, {2, -1}}),
+      {-1, -1},
+      1,
+      3);
+  impactfe_tests::check(
+    lcp_test::enumerate(matrix({{0, -1}, {1, 0}}), {-1, -1}).empty() &&
+      lcp_test::enumerate(matrix({{1, -1}, {-1, 1}}), {-1, -1}).empty() &&
+      lcp_test::enumerate(matrix({{-1, 2}, {2, -1}}), {-1, -1}).size() == 1,
+    "enumeration agrees: none, none, one solution");
 
   // Invalid input is an exception, not a status.
   bool thrown = false;

@@ -13,6 +13,7 @@
 #include <impactfe/lcp/lemke.h>
 
 #include "../tests.h"
+
 #include "lcp_test_tools.h"
 
 using namespace impactfe::lcp;
@@ -20,7 +21,9 @@ using namespace impactfe::lcp;
 namespace
 {
   DenseMatrix
-  random_pmatrix(lcp_test::Rng &rng, const unsigned int n, const unsigned int kind)
+  random_pmatrix(lcp_test::Rng     &rng,
+                 const unsigned int n,
+                 const unsigned int kind)
   {
     DenseMatrix M(n, n, 0.);
     if (kind == 1)
@@ -46,7 +49,8 @@ namespace
           double s = 0.;
           for (unsigned int k = 0; k < n; ++k)
             s += B(i, k) * B(j, k);
-          M(i, j) = s / n + (i == j ? 0.1 : 0.) + (kind == 0 ? S(i, j) - S(j, i) : 0.);
+          M(i, j) =
+            s / n + (i == j ? 0.1 : 0.) + (kind == 0 ? S(i, j) - S(j, i) : 0.);
         }
     if (kind == 2)
       {
@@ -74,7 +78,8 @@ main()
   for (unsigned int n = 1; n <= 10; ++n)
     for (unsigned int kind = 0; kind < 3; ++kind)
       {
-        unsigned int n_problems = 0, n_unique = 0, n_cold = 0, n_exact_guess = 0, n_random_guess = 0,
+        unsigned int n_problems = 0, n_unique = 0, n_cold = 0,
+                     n_exact_guess = 0, n_random_guess = 0,
                      n_complement_guess = 0;
         for (unsigned int instance = 0; instance < 8; ++instance)
           {
@@ -89,7 +94,7 @@ main()
               continue;
             ++n_unique;
             const std::vector<double> &z = solutions[0];
-            const double               tol = 1e-8 * std::max(1., lcp_test::linfty(z));
+            const double tol = 1e-8 * std::max(1., lcp_test::linfty(z));
 
             const Result cold = solve_lemke(M, q);
             if (cold.status == Status::solved && cold.verification.ok &&
@@ -104,23 +109,30 @@ main()
                 random[i]     = rng.uniform() < 0.5;
               }
             const Result w1 = solve_lemke_warm(M, q, exact);
-            if (w1.status == Status::solved && lcp_test::max_diff(w1.z, z) < tol &&
+            if (w1.status == Status::solved &&
+                lcp_test::max_diff(w1.z, z) < tol &&
                 (w1.pivots == 0 || cold.pivots == 0))
               ++n_exact_guess;
             const Result w2 = solve_lemke_warm(M, q, random);
-            if (w2.status == Status::solved && w2.verification.ok && lcp_test::max_diff(w2.z, z) < tol)
+            if (w2.status == Status::solved && w2.verification.ok &&
+                lcp_test::max_diff(w2.z, z) < tol)
               ++n_random_guess;
             const Result w3 = solve_lemke_warm(M, q, complement);
-            if (w3.status == Status::solved && w3.verification.ok && lcp_test::max_diff(w3.z, z) < tol)
+            if (w3.status == Status::solved && w3.verification.ok &&
+                lcp_test::max_diff(w3.z, z) < tol)
               ++n_complement_guess;
           }
         const std::string name = "n=" + std::to_string(n) + " " + kinds[kind];
-        dealii::deallog << name << ": " << n_problems << " problems, " << n_unique
-                        << " with one solution by enumeration; Lemke agrees on " << n_cold
-                        << "; warm (exact/random/complement guess) on " << n_exact_guess << "/"
-                        << n_random_guess << "/" << n_complement_guess << std::endl;
+        dealii::deallog << name << ": " << n_problems << " problems, "
+                        << n_unique
+                        << " with one solution by enumeration; Lemke agrees on "
+                        << n_cold
+                        << "; warm (exact/random/complement guess) on "
+                        << n_exact_guess << "/" << n_random_guess << "/"
+                        << n_complement_guess << std::endl;
         impactfe_tests::check(n_unique == n_problems && n_cold == n_problems &&
-                                n_exact_guess == n_problems && n_random_guess == n_problems &&
+                                n_exact_guess == n_problems &&
+                                n_random_guess == n_problems &&
                                 n_complement_guess == n_problems,
                               name);
       }

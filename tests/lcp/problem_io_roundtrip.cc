@@ -6,10 +6,11 @@
 // input.
 #include <impactfe/lcp/problem_io.h>
 
-#include "../tests.h"
-#include "lcp_test_tools.h"
-
 #include <sstream>
+
+#include "../tests.h"
+
+#include "lcp_test_tools.h"
 
 using namespace impactfe::lcp;
 
@@ -50,20 +51,24 @@ main()
     std::stringstream s;
     write_lcp(s, M, q);
     const ProblemFile f = read_problem(s, "roundtrip");
-    impactfe_tests::check(f.type == ProblemType::lcp && f.lcp.M.data() == M.data() && f.lcp.q == q,
+    impactfe_tests::check(f.type == ProblemType::lcp &&
+                            f.lcp.M.data() == M.data() && f.lcp.q == q,
                           "LCP round trip is exact");
   }
 
   // 2. The Siconos file lcp_CPS_4.dat: M is stored column-major; the
   //    solution (2, 2, 2, 92) is known (see lemke_classical.cc).
   {
-    std::istringstream in("4\n0\n4\n4\n4\t4\n11 0 10 1\n0 11 10 1\n10 10 21 1\n-1 -1 -1 0\n50 50 10 -6\n"
-                          "\nsome trailing comment\n");
+    std::istringstream in(
+      "4\n0\n4\n4\n4\t4\n11 0 10 1\n0 11 10 1\n10 10 21 1\n-1 -1 -1 0\n50 50 10 -6\n"
+      "\nsome trailing comment\n");
     const ProblemFile f = read_problem(in, "lcp_CPS_4.dat");
     const Result      r = solve_lemke(f.lcp.M, f.lcp.q);
-    dealii::deallog << "lcp_CPS_4.dat: M(0,3) = " << f.lcp.M(0, 3) << ", M(3,0) = " << f.lcp.M(3, 0)
+    dealii::deallog << "lcp_CPS_4.dat: M(0,3) = " << f.lcp.M(0, 3)
+                    << ", M(3,0) = " << f.lcp.M(3, 0)
                     << ", z = " << lcp_test::str(r.z) << std::endl;
-    impactfe_tests::check(f.type == ProblemType::lcp && f.lcp.M(0, 3) == -1 && f.lcp.M(3, 0) == 1 &&
+    impactfe_tests::check(f.type == ProblemType::lcp && f.lcp.M(0, 3) == -1 &&
+                            f.lcp.M(3, 0) == 1 &&
                             lcp_test::max_diff(r.z, {2, 2, 2, 92}) < 1e-12,
                           "Siconos dense LCP file");
   }
@@ -72,19 +77,22 @@ main()
   //    diagonal blocks [2 .5; .5 1] and [3 0; 0 1], one off-diagonal block
   //    (row 0, column 1) [0.1 0.2; 0.3 0.4] (values column-major).
   {
-    std::istringstream in("2\n2\n1\n4\n4\n"
-                          "3\n2\n2\n2\t4\t\n2\t4\t\n3\n3\n0\t2\t3\t\n0\t1\t1\t\n"
-                          "0\n2\n0.5\n0.5\n1\n"
-                          "1\n0.1\n0.3\n0.2\n0.4\n"
-                          "2\n3\n0\n0\n1\n"
-                          "-1 0.1 -1 0.2\n0.3 0.4\n");
-    const ProblemFile    f = read_problem(in, "sbm.dat");
-    const ContactProblem &p = f.contact;
-    const DenseMatrix    expected = lcp_test::matrix(
+    std::istringstream in(
+      "2\n2\n1\n4\n4\n"
+      "3\n2\n2\n2\t4\t\n2\t4\t\n3\n3\n0\t2\t3\t\n0\t1\t1\t\n"
+      "0\n2\n0.5\n0.5\n1\n"
+      "1\n0.1\n0.3\n0.2\n0.4\n"
+      "2\n3\n0\n0\n1\n"
+      "-1 0.1 -1 0.2\n0.3 0.4\n");
+    const ProblemFile     f        = read_problem(in, "sbm.dat");
+    const ContactProblem &p        = f.contact;
+    const DenseMatrix     expected = lcp_test::matrix(
       {{2, 0.5, 0.1, 0.2}, {0.5, 1, 0.3, 0.4}, {0, 0, 3, 0}, {0, 0, 0, 1}});
-    impactfe_tests::check(f.type == ProblemType::friction_contact && p.n_directions == 2 &&
-                            p.n_contacts == 2 && p.W.data() == expected.data() &&
-                            p.free_velocity == std::vector<double>({-1, 0.1, -1, 0.2}) &&
+    impactfe_tests::check(f.type == ProblemType::friction_contact &&
+                            p.n_directions == 2 && p.n_contacts == 2 &&
+                            p.W.data() == expected.data() &&
+                            p.free_velocity ==
+                              std::vector<double>({-1, 0.1, -1, 0.2}) &&
                             p.mu == std::vector<double>({0.3, 0.4}) &&
                             p.gap_term == std::vector<double>({0, 0}),
                           "Siconos sparse-block friction-contact file");
@@ -109,18 +117,21 @@ main()
     const ProblemFile     f  = read_problem(s, "dump.dat");
     const ContactSolution s1 = solve_contact_problem(p);
     const ContactSolution s2 = solve_contact_problem(f.contact);
-    dealii::deallog << "replay: " << to_string(s1.lcp.status) << " / " << to_string(s2.lcp.status)
-                    << std::endl;
-    impactfe_tests::check(s1.lcp.status == Status::solved && s2.lcp.status == s1.lcp.status &&
-                            lcp_test::max_diff(s1.P, s2.P) < 1e-12 &&
-                            verify_contact_solution(p, s2.P).ok,
-                          "dumped contact problem replays to the same impulses");
+    dealii::deallog << "replay: " << to_string(s1.lcp.status) << " / "
+                    << to_string(s2.lcp.status) << std::endl;
+    impactfe_tests::check(
+      s1.lcp.status == Status::solved && s2.lcp.status == s1.lcp.status &&
+        lcp_test::max_diff(s1.P, s2.P) < 1e-12 &&
+        verify_contact_solution(p, s2.P).ok,
+      "dumped contact problem replays to the same impulses");
   }
 
   // 5. Errors name the file and what is wrong
   dealii::deallog << error_of("") << std::endl;
-  dealii::deallog << error_of("3\n0\n3\n3\n3\t3\n1 0 0\n0 1 0\n0 0 1\n-1 -1\n") << std::endl;
-  dealii::deallog << error_of("2\n0\n2\n2\n2\t2\n1 x\n0 1\n-1 -1\n") << std::endl;
+  dealii::deallog << error_of("3\n0\n3\n3\n3\t3\n1 0 0\n0 1 0\n0 0 1\n-1 -1\n")
+                  << std::endl;
+  dealii::deallog << error_of("2\n0\n2\n2\n2\t2\n1 x\n0 1\n-1 -1\n")
+                  << std::endl;
   dealii::deallog << error_of("2\n2\n2\n4\n4\n") << std::endl;
   dealii::deallog << error_of("hello world\n") << std::endl;
   {
@@ -131,7 +142,8 @@ main()
       }
     catch (const std::runtime_error &e)
       {
-        thrown = std::string(e.what()).find("/nonexistent/problem.dat") != std::string::npos;
+        thrown = std::string(e.what()).find("/nonexistent/problem.dat") !=
+                 std::string::npos;
       }
     impactfe_tests::check(thrown, "unreadable file reported with its name");
   }

@@ -2,13 +2,14 @@
 // non-zero exit: run the programs on broken parameter files and record
 // their exit status and the message they print.
 
-#include "../tests.h"
+#include <sys/wait.h>
 
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
+
+#include "../tests.h"
 
 namespace
 {
@@ -41,11 +42,10 @@ namespace
       std::ofstream(prm) << prm_text;
     const std::string command =
       executable + " " + prm + " > " + name + ".log 2>&1";
-    const int status = std::system(command.c_str());
-    const int code   = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    const int         status  = std::system(command.c_str());
+    const int         code    = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     const std::string message = message_of(name + ".log");
-    dealii::deallog << name << ": exit code " << code << "\n"
-                    << message;
+    dealii::deallog << name << ": exit code " << code << "\n" << message;
     impactfe_tests::check(code == 1 && !message.empty(),
                           name + ": non-zero exit with a message");
   }
@@ -85,46 +85,61 @@ main()
   const std::string plate    = OBLIQUE_PLATE_EXECUTABLE;
   const std::string bars_2d  = TWO_BARS_2D_EXECUTABLE;
   run_case("missing_mesh_file",
-           with("Mesh", "Mesh file = no_such_mesh.msh"), cylinder);
+           with("Mesh", "Mesh file = no_such_mesh.msh"),
+           cylinder);
   run_case("empty_contact_boundary",
-           with("Mesh", "Contact boundary id = 7"), cylinder);
+           with("Mesh", "Contact boundary id = 7"),
+           cylinder);
   run_case("negative_friction",
-           with("Obstacle", "Friction coefficient = -0.1"), cylinder);
+           with("Obstacle", "Friction coefficient = -0.1"),
+           cylinder);
   run_case("negative_ball_radius",
-           with("Obstacle", "Type = ball\n  set Radius = -1"), cylinder);
+           with("Obstacle", "Type = ball\n  set Radius = -1"),
+           cylinder);
   run_case("bad_level_set",
            with("Obstacle", "Type = level set\n  set Level set = y+*2"),
            cylinder);
   run_case("odd_core_cells",
-           with("Geometry", "Number of core cells = 5"), cylinder);
+           with("Geometry", "Number of core cells = 5"),
+           cylinder);
   run_case("upward_plate_velocity",
-           with("Initial conditions", "Vertical velocity = 5"), plate);
+           with("Initial conditions", "Vertical velocity = 5"),
+           plate);
   run_case("plate_below_obstacle",
-           with("Obstacle", "Point on plane = 0, 0.001"), plate);
+           with("Obstacle", "Point on plane = 0, 0.001"),
+           plate);
   run_case("offset_needs_node_to_segment",
-           with("Geometry", "Interface mesh offset = 0.5"), bars_2d);
+           with("Geometry", "Interface mesh offset = 0.5"),
+           bars_2d);
   run_case("plane_normal_with_three_coordinates",
-           with("Obstacle", "Normal = 0, 1, 0"), plate);
+           with("Obstacle", "Normal = 0, 1, 0"),
+           plate);
 
   // block_on_plane: its geometry, loads, second body and final phase.
   const std::string block = BLOCK_ON_PLANE_EXECUTABLE;
   run_case("block_negative_height", with("Geometry", "Height = -0.05"), block);
-  run_case("block_negative_gap", with("Geometry", "Initial gap = -1e-3"),
+  run_case("block_negative_gap",
+           with("Geometry", "Initial gap = -1e-3"),
            block);
-  run_case("block_gravity_with_one_component", with("Loads", "Gravity = -9.81"),
+  run_case("block_gravity_with_one_component",
+           with("Loads", "Gravity = -9.81"),
            block);
   run_case("block_body_2_wider",
-           with("Body 2", "Enabled = true\n  set Width = 0.2"), block);
+           with("Body 2", "Enabled = true\n  set Width = 0.2"),
+           block);
   run_case("block_body_2_negative_gap",
            with("Body 2", "Enabled = true\n  set Gap above body 1 = -0.01"),
            block);
   run_case("block_body_2_zero_density",
-           with("Material of body 2", "Density = 0"), block);
+           with("Material of body 2", "Density = 0"),
+           block);
   run_case("block_final_phase_after_end",
-           with("Verification", "Start of the final phase = 2"), block);
+           with("Verification", "Start of the final phase = 2"),
+           block);
   run_case("block_zero_normal",
-           with("Obstacle", "Type = ball\n  set Normal = 0, 0\n  set Center "
-                            "= 0, -1"),
+           with("Obstacle",
+                "Type = ball\n  set Normal = 0, 0\n  set Center "
+                "= 0, -1"),
            block);
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
 }

@@ -27,20 +27,21 @@ namespace impactfe_tests
 
     // A bar on [0, 1] (E = rho = 1, 10 cells). With @p wall, its left end
     // (boundary id 0) is a contact candidate against the wall x = -gap.
-    BarScene(const Scheme scheme,
-             const double theta,
-             const double h,
-             const bool   wall,
-             const double gap             = 0.,
-             const double body_force      = 0.,
-             const unsigned int n_cells   = 10)
+    BarScene(const Scheme       scheme,
+             const double       theta,
+             const double       h,
+             const bool         wall,
+             const double       gap        = 0.,
+             const double       body_force = 0.,
+             const unsigned int n_cells    = 10)
     {
       time_stepping.scheme    = scheme;
       time_stepping.theta     = theta;
       time_stepping.time_step = h;
       bar = std::make_unique<ElasticBody<1>>("bar", material, discretization);
       GridGenerator::subdivided_hyper_rectangle(bar->triangulation(),
-                                                std::vector<unsigned int>{n_cells},
+                                                std::vector<unsigned int>{
+                                                  n_cells},
                                                 Point<1>(0.),
                                                 Point<1>(1.),
                                                 true);
@@ -49,11 +50,8 @@ namespace impactfe_tests
       system = std::make_unique<MultibodySystem<1>>(time_stepping, solver);
       system->add_body(*bar);
       if (wall)
-        system->contacts().add_node_to_plane(system->bodies(),
-                                             0,
-                                             0,
-                                             Point<1>(-gap),
-                                             Tensor<1, 1>({1.}));
+        system->contacts().add_node_to_plane(
+          system->bodies(), 0, 0, Point<1>(-gap), Tensor<1, 1>({1.}));
     }
 
     // A smooth, non-uniform initial velocity (a vibration plus a drift).
@@ -61,7 +59,8 @@ namespace impactfe_tests
     set_initial_velocity(const double drift, const double amplitude)
     {
       auto &v = system->state().velocity.block(0);
-      for (unsigned int vertex = 0; vertex < bar->triangulation().n_vertices(); ++vertex)
+      for (unsigned int vertex = 0; vertex < bar->triangulation().n_vertices();
+           ++vertex)
         {
           const double x = bar->triangulation().get_vertices()[vertex][0];
           v(bar->vertex_dof(vertex, 0)) =

@@ -14,6 +14,7 @@
 // exactly.
 
 #include "../tests.h"
+
 #include "bar_scene.h"
 
 int
@@ -26,27 +27,31 @@ main()
   for (const Scheme scheme :
        {Scheme::theta_euler, Scheme::modified_theta, Scheme::theta})
     {
-      BarScene scene(scheme, 0.55, h, /*wall=*/true, /*gap=*/0., /*body force=*/-1.);
+      BarScene scene(
+        scheme, 0.55, h, /*wall=*/true, /*gap=*/0., /*body force=*/-1.);
       scene.system->setup();
-      double       max_active_velocity = 0.;
-      unsigned int active_steps        = 0;
+      double              max_active_velocity = 0.;
+      unsigned int        active_steps        = 0;
       std::vector<double> vn;
       for (unsigned int step = 0; step < 200; ++step)
         {
           const StepReport report = scene.system->do_time_step();
-          scene.system->contacts().normal_velocities(scene.system->state().velocity, vn);
+          scene.system->contacts().normal_velocities(
+            scene.system->state().velocity, vn);
           if (report.active_contacts == 1)
             {
               ++active_steps;
-              max_active_velocity = std::max(max_active_velocity, std::abs(vn[0]));
+              max_active_velocity =
+                std::max(max_active_velocity, std::abs(vn[0]));
             }
         }
       dealii::deallog << to_string(scheme) << ": active in " << active_steps
                       << " of 200 steps" << std::endl;
       check(max_active_velocity < 1e-13,
-              to_string(scheme) + ": V_N^{i+1} = 0 on every active step",
-              "max |V_N| = " + std::to_string(max_active_velocity));
-      check(active_steps == 200, to_string(scheme) + ": contact active on every step");
+            to_string(scheme) + ": V_N^{i+1} = 0 on every active step",
+            "max |V_N| = " + std::to_string(max_active_velocity));
+      check(active_steps == 200,
+            to_string(scheme) + ": contact active on every step");
     }
 
   const double v0 = 1.;
@@ -59,12 +64,14 @@ main()
         BarScene scene(scheme, theta, h, true, gap, -1.);
         scene.set_initial_velocity(-v0, 0.);
         scene.system->setup();
-        const StepReport report = scene.system->do_time_step();
+        const StepReport    report = scene.system->do_time_step();
         std::vector<double> vn;
-        scene.system->contacts().normal_velocities(scene.system->state().velocity, vn);
-        const double expected = scheme == Scheme::theta ? (1. - 1. / theta) * -v0 : 0.;
-        const std::string name = to_string(scheme) + ", theta = " +
-                                 std::to_string(theta).substr(0, 4);
+        scene.system->contacts().normal_velocities(
+          scene.system->state().velocity, vn);
+        const double expected =
+          scheme == Scheme::theta ? (1. - 1. / theta) * -v0 : 0.;
+        const std::string name =
+          to_string(scheme) + ", theta = " + std::to_string(theta).substr(0, 4);
         deallog << name << ": V_N^1 / v0 = " << rounded(vn[0] / v0, 6)
                 << std::endl;
         check(report.active_contacts == 1 &&

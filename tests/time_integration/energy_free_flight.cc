@@ -6,6 +6,7 @@
 // every scheme: rigid translation is in the kernel of K.
 
 #include "../tests.h"
+
 #include "bar_scene.h"
 
 int
@@ -30,8 +31,8 @@ main()
       BarScene scene(c.scheme, c.theta, 0.05, /*wall=*/false);
       scene.set_initial_velocity(0.2, 1.);
       scene.system->setup();
-      const double e0 = scene.energy();
-      const double p0 = scene.system->momentum(0)[0];
+      const double e0       = scene.energy();
+      const double p0       = scene.system->momentum(0)[0];
       double       previous = e0, max_growth = 0., max_momentum_error = 0.;
       for (unsigned int step = 0; step < 400; ++step)
         {
@@ -41,14 +42,16 @@ main()
           previous       = e;
           max_momentum_error =
             std::max(max_momentum_error,
-                     std::abs(scene.system->momentum(0)[0] - p0) / std::abs(p0));
+                     std::abs(scene.system->momentum(0)[0] - p0) /
+                       std::abs(p0));
         }
-      const std::string name =
-        to_string(c.scheme) + " theta = " + std::to_string(c.theta).substr(0, 4);
+      const std::string name = to_string(c.scheme) + " theta = " +
+                               std::to_string(c.theta).substr(0, 4);
       deallog << name << ": E(400 h)/E(0) = " << rounded(previous / e0, 6)
               << std::endl;
       if (c.conserving)
-        check(std::abs(previous / e0 - 1.) < 1e-12, name + ": energy conserved");
+        check(std::abs(previous / e0 - 1.) < 1e-12,
+              name + ": energy conserved");
       else
         check(max_growth <= 1e-14 && previous < e0,
               name + ": energy decreases at every step");

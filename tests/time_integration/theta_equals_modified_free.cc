@@ -4,6 +4,7 @@
 // states with both schemes, and no contact impulse at all.
 
 #include "../tests.h"
+
 #include "bar_scene.h"
 
 int
@@ -23,9 +24,9 @@ main()
       double max_difference = 0., max_force = 0.;
       for (unsigned int step = 0; step < 300; ++step)
         {
-          max_force = std::max({max_force,
-                                a.system->do_time_step().normal_force,
-                                b.system->do_time_step().normal_force});
+          max_force              = std::max({max_force,
+                                             a.system->do_time_step().normal_force,
+                                             b.system->do_time_step().normal_force});
           BlockVector<double> du = a.system->state().displacement;
           du -= b.system->state().displacement;
           BlockVector<double> dv = a.system->state().velocity;
@@ -34,7 +35,8 @@ main()
             std::max({max_difference, du.linfty_norm(), dv.linfty_norm()});
         }
       deallog << "theta = " << theta << std::endl;
-      check(max_difference == 0., "identical u and v over 300 steps",
+      check(max_difference == 0.,
+            "identical u and v over 300 steps",
             std::to_string(max_difference));
       check(max_force == 0., "no contact force");
     }

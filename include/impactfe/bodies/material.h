@@ -30,13 +30,13 @@ namespace impactfe
    */
   struct MaterialParameters
   {
-    double     youngs_modulus  = 1.;
-    double     density         = 1.;
-    double     poissons_ratio  = 0.;
-    double     viscosity       = 0.;
+    double     youngs_modulus     = 1.;
+    double     density            = 1.;
+    double     poissons_ratio     = 0.;
+    double     viscosity          = 0.;
     double     rayleigh_mass      = 0.;
     double     rayleigh_stiffness = 0.;
-    PlaneModel plane_model     = PlaneModel::plane_strain;
+    PlaneModel plane_model        = PlaneModel::plane_strain;
 
     /**
      * Declare the entries for a model of dimension @p dim. The plane model

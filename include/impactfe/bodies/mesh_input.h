@@ -21,9 +21,9 @@ namespace impactfe
    */
   struct MeshParameters
   {
-    std::string         file_name;
-    std::string         format = "auto";
-    types::boundary_id  contact_boundary_id = 0;
+    std::string        file_name;
+    std::string        format              = "auto";
+    types::boundary_id contact_boundary_id = 0;
 
     static void
     declare_parameters(ParameterHandler  &prm,

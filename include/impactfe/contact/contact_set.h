@@ -42,8 +42,8 @@ namespace impactfe
     std::array<double, 3> position{{0., 0., 0.}};
     /// Frame: direction 0 is the normal, then the tangents.
     std::array<std::array<double, 3>, 3> frame{};
-    double               initial_gap = 0.;
-    double               friction_coefficient = 0.;
+    double                               initial_gap          = 0.;
+    double                               friction_coefficient = 0.;
 
     bool
     against_rigid_obstacle() const
@@ -92,10 +92,10 @@ namespace impactfe
     template <int dim>
     unsigned int
     add_node_to_plane(const std::vector<const ElasticBody<dim> *> &bodies,
-                      const unsigned int                            body_index,
-                      const types::boundary_id                      boundary_id,
-                      const Point<dim>                             &plane_point,
-                      const Tensor<1, dim>                         &plane_normal,
+                      const unsigned int                           body_index,
+                      const types::boundary_id                     boundary_id,
+                      const Point<dim>                            &plane_point,
+                      const Tensor<1, dim>                        &plane_normal,
                       const double friction_coefficient = 0.);
 
     /**
@@ -108,10 +108,10 @@ namespace impactfe
     template <int dim>
     unsigned int
     add_node_to_obstacle(const std::vector<const ElasticBody<dim> *> &bodies,
-                         const unsigned int                            body_index,
-                         const types::boundary_id                      boundary_id,
-                         const RigidObstacle<dim>                     &obstacle,
-                         const double friction_coefficient = 0.);
+                         const unsigned int        body_index,
+                         const types::boundary_id  boundary_id,
+                         const RigidObstacle<dim> &obstacle,
+                         const double              friction_coefficient = 0.);
 
     /**
      * Node-to-segment candidates (2D) between two bodies whose interface
@@ -125,10 +125,10 @@ namespace impactfe
     template <int dim>
     unsigned int
     add_node_to_segment(const std::vector<const ElasticBody<dim> *> &bodies,
-                        const unsigned int                            body_a,
-                        const types::boundary_id                      boundary_a,
-                        const unsigned int                            body_b,
-                        const types::boundary_id                      boundary_b,
+                        const unsigned int                           body_a,
+                        const types::boundary_id                     boundary_a,
+                        const unsigned int                           body_b,
+                        const types::boundary_id                     boundary_b,
                         const double friction_coefficient = 0.);
 
     /**
@@ -141,11 +141,11 @@ namespace impactfe
     template <int dim>
     unsigned int
     add_node_to_node(const std::vector<const ElasticBody<dim> *> &bodies,
-                     const unsigned int                            body_a,
-                     const types::boundary_id                      boundary_a,
-                     const unsigned int                            body_b,
-                     const types::boundary_id                      boundary_b,
-                     const Tensor<1, dim>                         &normal,
+                     const unsigned int                           body_a,
+                     const types::boundary_id                     boundary_a,
+                     const unsigned int                           body_b,
+                     const types::boundary_id                     boundary_b,
+                     const Tensor<1, dim>                        &normal,
                      const double friction_coefficient = 0.);
 
     /**
@@ -179,15 +179,15 @@ namespace impactfe
   private:
     struct Entry
     {
-      unsigned int block;
+      unsigned int            block;
       types::global_dof_index dof;
-      double       coefficient;
+      double                  coefficient;
     };
 
-    unsigned int                           directions;
-    std::vector<ContactCandidate>          candidate_list;
+    unsigned int                  directions;
+    std::vector<ContactCandidate> candidate_list;
     /// Column j of H as (block, dof, coefficient) entries.
-    std::vector<std::vector<Entry>>        columns;
+    std::vector<std::vector<Entry>> columns;
 
     template <int dim>
     void

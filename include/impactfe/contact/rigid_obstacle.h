@@ -105,9 +105,9 @@ namespace impactfe
     description() const override;
 
   private:
-    std::string        expression;
+    std::string         expression;
     FunctionParser<dim> phi;
-    double             step;
+    double              step;
 
     Tensor<1, dim>
     gradient(const Point<dim> &x) const;
@@ -130,8 +130,8 @@ namespace impactfe
     std::vector<double> point{0., 0., 0.};
     std::vector<double> normal{0., 1., 0.};
     std::vector<double> center{0., 0., 0.};
-    double              radius     = 1.;
-    std::string         expression = "y";
+    double              radius               = 1.;
+    std::string         expression           = "y";
     double              friction_coefficient = 0.;
 
     /**

@@ -18,7 +18,6 @@ namespace impactfe
 
 
 
-
   /**
    * What the checks of a whole run found. All quantities are measured, not
    * assumed; the tolerances they are compared with are the program's.
@@ -27,7 +26,7 @@ namespace impactfe
   {
     /// max over bodies and components of |p(T) - p(0) - impulses| divided
     /// by the largest |p| of that body during the run.
-    double impulse_balance_error = 0.;
+    double impulse_balance_error   = 0.;
     bool   impulse_balance_checked = true;
     /// max over steps and candidates of -g (0 if no node ever penetrated).
     double max_penetration = 0.;
@@ -41,12 +40,12 @@ namespace impactfe
     /// The energy E^0 at t = 0 if it is > 0; otherwise (a scene that starts
     /// at rest and undeformed) the largest kinetic plus elastic energy of
     /// the run. The energy figures below are relative to it.
-    double energy_scale = 0.;
+    double energy_scale            = 0.;
     bool   energy_scale_is_initial = true;
     /// max over steps of (E^{i+1} - E^i) / energy_scale.
     double max_energy_increase = 0.;
     /// E(T) / E^0, or 1 + (E(T) - E^0) / energy_scale if E^0 is not > 0.
-    double energy_ratio        = 1.;
+    double energy_ratio = 1.;
     /// First and last step end times with a non-zero contact force (-1:
     /// never).
     double first_contact = -1., last_contact = -1.;
@@ -111,9 +110,9 @@ namespace impactfe
    */
   bool
   check_contact_bounds(std::ostream                        &out,
-                        const ContactRunSummary             &summary,
-                        const ContactVerificationParameters &bounds,
-                        const bool                           frictional);
+                       const ContactRunSummary             &summary,
+                       const ContactVerificationParameters &bounds,
+                       const bool                           frictional);
 
 
 
@@ -182,22 +181,22 @@ namespace impactfe
     total_momentum() const;
 
   private:
-    const MultibodySystem<dim> &system;
+    const MultibodySystem<dim>    &system;
     std::unique_ptr<std::ofstream> node_output;
 
-    ContactRunSummary          run;
-    double                     initial_energy = 0., last_energy = 0.;
+    ContactRunSummary run;
+    double            initial_energy = 0., last_energy = 0.;
     /// F.u at t = 0, and the largest absolute energy increase in a step
     /// and kinetic plus elastic energy so far.
-    double                     initial_load_term = 0., largest_increase = 0.,
-                               largest_stored_energy = 0.;
+    double initial_load_term = 0., largest_increase = 0.,
+           largest_stored_energy = 0.;
     std::vector<Tensor<1, dim>> initial_momentum, external_force,
       previous_contact_force, accumulated_impulse;
-    std::vector<double>        largest_momentum;
-    std::vector<ContactState>  states;
-    std::vector<double>        gaps, local_velocity;
-    double                     velocity_scale = 0., impulse_scale = 0.,
-                               largest_inverse_nodal_mass = 0.;
+    std::vector<double>       largest_momentum;
+    std::vector<ContactState> states;
+    std::vector<double>       gaps, local_velocity;
+    double                    velocity_scale = 0., impulse_scale = 0.,
+           largest_inverse_nodal_mass = 0.;
   };
 } // namespace impactfe
 

@@ -9,8 +9,8 @@
 #include <impactfe/contact/contact_parameters.h>
 #include <impactfe/contact/contact_set.h>
 #include <impactfe/dynamics/sparse_cholesky.h>
-#include <impactfe/lcp/dense_matrix.h>
 #include <impactfe/lcp/contact_problem.h>
+#include <impactfe/lcp/dense_matrix.h>
 #include <impactfe/lcp/lemke.h>
 #include <impactfe/time_integration/time_integrator.h>
 
@@ -222,8 +222,8 @@ namespace impactfe
 
     MechanicalOperators operators;
     /// Step matrices M~ per body and their factorisations.
-    std::vector<std::unique_ptr<SparseMatrix<double>>>  step_matrices;
-    std::vector<std::unique_ptr<SparseCholesky>>        step_solvers;
+    std::vector<std::unique_ptr<SparseMatrix<double>>> step_matrices;
+    std::vector<std::unique_ptr<SparseCholesky>>       step_solvers;
     /// Flops of one solve with all step matrices (4 per factor entry).
     double solve_cost = 0.;
     /// Stored columns M~^{-1} H_j (slots allocated in setup()) and, per
@@ -233,8 +233,8 @@ namespace impactfe
     mutable std::vector<int>                 stored_column_slot;
     mutable unsigned int                     n_stored_columns = 0;
     /// W, filled column block by column block as candidates enter an LCP.
-    mutable lcp::DenseMatrix  delassus;
-    mutable std::vector<bool> delassus_ready;
+    mutable lcp::DenseMatrix    delassus;
+    mutable std::vector<bool>   delassus_ready;
     mutable BlockVector<double> column_work;
     mutable CostBreakdown       costs;
     bool                        measure_costs = false;
@@ -247,14 +247,14 @@ namespace impactfe
     unsigned int    step_number = 0;
 
     // Work space of a step, kept to avoid allocation in the time loop.
-    BlockVector<double>       free_velocity;
-    BlockVector<double>       contact_force_field;
-    BlockVector<double>       impulse_response;
-    std::vector<double>       local_free_velocity;
-    std::vector<double>       gap_terms;
-    std::vector<double>       local_impulses;
-    std::vector<bool>         active;
-    std::vector<bool>         in_lcp;
+    BlockVector<double> free_velocity;
+    BlockVector<double> contact_force_field;
+    BlockVector<double> impulse_response;
+    std::vector<double> local_free_velocity;
+    std::vector<double> gap_terms;
+    std::vector<double> local_impulses;
+    std::vector<bool>   active;
+    std::vector<bool>   in_lcp;
     /// State of each candidate at the last LCP solve (warm start).
     std::vector<ContactState> last_contact_states;
     std::vector<unsigned int> lcp_candidates;

@@ -93,11 +93,14 @@ namespace impactfe
 
     /// Assemble the LCP in the requested form (automatic resolved as above).
     ContactLCP
-    assemble_contact_lcp(const ContactProblem &problem, const ContactOptions &options = {});
+    assemble_contact_lcp(const ContactProblem &problem,
+                         const ContactOptions &options = {});
 
     /// Local impulses P (ordering of W) from an LCP solution z.
     std::vector<double>
-    impulses_from_lcp(const ContactProblem &problem, const ContactLCP &lcp, const std::vector<double> &z);
+    impulses_from_lcp(const ContactProblem      &problem,
+                      const ContactLCP          &lcp,
+                      const std::vector<double> &z);
 
     /// Result of solve_contact_problem().
     struct ContactSolution
@@ -163,7 +166,9 @@ namespace impactfe
      * -tol s_V, stick if not; frictionless and 3D: stick (closed).
      */
     std::vector<ContactState>
-    contact_states(const ContactProblem &problem, const std::vector<double> &P, double tolerance = 1e-8);
+    contact_states(const ContactProblem      &problem,
+                   const std::vector<double> &P,
+                   double                     tolerance = 1e-8);
 
     /**
      * The LCP guess ("z_i > 0 expected") of @p lcp that corresponds to the
@@ -173,7 +178,8 @@ namespace impactfe
      * velocity.
      */
     std::vector<bool>
-    guess_from_states(const ContactLCP &lcp, const std::vector<ContactState> &states);
+    guess_from_states(const ContactLCP                &lcp,
+                      const std::vector<ContactState> &states);
 
     /// Signorini and Coulomb checked on (P, V = V_free + W P) directly.
     struct ContactVerification
@@ -200,8 +206,9 @@ namespace impactfe
      * are <= tol.
      */
     ContactVerification
-    verify_contact_solution(const ContactProblem &problem, const std::vector<double> &P,
-                            double tolerance = 1e-8);
+    verify_contact_solution(const ContactProblem      &problem,
+                            const std::vector<double> &P,
+                            double                     tolerance = 1e-8);
   } // namespace lcp
 } // namespace impactfe
 

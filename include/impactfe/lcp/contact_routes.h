@@ -35,8 +35,8 @@ namespace impactfe
     /// One route tried by solve_contact_problem_by_routes().
     struct RouteAttempt
     {
-      /// "requested", "copositive", "small-tolerance", "covering", "regularised"
-      /// or "feasibility": which of the routes above.
+      /// "requested", "copositive", "small-tolerance", "covering",
+      /// "regularised" or "feasibility": which of the routes above.
       std::string  kind;
       std::string  route;
       Status       status = Status::numerical_failure;
@@ -64,9 +64,10 @@ namespace impactfe
      * routes.
      */
     RoutedContactSolution
-    solve_contact_problem_by_routes(const ContactProblem  &problem,
-                                    const ContactOptions  &options       = {},
-                                    const ContactSolution *first_attempt = nullptr);
+    solve_contact_problem_by_routes(
+      const ContactProblem  &problem,
+      const ContactOptions  &options       = {},
+      const ContactSolution *first_attempt = nullptr);
 
     /**
      * For solve_contact_problem() with FrictionForm::automatic: @p failed is
@@ -88,7 +89,9 @@ namespace impactfe
      * infeasible; anything else: undecided).
      */
     Status
-    lcp_feasibility(const DenseMatrix &M, const std::vector<double> &q, const LemkeOptions &options = {});
+    lcp_feasibility(const DenseMatrix         &M,
+                    const std::vector<double> &q,
+                    const LemkeOptions        &options = {});
   } // namespace lcp
 } // namespace impactfe
 

@@ -22,7 +22,9 @@ namespace impactfe
       DenseMatrix() = default;
 
       /// An n_rows x n_cols matrix filled with @p value.
-      DenseMatrix(const std::size_t n_rows, const std::size_t n_cols, const double value = 0.)
+      DenseMatrix(const std::size_t n_rows,
+                  const std::size_t n_cols,
+                  const double      value = 0.)
         : rows(n_rows)
         , cols(n_cols)
         , values(n_rows * n_cols, value)
@@ -30,7 +32,9 @@ namespace impactfe
 
       /// Resize to n_rows x n_cols and fill with @p value.
       void
-      reinit(const std::size_t n_rows, const std::size_t n_cols, const double value = 0.)
+      reinit(const std::size_t n_rows,
+             const std::size_t n_cols,
+             const double      value = 0.)
       {
         rows = n_rows;
         cols = n_cols;

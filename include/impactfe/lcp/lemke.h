@@ -181,7 +181,9 @@ namespace impactfe
      * a covering vector that is not positive.
      */
     Result
-    solve_lemke(const DenseMatrix &M, const std::vector<double> &q, const LemkeOptions &options = {});
+    solve_lemke(const DenseMatrix         &M,
+                const std::vector<double> &q,
+                const LemkeOptions        &options = {});
 
     /**
      * Warm-started solve. @p guess[i] says "z_i > 0 expected" (e.g. the active

@@ -94,7 +94,7 @@ namespace impactfe
     void
     write_friction_contact(std::ostream         &out,
                            const ContactProblem &problem,
-                           MatrixStorage         storage = MatrixStorage::dense);
+                           MatrixStorage storage = MatrixStorage::dense);
 
     /// Write to a file (std::runtime_error if it cannot be written).
     void
@@ -107,7 +107,7 @@ namespace impactfe
     void
     write_friction_contact_file(const std::string    &filename,
                                 const ContactProblem &problem,
-                                MatrixStorage         storage = MatrixStorage::dense);
+                                MatrixStorage storage = MatrixStorage::dense);
   } // namespace lcp
 } // namespace impactfe
 

@@ -20,16 +20,16 @@ namespace impactfe
   /** Parameter subsection `Output`. */
   struct OutputParameters
   {
-    std::string directory       = "results";
-    bool        vtu_output      = true;
-    unsigned int output_interval = 1;
-    bool        plot            = true;
-    bool        print_performance = true;
+    std::string  directory         = "results";
+    bool         vtu_output        = true;
+    unsigned int output_interval   = 1;
+    bool         plot              = true;
+    bool         print_performance = true;
     /// Times of the deformed shapes written to shapes.csv (2D).
     std::vector<double> shape_times;
 
     static void
-    declare_parameters(ParameterHandler &prm,
+    declare_parameters(ParameterHandler  &prm,
                        const std::string &default_directory);
     void
     parse_parameters(ParameterHandler &prm);
@@ -48,7 +48,8 @@ namespace impactfe
   class HistoryWriter
   {
   public:
-    HistoryWriter(const std::string &file_name, const std::vector<std::string> &columns);
+    HistoryWriter(const std::string              &file_name,
+                  const std::vector<std::string> &columns);
     void
     add_row(const std::vector<double> &values);
     const std::vector<std::string> &
@@ -101,7 +102,7 @@ namespace impactfe
     write(const MultibodySystem<dim> &system, const unsigned int step);
 
   private:
-    std::string directory;
+    std::string                                                directory;
     std::vector<std::tuple<double, unsigned int, std::string>> records;
   };
 

@@ -35,7 +35,8 @@ namespace impactfe
      * program's extra history columns.
      */
     void
-    record(const StepReport &report, const std::vector<double> &extra_values = {});
+    record(const StepReport          &report,
+           const std::vector<double> &extra_values = {});
 
     /** Close history.csv: it is complete and valid from here on. */
     void
@@ -55,12 +56,12 @@ namespace impactfe
                  const std::string              &title) const;
 
   private:
-    const MultibodySystem<dim>         &system;
-    OutputParameters                    output;
-    ContactMonitor<dim>                 contact_monitor;
-    std::unique_ptr<HistoryWriter>      history;
-    SolutionWriter<dim>                 solution_writer;
-    std::unique_ptr<ShapeWriter<dim>>   shape_writer;
+    const MultibodySystem<dim>       &system;
+    OutputParameters                  output;
+    ContactMonitor<dim>               contact_monitor;
+    std::unique_ptr<HistoryWriter>    history;
+    SolutionWriter<dim>               solution_writer;
+    std::unique_ptr<ShapeWriter<dim>> shape_writer;
   };
 } // namespace impactfe
 

@@ -77,17 +77,17 @@ namespace impactfe
     // `Body 2`: the optional second block, centred above the first. Its
     // lower nodes are node-to-segment candidates against the first
     // block's upper side.
-    bool            body_2 = false;
-    BlockParameters block_2;
-    double          gap_2 = 0.01, mu_2 = 0.;
-    Tensor<1, 2>    velocity_2;
+    bool               body_2 = false;
+    BlockParameters    block_2;
+    double             gap_2 = 0.01, mu_2 = 0.;
+    Tensor<1, 2>       velocity_2;
     ObstacleParameters obstacle_parameters;
     MaterialParameters material, material_2;
     StabilityBounds    bounds;
     bool               print_figures = true;
 
-    std::unique_ptr<RigidObstacle<2>>     obstacle;
-    std::unique_ptr<StabilityMonitor<2>>  stability;
+    std::unique_ptr<RigidObstacle<2>>    obstacle;
+    std::unique_ptr<StabilityMonitor<2>> stability;
     // The plane's frame: unit normal n (towards the block) and tangent t
     // (n turned by -90 degrees: +x for a horizontal plane).
     Tensor<1, 2> normal, tangent;
@@ -96,8 +96,8 @@ namespace impactfe
     unsigned int              n_plane_candidates = 0;
     std::vector<unsigned int> top_vertices;
     // M e_x and M e_y of block 1, for its mean velocity and displacement.
-    std::array<Vector<double>, 2> mass_weights;
-    double                        mass_1 = 0., total_mass = 0.;
+    std::array<Vector<double>, 2>         mass_weights;
+    double                                mass_1 = 0., total_mass = 0.;
     std::unique_ptr<RigidBlockTracker<2>> tracker;
   };
 } // namespace impactfe

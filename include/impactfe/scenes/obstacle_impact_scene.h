@@ -92,13 +92,12 @@ namespace impactfe
     bool
     report(std::ostream &out, JsonObject &summary) override;
 
-    std::string                         body_name;
-    unsigned int                        default_boundary_id;
-    std::string                         default_point, default_normal,
-      default_mu;
-    MeshParameters                      mesh;
-    ObstacleParameters                  obstacle_parameters;
-    MaterialParameters                  material;
+    std::string        body_name;
+    unsigned int       default_boundary_id;
+    std::string        default_point, default_normal, default_mu;
+    MeshParameters     mesh;
+    ObstacleParameters obstacle_parameters;
+    MaterialParameters material;
     std::unique_ptr<RigidObstacle<dim>> rigid_obstacle;
   };
 } // namespace impactfe

@@ -131,9 +131,9 @@ namespace impactfe
   private:
     Tensor<1, dim> normal, tangent;
     double         time_step;
-    double velocity_before_impact = 0., velocity_after_impact = 0.;
-    int    impact_phase = 0;
-    double previous_tangential_velocity = 0., first_stop_time = -1.;
+    double         velocity_before_impact = 0., velocity_after_impact = 0.;
+    int            impact_phase                 = 0;
+    double         previous_tangential_velocity = 0., first_stop_time = -1.;
   };
 } // namespace impactfe
 

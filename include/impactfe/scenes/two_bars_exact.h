@@ -58,7 +58,9 @@ namespace impactfe
 
     /** Account for the state at the end of a step. */
     void
-    add(const double t, const double contact_velocity, const double normal_force);
+    add(const double t,
+        const double contact_velocity,
+        const double normal_force);
 
     double
     err_v() const;
@@ -70,7 +72,7 @@ namespace impactfe
   private:
     TwoBarsExactSolution exact;
     double               sum_v = 0., sum_f = 0.;
-    unsigned int         n     = 0;
+    unsigned int         n = 0;
   };
 } // namespace impactfe
 

@@ -3,8 +3,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/block_vector.h>
+#include <deal.II/lac/sparse_matrix.h>
 
 #include <memory>
 #include <string>
