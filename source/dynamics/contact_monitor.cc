@@ -432,8 +432,11 @@ namespace impactfe
     if (bound < 0.)
       return true;
     const bool ok = relation == "<=" ? value <= bound : value >= bound;
-    out << "  Check " << what << " " << relation << " " << bound << ": "
-        << (ok ? "OK" : "FAILED") << std::endl;
+    // The bound as the user wrote it (up to 12 digits), e.g. 1.000000001.
+    std::ostringstream bound_text;
+    bound_text << std::setprecision(12) << bound;
+    out << "  Check " << what << " " << relation << " " << bound_text.str()
+        << ": " << (ok ? "OK" : "FAILED") << std::endl;
     return ok;
   }
 

@@ -29,6 +29,7 @@
 #include "lcp_test_tools.h"
 
 using namespace impactfe::lcp;
+using impactfe::ContactState;
 
 namespace
 {

@@ -18,6 +18,7 @@
 #include "../tests.h"
 
 using namespace impactfe::lcp;
+using impactfe::ContactState;
 
 int
 main()
