@@ -12,11 +12,12 @@
 #include "../tests.h"
 
 using namespace impactfe;
+using dealii::deallog;
 
 int
 main()
 {
-  initlog();
+  impactfe_tests::initlog();
   // The paper's Table 1 data: E, rho, L, v0, A = 1 in^2, gap 0.1 mm.
   const double E = 0.20684e12, rho = 0.78957e4, L = 0.254, v0 = 5.13588,
                A = 6.4516e-4, gap = 1e-4;
