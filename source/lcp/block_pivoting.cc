@@ -36,15 +36,6 @@ namespace impactfe
     {
       constexpr double eps = std::numeric_limits<double>::epsilon();
 
-      double
-      linfty(const std::vector<double> &v)
-      {
-        double m = 0.;
-        for (const double x : v)
-          m = std::max(m, std::abs(x));
-        return m;
-      }
-
       /// V = V_free + W P, row by row (W is row-major).
       void
       local_velocities(const ContactProblem      &p,
@@ -468,8 +459,8 @@ namespace impactfe
       double bmax = 0.;
       for (const double b : p.gap_term)
         bmax = std::max(bmax, std::abs(b));
-      const double normW = p.W.linfty_norm(), pmax = linfty(P),
-                   vfree = linfty(p.free_velocity);
+      const double normW = p.W.linfty_norm(), pmax = linfty_norm(P),
+                   vfree = linfty_norm(p.free_velocity);
       const double sV    = vfree + bmax + normW * pmax;
       const double sP =
         std::max(pmax, normW > 0. ? (vfree + bmax) / normW : 0.);

@@ -68,15 +68,6 @@ namespace impactfe
     {
       constexpr double eps = std::numeric_limits<double>::epsilon();
 
-      double
-      linfty(const std::vector<double> &v)
-      {
-        double m = 0.;
-        for (const double x : v)
-          m = std::max(m, std::abs(x));
-        return m;
-      }
-
       bool
       all_finite(const std::vector<double> &v)
       {
@@ -130,7 +121,7 @@ namespace impactfe
           , x(n)
         {
           norm_M = M.linfty_norm();
-          norm_q = linfty(q);
+          norm_q = linfty_norm(q);
           vtol   = options.verification_tolerance_factor * eps * std::max(n, 1);
         }
 
@@ -183,7 +174,7 @@ namespace impactfe
         bool
         basic_solution_feasible() const
         {
-          const double tol = vtol * linfty(x);
+          const double tol = vtol * linfty_norm(x);
           for (const double v : x)
             if (v < -tol)
               return false;
@@ -422,7 +413,7 @@ namespace impactfe
         void
         update_scale()
         {
-          scale_A = std::max({1., norm_M, linfty(d)});
+          scale_A = std::max({1., norm_M, linfty_norm(d)});
         }
 
         double
@@ -530,7 +521,7 @@ namespace impactfe
             }
           if (!(vmin < 0.))
             return -1;
-          const double     xnorm = linfty(x);
+          const double     xnorm = linfty_norm(x);
           const double     tie   = options.tie_tolerance_factor * eps;
           std::vector<int> T;
           for (int p = 0; p < n; ++p)
@@ -551,7 +542,7 @@ namespace impactfe
               vmin = std::min(vmin, std::max(x[p], 0.) / y[p]);
           if (vmin == std::numeric_limits<double>::infinity())
             return -1;
-          const double     xnorm = linfty(x);
+          const double     xnorm = linfty_norm(x);
           const double     tie   = options.tie_tolerance_factor * eps;
           std::vector<int> T;
           for (int p = 0; p < n; ++p)
@@ -660,7 +651,7 @@ namespace impactfe
                 s += mc[j] * zb[j];
               res[c] += s + d[c] * z0;
             }
-          return linfty(res) > vtol * (norm_q + scale_A * linfty(x));
+          return linfty_norm(res) > vtol * (norm_q + scale_A * linfty_norm(x));
         }
 
         void
@@ -822,8 +813,8 @@ namespace impactfe
       v.min_z     = n > 0 ? *std::min_element(z.begin(), z.end()) : 0.;
       v.min_w     = n > 0 ? *std::min_element(w.begin(), w.end()) : 0.;
 
-      const double zmax = linfty(z);
-      const double s    = linfty(q) + norm_M * zmax;
+      const double zmax = linfty_norm(z);
+      const double s    = linfty_norm(q) + norm_M * zmax;
       double       sum  = 0.;
       for (std::size_t i = 0; i < n; ++i)
         {

@@ -133,6 +133,16 @@ namespace impactfe
       std::size_t         cols = 0;
       std::vector<double> values;
     };
+
+    /** max_i |v_i| (0 for an empty vector). */
+    inline double
+    linfty_norm(const std::vector<double> &v)
+    {
+      double m = 0.;
+      for (const double x : v)
+        m = std::max(m, std::abs(x));
+      return m;
+    }
   } // namespace lcp
 } // namespace impactfe
 
