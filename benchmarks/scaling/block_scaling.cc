@@ -133,6 +133,14 @@ namespace
               << ',' << costs.update / n_steps << ',' << max_active << ','
               << max_lcp_size << ',' << peak_rss_megabytes() << ','
               << 8. * n_columns * block.n_dofs() / (1024. * 1024.) << std::endl;
+    // The machine-readable summary line (after the CSV row, which
+    // run_scaling.py reads).
+    std::cout << "RESULT dofs=" << block.n_dofs()
+              << " contacts=" << system.contacts().n_candidates()
+              << " max_active=" << max_active << " steps=" << n_steps
+              << " seconds_per_step="
+              << (costs.free_velocity + costs.lcp + costs.update) / n_steps
+              << " delassus_seconds=" << costs.delassus << std::endl;
   }
 } // namespace
 
