@@ -1,0 +1,209 @@
+/* ---------------------------------------------------------------------
+ *
+ * two_bars_3d: the impact of two identical elastic bars of square section,
+ * meshed with Q1 hexahedra (the 1D bars of Vola, Pratt, Jean, Raous,
+ * section 6.1, in three dimensions), node-to-node contact.
+ *
+ * ---------------------------------------------------------------------
+ */
+
+// @sect3{Introduction}
+//
+// Two prisms of length L and square section H x H, bar 1 moving at v0
+// along x onto bar 2 at rest. Each node of bar 1's end face is paired
+// with the node of bar 2's end face on the same line along x.
+//
+// With Poisson's ratio 0, a state that is uniform over the section is an
+// exact solution of the 3D discrete problem (nothing couples the axial
+// motion to the lateral one), so the program must give the 1D program's
+// err_v and err_f: the first check of a 3D body, its Q1 hexahedra, its
+// node-to-node candidates and its frames against an independent program.
+// With nu > 0 lateral inertia makes the bar dispersive, as in 2D.
+//
+// Everything but the meshes and the candidates is the library's
+// TwoBarsScene: the same scene as two_bars_1d and two_bars_2d, with dim = 3.
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/grid/grid_generator.h>
+
+#include <impactfe/scenes/two_bars_scene.h>
+#include <impactfe/utilities/program.h>
+
+namespace TwoBars3D
+{
+  using namespace dealii;
+  using namespace impactfe;
+
+  // @sect3{The TwoBarsProblem class}
+  class TwoBarsProblem : public TwoBarsScene<3>
+  {
+  public:
+    TwoBarsProblem()
+      : TwoBarsScene<3>("two_bars_3d")
+    {}
+
+  private:
+    void
+    declare_geometry(ParameterHandler &prm) override;
+    void
+    parse_geometry(ParameterHandler &prm) override;
+    void
+    make_bar_meshes(Triangulation<3> &bar_1,
+                    Triangulation<3> &bar_2) const override;
+    void
+    add_contacts(ContactSet &contacts) override;
+    double
+    bar_length() const override
+    {
+      return length;
+    }
+    double
+    initial_gap() const override
+    {
+      return gap;
+    }
+    // In 3D the matrices need no out-of-plane factor.
+    double
+    out_of_plane_measure() const override
+    {
+      return 1.;
+    }
+    double
+    cross_section() const override
+    {
+      return side * side;
+    }
+    std::string
+    title() const override
+    {
+      return "Two elastic bars in 3D (nu = " +
+             format_number(material().poissons_ratio) + ")";
+    }
+    void
+    report_geometry(std::ostream &out, JsonObject &summary) const override;
+
+    double       length = 0.254, side = 0.0254, gap = 0.;
+    unsigned int n_along = 20, n_across = 2;
+  };
+
+
+
+  // @sect3{Parameters}
+  void
+  TwoBarsProblem::declare_geometry(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Geometry");
+    prm.declare_entry("Bar length",
+                      "0.254",
+                      Patterns::Double(),
+                      "Length L of each bar [m]. Must be > 0.");
+    prm.declare_entry("Side of the section",
+                      "0.0254",
+                      Patterns::Double(),
+                      "Side H of the square cross-section [m]. Must be > 0.");
+    prm.declare_entry("Number of cells along",
+                      "20",
+                      Patterns::Integer(1),
+                      "Q1 hexahedra along each bar [-].");
+    prm.declare_entry("Number of cells across",
+                      "2",
+                      Patterns::Integer(1),
+                      "Q1 hexahedra across each side of the section [-]. "
+                      "Even, so that a node sits at the centre of the "
+                      "contact face.");
+    prm.declare_entry("Initial gap",
+                      "0",
+                      Patterns::Double(),
+                      "Distance between the bars at t = 0 [m]. Must be >= 0.");
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  TwoBarsProblem::parse_geometry(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Geometry");
+    length   = prm.get_double("Bar length");
+    side     = prm.get_double("Side of the section");
+    n_along  = prm.get_integer("Number of cells along");
+    n_across = prm.get_integer("Number of cells across");
+    gap      = prm.get_double("Initial gap");
+    prm.leave_subsection();
+    AssertThrow(length > 0. && side > 0.,
+                ExcMessage("Geometry: 'Bar length' and 'Side of the section' "
+                           "must be > 0."));
+    AssertThrow(n_across % 2 == 0,
+                ExcMessage("Geometry: 'Number of cells across' must be even, "
+                           "got " +
+                           std::to_string(n_across) + "."));
+    AssertThrow(gap >= 0.,
+                ExcMessage("Geometry: 'Initial gap' must be >= 0, got " +
+                           format_number(gap) + "."));
+  }
+
+
+
+  // @sect3{The meshes and the candidates}
+  //
+  // Bar 1 on [-L - g0, -g0] x [0, H]^2, bar 2 on [0, L] x [0, H]^2; with
+  // `colorize` the end faces have boundary ids 0 (x min) and 1 (x max).
+  // The contact normal points from bar 2 towards bar 1 (along -x).
+  void
+  TwoBarsProblem::make_bar_meshes(Triangulation<3> &bar_1,
+                                  Triangulation<3> &bar_2) const
+  {
+    const std::vector<unsigned int> cells{n_along, n_across, n_across};
+    GridGenerator::subdivided_hyper_rectangle(bar_1,
+                                              cells,
+                                              Point<3>(-length - gap, 0., 0.),
+                                              Point<3>(-gap, side, side),
+                                              /*colorize=*/true);
+    GridGenerator::subdivided_hyper_rectangle(bar_2,
+                                              cells,
+                                              Point<3>(0., 0., 0.),
+                                              Point<3>(length, side, side),
+                                              /*colorize=*/true);
+  }
+
+
+
+  void
+  TwoBarsProblem::add_contacts(ContactSet &contacts)
+  {
+    contacts.add_node_to_node(
+      system().bodies(), 0, 1, 1, 0, Tensor<1, 3>({-1., 0., 0.}));
+  }
+
+
+
+  // @sect3{The report}
+  void
+  TwoBarsProblem::report_geometry(std::ostream &out, JsonObject &summary) const
+  {
+    out << "  Mesh: " << body(0).triangulation().n_active_cells() << " + "
+        << body(1).triangulation().n_active_cells() << " Q1 hexahedra, "
+        << system().contacts().n_candidates()
+        << " node-to-node contact candidates" << std::endl;
+    summary.add("poissons_ratio", material().poissons_ratio)
+      .add("cells_per_bar", double(body(0).triangulation().n_active_cells()));
+  }
+} // namespace TwoBars3D
+
+
+
+// @sect3{The main function}
+int
+main(int argc, char *argv[])
+{
+  try
+    {
+      TwoBars3D::TwoBarsProblem().run(argc, argv);
+    }
+  catch (...)
+    {
+      return impactfe::report_current_exception();
+    }
+  return 0;
+}
