@@ -62,16 +62,6 @@ namespace TwoBars1D
     void
     add_contacts(ContactSet &contacts) override;
     double
-    bar_length() const override
-    {
-      return length;
-    }
-    double
-    initial_gap() const override
-    {
-      return gap;
-    }
-    double
     out_of_plane_measure() const override
     {
       return area;
@@ -94,7 +84,7 @@ namespace TwoBars1D
     void
     report_geometry(std::ostream &out, JsonObject &summary) const override;
 
-    double       length = 0.254, gap = 0., area = 6.4516e-4;
+    double       area    = 6.4516e-4;
     unsigned int n_cells = 20;
   };
 
@@ -108,18 +98,10 @@ namespace TwoBars1D
   TwoBarsProblem::declare_geometry(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
-    prm.declare_entry("Bar length",
-                      "0.254",
-                      Patterns::Double(),
-                      "Length L of each bar [m]. Must be > 0.");
     prm.declare_entry("Number of cells per bar",
                       "20",
                       Patterns::Integer(1),
                       "Number of P1 elements in each bar [-].");
-    prm.declare_entry("Initial gap",
-                      "0",
-                      Patterns::Double(),
-                      "Distance between the bars at t = 0 [m]. Must be >= 0.");
     prm.declare_entry("Cross-section area",
                       "6.4516e-4",
                       Patterns::Double(),
@@ -134,17 +116,9 @@ namespace TwoBars1D
   TwoBarsProblem::parse_geometry(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
-    length  = prm.get_double("Bar length");
     n_cells = prm.get_integer("Number of cells per bar");
-    gap     = prm.get_double("Initial gap");
     area    = prm.get_double("Cross-section area");
     prm.leave_subsection();
-    AssertThrow(length > 0.,
-                ExcMessage("Geometry: 'Bar length' must be > 0, got " +
-                           format_number(length) + "."));
-    AssertThrow(gap >= 0.,
-                ExcMessage("Geometry: 'Initial gap' must be >= 0, got " +
-                           format_number(gap) + "."));
     AssertThrow(area > 0.,
                 ExcMessage("Geometry: 'Cross-section area' must be > 0, got " +
                            format_number(area) + "."));
@@ -163,10 +137,14 @@ namespace TwoBars1D
                                   Triangulation<1> &bar_2) const
   {
     const std::vector<unsigned int> cells{n_cells};
+    GridGenerator::subdivided_hyper_rectangle(bar_1,
+                                              cells,
+                                              Point<1>(-bar_length -
+                                                       initial_gap),
+                                              Point<1>(-initial_gap),
+                                              true);
     GridGenerator::subdivided_hyper_rectangle(
-      bar_1, cells, Point<1>(-length - gap), Point<1>(-gap), true);
-    GridGenerator::subdivided_hyper_rectangle(
-      bar_2, cells, Point<1>(0.), Point<1>(length), true);
+      bar_2, cells, Point<1>(0.), Point<1>(bar_length), true);
   }
 
 
@@ -192,7 +170,7 @@ namespace TwoBars1D
   {
     const double courant = material().longitudinal_wave_speed<1>() *
                            parameters.time_stepping.time_step /
-                           (length / n_cells);
+                           (bar_length / n_cells);
     out << "  Courant number c h / dx = " << courant << std::endl;
     summary.add("cells_per_bar", double(n_cells))
       .add("courant_number", courant);

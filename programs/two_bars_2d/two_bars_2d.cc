@@ -65,16 +65,6 @@ namespace TwoBars2D
     void
     add_contacts(ContactSet &contacts) override;
     double
-    bar_length() const override
-    {
-      return length;
-    }
-    double
-    initial_gap() const override
-    {
-      return gap;
-    }
-    double
     out_of_plane_measure() const override
     {
       return thickness;
@@ -95,9 +85,9 @@ namespace TwoBars2D
              const double          x_left,
              const double          row_offset) const;
 
-    double         length = 0.254, height = 0.0254, thickness = 0.0254;
+    double         height = 0.0254, thickness = 0.0254;
     unsigned int   n_along = 20, n_across = 4;
-    double         gap = 0., mesh_offset = 0.;
+    double         mesh_offset     = 0.;
     bool           node_to_segment = false;
     MeshParameters mesh_1, mesh_2;
   };
@@ -112,10 +102,6 @@ namespace TwoBars2D
   TwoBarsProblem::declare_geometry(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
-    prm.declare_entry("Bar length",
-                      "0.254",
-                      Patterns::Double(),
-                      "Length L of each bar [m]. Must be > 0.");
     prm.declare_entry("Bar height",
                       "0.0254",
                       Patterns::Double(),
@@ -134,10 +120,6 @@ namespace TwoBars2D
                       Patterns::Integer(1),
                       "Q1 cells across the height of each bar [-]. Even, so "
                       "that a node sits at the centre of the contact zone.");
-    prm.declare_entry("Initial gap",
-                      "0",
-                      Patterns::Double(),
-                      "Distance between the bars at t = 0 [m]. Must be >= 0.");
     prm.declare_entry("Contact discretization",
                       "node-to-node",
                       Patterns::Selection("node-to-node|node-to-segment"),
@@ -162,25 +144,20 @@ namespace TwoBars2D
   TwoBarsProblem::parse_geometry(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
-    length          = prm.get_double("Bar length");
     height          = prm.get_double("Bar height");
     thickness       = prm.get_double("Thickness");
     n_along         = prm.get_integer("Number of cells along");
     n_across        = prm.get_integer("Number of cells across");
-    gap             = prm.get_double("Initial gap");
     node_to_segment = prm.get("Contact discretization") == "node-to-segment";
     mesh_offset     = prm.get_double("Interface mesh offset");
     prm.leave_subsection();
-    AssertThrow(length > 0. && height > 0. && thickness > 0.,
-                ExcMessage("Geometry: 'Bar length', 'Bar height' and "
-                           "'Thickness' must be > 0."));
+    AssertThrow(height > 0. && thickness > 0.,
+                ExcMessage("Geometry: 'Bar height' and 'Thickness' must be > "
+                           "0."));
     AssertThrow(n_across % 2 == 0,
                 ExcMessage("Geometry: 'Number of cells across' must be even, "
                            "got " +
                            std::to_string(n_across) + "."));
-    AssertThrow(gap >= 0.,
-                ExcMessage("Geometry: 'Initial gap' must be >= 0, got " +
-                           format_number(gap) + "."));
     AssertThrow(mesh_offset >= 0. && mesh_offset < 1.,
                 ExcMessage("Geometry: 'Interface mesh offset' must be in [0, "
                            "1), got " +
@@ -217,7 +194,8 @@ namespace TwoBars2D
     GridGenerator::subdivided_hyper_rectangle(bar,
                                               {n_along, n_across},
                                               Point<2>(x_left, 0.),
-                                              Point<2>(x_left + length, height),
+                                              Point<2>(x_left + bar_length,
+                                                       height),
                                               /*colorize=*/true);
     if (row_offset > 0.)
       {
@@ -237,7 +215,7 @@ namespace TwoBars2D
   TwoBarsProblem::make_bar_meshes(Triangulation<2> &bar_1,
                                   Triangulation<2> &bar_2) const
   {
-    make_bar(bar_1, mesh_1, -length - gap, 0.);
+    make_bar(bar_1, mesh_1, -bar_length - initial_gap, 0.);
     make_bar(bar_2, mesh_2, 0., mesh_offset);
   }
 
@@ -294,7 +272,7 @@ namespace TwoBars2D
         << " contact candidates" << std::endl;
     out << "  Wave speeds: bar (long waves) " << bar_speed
         << " m/s, dilatational " << m.longitudinal_wave_speed<2>()
-        << " m/s; 2 L / bar speed = " << 2. * length / bar_speed << " s"
+        << " m/s; 2 L / bar speed = " << 2. * bar_length / bar_speed << " s"
         << std::endl;
     summary.add("poissons_ratio", nu)
       .add("plane_model", std::string(strain ? "plane strain" : "plane stress"))

@@ -53,16 +53,6 @@ namespace TwoBars3D
                     Triangulation<3> &bar_2) const override;
     void
     add_contacts(ContactSet &contacts) override;
-    double
-    bar_length() const override
-    {
-      return length;
-    }
-    double
-    initial_gap() const override
-    {
-      return gap;
-    }
     // In 3D the matrices need no out-of-plane factor.
     double
     out_of_plane_measure() const override
@@ -83,7 +73,7 @@ namespace TwoBars3D
     void
     report_geometry(std::ostream &out, JsonObject &summary) const override;
 
-    double       length = 0.254, side = 0.0254, gap = 0.;
+    double       side    = 0.0254;
     unsigned int n_along = 20, n_across = 2;
   };
 
@@ -94,10 +84,6 @@ namespace TwoBars3D
   TwoBarsProblem::declare_geometry(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
-    prm.declare_entry("Bar length",
-                      "0.254",
-                      Patterns::Double(),
-                      "Length L of each bar [m]. Must be > 0.");
     prm.declare_entry("Side of the section",
                       "0.0254",
                       Patterns::Double(),
@@ -112,10 +98,6 @@ namespace TwoBars3D
                       "Q1 hexahedra across each side of the section [-]. "
                       "Even, so that a node sits at the centre of the "
                       "contact face.");
-    prm.declare_entry("Initial gap",
-                      "0",
-                      Patterns::Double(),
-                      "Distance between the bars at t = 0 [m]. Must be >= 0.");
     prm.leave_subsection();
   }
 
@@ -125,22 +107,17 @@ namespace TwoBars3D
   TwoBarsProblem::parse_geometry(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
-    length   = prm.get_double("Bar length");
     side     = prm.get_double("Side of the section");
     n_along  = prm.get_integer("Number of cells along");
     n_across = prm.get_integer("Number of cells across");
-    gap      = prm.get_double("Initial gap");
     prm.leave_subsection();
-    AssertThrow(length > 0. && side > 0.,
-                ExcMessage("Geometry: 'Bar length' and 'Side of the section' "
+    AssertThrow(side > 0.,
+                ExcMessage("Geometry: 'Side of the section' "
                            "must be > 0."));
     AssertThrow(n_across % 2 == 0,
                 ExcMessage("Geometry: 'Number of cells across' must be even, "
                            "got " +
                            std::to_string(n_across) + "."));
-    AssertThrow(gap >= 0.,
-                ExcMessage("Geometry: 'Initial gap' must be >= 0, got " +
-                           format_number(gap) + "."));
   }
 
 
@@ -155,15 +132,16 @@ namespace TwoBars3D
                                   Triangulation<3> &bar_2) const
   {
     const std::vector<unsigned int> cells{n_along, n_across, n_across};
-    GridGenerator::subdivided_hyper_rectangle(bar_1,
-                                              cells,
-                                              Point<3>(-length - gap, 0., 0.),
-                                              Point<3>(-gap, side, side),
-                                              /*colorize=*/true);
+    GridGenerator::subdivided_hyper_rectangle(
+      bar_1,
+      cells,
+      Point<3>(-bar_length - initial_gap, 0., 0.),
+      Point<3>(-initial_gap, side, side),
+      /*colorize=*/true);
     GridGenerator::subdivided_hyper_rectangle(bar_2,
                                               cells,
                                               Point<3>(0., 0., 0.),
-                                              Point<3>(length, side, side),
+                                              Point<3>(bar_length, side, side),
                                               /*colorize=*/true);
   }
 

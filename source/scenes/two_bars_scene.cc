@@ -15,6 +15,16 @@ namespace impactfe
   TwoBarsScene<dim>::declare_parameters(ParameterHandler &prm)
   {
     declare_geometry(prm);
+    prm.enter_subsection("Geometry");
+    prm.declare_entry("Bar length",
+                      "0.254",
+                      Patterns::Double(),
+                      "Length L of each bar [m]. Must be > 0.");
+    prm.declare_entry("Initial gap",
+                      "0",
+                      Patterns::Double(),
+                      "Distance between the bars at t = 0 [m]. Must be >= 0.");
+    prm.leave_subsection();
     MaterialParameters::declare_parameters(prm, dim);
     prm.enter_subsection("Initial conditions");
     prm.declare_entry("Impact velocity",
@@ -43,6 +53,16 @@ namespace impactfe
   void
   TwoBarsScene<dim>::parse_parameters(ParameterHandler &prm)
   {
+    prm.enter_subsection("Geometry");
+    bar_length  = prm.get_double("Bar length");
+    initial_gap = prm.get_double("Initial gap");
+    prm.leave_subsection();
+    AssertThrow(bar_length > 0.,
+                ExcMessage("Geometry: 'Bar length' must be > 0, got " +
+                           format_number(bar_length) + "."));
+    AssertThrow(initial_gap >= 0.,
+                ExcMessage("Geometry: 'Initial gap' must be >= 0, got " +
+                           format_number(initial_gap) + "."));
     parse_geometry(prm);
     bar_material.parse_parameters(prm, dim);
     prm.enter_subsection("Initial conditions");
@@ -103,8 +123,8 @@ namespace impactfe
     const double c =
       std::sqrt(bar_material.youngs_modulus / bar_material.density);
     exact  = TwoBarsExactSolution(impact_velocity,
-                                 initial_gap(),
-                                 bar_length(),
+                                 initial_gap,
+                                 bar_length,
                                  c,
                                  bar_material.density,
                                  cross_section());

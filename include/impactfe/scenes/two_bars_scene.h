@@ -19,7 +19,8 @@ namespace impactfe
    * `contact_velocity`, `target_contact_velocity` (bar 2's facing node),
    * `exact_contact_velocity` and `exact_normal_force`.
    *
-   * Subsections `Material` and `Initial conditions` and the entries
+   * Subsections `Material` and `Initial conditions`, the entries `Bar
+   * length` and `Initial gap` of `Geometry`, and the entries
    * `Maximum err_v` and `Maximum err_f` of `Verification` are read here;
    * the program adds its geometry, meshes and contact candidates.
    */
@@ -39,10 +40,6 @@ namespace impactfe
     virtual void
     make_bar_meshes(Triangulation<dim> &bar_1,
                     Triangulation<dim> &bar_2) const = 0;
-    virtual double
-    bar_length() const = 0;
-    virtual double
-    initial_gap() const = 0;
     /** Thickness (2D) or cross-section (1D) passed to the bodies. */
     virtual double
     out_of_plane_measure() const = 0;
@@ -58,6 +55,10 @@ namespace impactfe
 
     const MaterialParameters &
     material() const;
+
+    /// `Bar length` L and `Initial gap` g0 of subsection `Geometry`, read
+    /// here for every dimension [m].
+    double bar_length = 0.254, initial_gap = 0.;
     const TwoBarsExactSolution &
     exact_solution() const;
 
