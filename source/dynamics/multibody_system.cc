@@ -247,6 +247,11 @@ namespace impactfe
     impulse_response    = make_block_vector();
     local_impulses.assign(n_columns, 0.);
     active.assign(contact_set.n_candidates(), false);
+    // sized once, so that the time loop does not allocate (see
+    // tests/dynamics/step_allocations)
+    lcp_candidates.reserve(contact_set.n_candidates());
+    state_guess.reserve(contact_set.n_candidates());
+    last_contact_states.assign(contact_set.n_candidates(), ContactState::open);
     step_number = 0;
     clock.charge(costs.factorization);
   }
@@ -366,7 +371,7 @@ namespace impactfe
 
 
   template <int dim>
-  lcp::Result
+  const lcp::Result &
   MultibodySystem<dim>::solve_contact_lcp()
   {
     build_contact_problem(problem);
@@ -380,16 +385,20 @@ namespace impactfe
     if (last_contact_states.size() != contact_set.n_candidates())
       last_contact_states.assign(contact_set.n_candidates(),
                                  ContactState::open);
-    lcp::ContactSolution solution;
+    // The solver keeps its storage (LCP matrix, Lemke basis, block
+    // pivoting systems) from step to step: no allocation here once the
+    // largest LCP of the run has been seen (tests/lcp/allocations).
+    const lcp::ContactOptions options;
     if (solver_parameters.warm_start)
       {
-        std::vector<ContactState> guess(lcp_candidates.size());
+        state_guess.resize(lcp_candidates.size());
         for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
-          guess[a] = last_contact_states[lcp_candidates[a]];
-        solution = lcp::solve_contact_problem(problem, {}, guess);
+          state_guess[a] = last_contact_states[lcp_candidates[a]];
       }
-    else
-      solution = lcp::solve_contact_problem(problem);
+    const lcp::ContactSolution &solution =
+      solver_parameters.warm_start ?
+        contact_solver.solve(problem, options, state_guess) :
+        contact_solver.solve(problem, options);
     if (solution.lcp.status == lcp::Status::solved)
       {
         std::fill(last_contact_states.begin(),
@@ -406,6 +415,21 @@ namespace impactfe
         for (unsigned int k = 0; k < nd; ++k)
           local_impulses[lcp_candidates[a] * nd + k] = solution.P[a * nd + k];
     return solution.lcp;
+  }
+
+
+
+  template <int dim>
+  std::size_t
+  MultibodySystem<dim>::lcp_memory_consumption() const
+  {
+    return contact_solver.memory_consumption() +
+           problem.W.memory_consumption() +
+           lcp::memory_consumption(problem.free_velocity) +
+           lcp::memory_consumption(problem.gap_term) +
+           lcp::memory_consumption(problem.mu) +
+           lcp::memory_consumption(lcp_candidates) +
+           lcp::memory_consumption(state_guess);
   }
 
 
@@ -474,8 +498,8 @@ namespace impactfe
         ensure_delassus_columns(lcp_candidates);
         clock.charge(costs.delassus);
 
-        const lcp::Result result = solve_contact_lcp();
-        report.lcp_size          = last_lcp_size;
+        const lcp::Result &result = solve_contact_lcp();
+        report.lcp_size           = last_lcp_size;
         report.lcp_pivots += result.pivots;
         if (result.status != lcp::Status::solved)
           {
@@ -552,7 +576,7 @@ namespace impactfe
     // 5. Displacement (and acceleration) update.
     scheme->complete_step(current, next);
     next.time = report.time;
-    std::swap(current, next);
+    swap(current, next); // no allocation (time_integrator.h)
 
     // Report.
     Tensor<1, dim> tangential;

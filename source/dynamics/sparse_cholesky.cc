@@ -127,6 +127,30 @@ namespace impactfe
 
 
 
+  namespace
+  {
+    /**
+     * CHOLMOD 3 (SuiteSparse 5, Debian bookworm) allocates the workspace Y
+     * of a simplicial solve as 4 x n and then sets Y->nrow (and Y->d) to the
+     * number of right-hand sides, so that the next cholmod_solve2() finds Y
+     * "of the wrong size" and allocates it again: two allocations per solve
+     * in the time loop. Giving Y back the shape it was allocated with (its
+     * nzmax holds 4 n entries) lets CHOLMOD reuse it. Any other shape is
+     * left alone: CHOLMOD then simply allocates, as before.
+     */
+    void
+    restore_simplicial_workspace(cholmod_dense *Y, const std::size_t n)
+    {
+      if (Y != nullptr && Y->ncol == n && Y->nzmax >= 4 * n && Y->nrow < 4)
+        {
+          Y->nrow = 4;
+          Y->d    = 4;
+        }
+    }
+  } // namespace
+
+
+
   void
   SparseCholesky::solve(Vector<double> &x) const
   {
@@ -145,6 +169,7 @@ namespace impactfe
                                   &data->work_e,
                                   &data->common);
     AssertThrow(ok, ExcMessage("CHOLMOD solve failed."));
+    restore_simplicial_workspace(data->work_y, n);
     const double *s = static_cast<const double *>(data->solution->x);
     std::copy(s, s + n, x.begin());
   }
@@ -177,6 +202,7 @@ namespace impactfe
                                   &data->block_work_e,
                                   &data->common);
     AssertThrow(ok, ExcMessage("CHOLMOD solve failed."));
+    restore_simplicial_workspace(data->block_work_y, n);
     const double *s = static_cast<const double *>(data->block_solution->x);
     std::copy(s, s + n * n_columns, columns);
   }

@@ -8,11 +8,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <set>
-#include <sstream>
 #include <stdexcept>
 
+#include "contact_workspace.h"
 #include "floating_point_mode.h"
+#include "text.h"
 
 namespace impactfe
 {
@@ -60,19 +60,6 @@ namespace impactfe
         return s != ContactState::open;
       }
 
-      /// The LCP form a state guess is solved in when block pivoting is not
-      /// used (or fails): the form solve_contact_problem() would choose.
-      FrictionForm
-      resolved_form(const ContactProblem &p, const FrictionForm requested)
-      {
-        if (requested != FrictionForm::automatic)
-          return requested;
-        if (p.n_directions == 1 || all_zero(p.mu))
-          return FrictionForm::frictionless;
-        return p.n_directions == 2 ? FrictionForm::klarbring :
-                                     FrictionForm::facets;
-      }
-
       /**
        * The point (P, V) of given 2D states in the variables of the facet
        * form with k = 2, d_0 = +t, d_1 = -t:
@@ -88,6 +75,7 @@ namespace impactfe
                          const std::vector<double>       &P,
                          const std::vector<double>       &V,
                          const double                     tolerance_factor,
+                         ContactSolver::Workspace        &ws,
                          std::vector<double>             &z,
                          std::vector<double>             &w)
       {
@@ -102,7 +90,12 @@ namespace impactfe
 
         z.assign(n, 0.);
         w.assign(n, 0.);
-        std::vector<double> q(n, 0.), residual(n, 0.), Mzq(n, 0.);
+        std::vector<double> &q        = ws.q;
+        std::vector<double> &residual = ws.residual;
+        std::vector<double> &Mzq      = ws.Mz_q;
+        q.assign(n, 0.);
+        residual.assign(n, 0.);
+        Mzq.assign(n, 0.);
         for (unsigned int c = 0; c < nc; ++c)
           {
             const double PN = P[2 * c], PT = P[2 * c + 1], VN = V[2 * c],
@@ -190,9 +183,13 @@ namespace impactfe
       impulses_by_cholesky(const ContactProblem            &p,
                            const std::vector<ContactState> &states,
                            const std::vector<double>       &slip_factor,
+                           ContactSolver::Workspace        &ws,
                            std::vector<double>             &P)
       {
-        std::vector<unsigned int> S, L;
+        std::vector<unsigned int> &S = ws.stick_rows;
+        std::vector<unsigned int> &L = ws.slip_contacts;
+        S.clear();
+        L.clear();
         for (unsigned int c = 0; c < p.n_contacts; ++c)
           if (states[c] == ContactState::stick)
             {
@@ -205,7 +202,8 @@ namespace impactfe
         if (ns == 0)
           return false;
 
-        DenseMatrix Wss(ns, ns);
+        DenseMatrix &Wss = ws.W_SS;
+        Wss.reinit(ns, ns);
         for (std::size_t i = 0; i < ns; ++i)
           {
             const double *wi = p.W.row(S[i]);
@@ -213,11 +211,12 @@ namespace impactfe
             for (std::size_t j = i; j < ns; ++j)
               ri[j] = wi[S[j]];
           }
-        CholeskyFactorization cholesky;
+        CholeskyFactorization &cholesky = ws.cholesky;
         if (!cholesky.factorize(Wss))
           return false;
 
-        DenseMatrix Z(ns, nl + 1);
+        DenseMatrix &Z = ws.Z;
+        Z.reinit(ns, nl + 1);
         for (std::size_t i = 0; i < ns; ++i)
           {
             const double *wi = p.W.row(S[i]);
@@ -228,10 +227,12 @@ namespace impactfe
           }
         cholesky.solve(Z);
 
-        std::vector<double> x_slip(nl);
+        std::vector<double> &x_slip = ws.slip_impulses;
+        x_slip.assign(nl, 0.);
         if (nl > 0)
           {
-            DenseMatrix Schur(nl, nl);
+            DenseMatrix &Schur = ws.schur;
+            Schur.reinit(nl, nl);
             for (std::size_t a = 0; a < nl; ++a)
               {
                 const double *wa = p.W.row(2 * L[a]);
@@ -250,7 +251,7 @@ namespace impactfe
                     x_slip[a] -= c * zi[nl];
                   }
               }
-            LUFactorization lu;
+            LUFactorization &lu = ws.schur_lu;
             if (!lu.factorize(Schur))
               return false;
             lu.solve(x_slip);
@@ -279,6 +280,7 @@ namespace impactfe
       bool
       block_pivoting_2d(const ContactProblem      &p,
                         const ContactOptions      &options,
+                        ContactSolver::Workspace  &ws,
                         std::vector<ContactState> &states,
                         std::vector<double>       &P,
                         std::vector<double>       &V,
@@ -295,9 +297,22 @@ namespace impactfe
         // at least 1e-10: a backward-stable solve meets it on any W.
         const double physical_tolerance =
           std::max(tolerance_factor * eps * 4. * std::max(nc, 1u), 1e-10);
-        std::set<std::vector<ContactState>> visited;
-        std::vector<unsigned int> rows, unknown_column, unknown_contact;
-        std::vector<double>       rhs, slip_factor(nc, 0.);
+        // the states tried so far, one block of n_c after the other
+        std::vector<ContactState> &visited = ws.visited_states;
+        visited.clear();
+        visited.reserve(static_cast<std::size_t>(nc) *
+                        options.max_block_pivoting_iterations);
+        std::vector<unsigned int> &rows            = ws.rows;
+        std::vector<unsigned int> &unknown_column  = ws.unknown_column;
+        std::vector<unsigned int> &unknown_contact = ws.unknown_contact;
+        std::vector<double>       &rhs             = ws.rhs;
+        std::vector<double>       &slip_factor     = ws.slip_factor;
+        slip_factor.assign(nc, 0.);
+        // at most 2 n_c entries each: reserved once, never grown in a solve
+        for (auto *list :
+             {&rows, &unknown_column, &unknown_contact, &ws.stick_rows})
+          list->reserve(2 * static_cast<std::size_t>(nc));
+        ws.slip_contacts.reserve(nc);
         iterations = 0;
 
         // W symmetric up to rounding (a Delassus operator computed column by
@@ -315,15 +330,22 @@ namespace impactfe
           {
             if (iterations >= options.max_block_pivoting_iterations)
               {
-                why = "no verified point after " + std::to_string(iterations) +
-                      " block pivoting solves";
+                internal::set_text(why,
+                                   "no verified point after %u block "
+                                   "pivoting solves",
+                                   iterations);
                 return false;
               }
-            if (!visited.insert(states).second)
-              {
-                why = "block pivoting returned to a set of states it had tried";
-                return false;
-              }
+            for (std::size_t start = 0; start < visited.size(); start += nc)
+              if (std::equal(states.begin(),
+                             states.end(),
+                             visited.begin() + start))
+                {
+                  why.assign(
+                    "block pivoting returned to a set of states it had tried");
+                  return false;
+                }
+            visited.insert(visited.end(), states.begin(), states.end());
             ++iterations;
 
             // The unknowns: P_N of each closed contact (P_T = slip_factor P_N
@@ -355,10 +377,11 @@ namespace impactfe
             P.assign(2 * static_cast<std::size_t>(nc), 0.);
             bool solved = (m == 0);
             if (!solved && symmetric)
-              solved = impulses_by_cholesky(p, states, slip_factor, P);
+              solved = impulses_by_cholesky(p, states, slip_factor, ws, P);
             if (!solved)
               {
-                DenseMatrix G(m, m);
+                DenseMatrix &G = ws.G;
+                G.reinit(m, m);
                 rhs.resize(m);
                 for (std::size_t r = 0; r < m; ++r)
                   {
@@ -374,10 +397,10 @@ namespace impactfe
                       }
                     rhs[r] = right_hand_side(p, rows[r]);
                   }
-                LUFactorization lu;
+                LUFactorization &lu = ws.G_lu;
                 if (!lu.factorize(G))
                   {
-                    why = "singular system for the current states";
+                    why.assign("singular system for the current states");
                     return false;
                   }
                 lu.solve(rhs);
@@ -401,9 +424,11 @@ namespace impactfe
             // passed. verify_contact_solution() measures impulses and
             // velocities on their own scales.
             verification =
-              verify_facet_point(p, states, P, V, tolerance_factor, z, w);
+              verify_facet_point(p, states, P, V, tolerance_factor, ws, z, w);
             if (verification.ok &&
-                verify_contact_solution(p, P, physical_tolerance).ok)
+                internal::verify_contact_solution(
+                  p, P, physical_tolerance, ws.verification_velocity)
+                  .ok)
               return true;
 
             // Change the state of every contact that violates its conditions.
@@ -433,10 +458,11 @@ namespace impactfe
               }
             if (!changed)
               {
-                why =
-                  "the point of the current states satisfies every sign condition but fails "
-                  "verification (relative error " +
-                  std::to_string(verification.relative_error) + ")";
+                internal::set_text(
+                  why,
+                  "the point of the current states satisfies every sign "
+                  "condition but fails verification (relative error %f)",
+                  verification.relative_error);
                 return false;
               }
           }
@@ -445,42 +471,99 @@ namespace impactfe
 
 
 
+    namespace internal
+    {
+      void
+      contact_states(const ContactProblem      &p,
+                     const std::vector<double> &P,
+                     const double               tol,
+                     std::vector<double>       &V,
+                     std::vector<ContactState> &states)
+      {
+        check_contact_problem(p);
+        const unsigned int nc = p.n_contacts, dim = p.n_directions;
+        if (P.size() != static_cast<std::size_t>(nc) * dim)
+          throw std::invalid_argument("contact_states: P has the wrong size");
+        local_velocities(p, P, V);
+        double bmax = 0.;
+        for (const double b : p.gap_term)
+          bmax = std::max(bmax, std::abs(b));
+        const double normW = p.W.linfty_norm(), pmax = linfty_norm(P),
+                     vfree = linfty_norm(p.free_velocity);
+        const double sV    = vfree + bmax + normW * pmax;
+        const double sP =
+          std::max(pmax, normW > 0. ? (vfree + bmax) / normW : 0.);
+        const bool frictional_2d = (dim == 2 && !all_zero(p.mu));
+
+        states.assign(nc, ContactState::open);
+        for (unsigned int c = 0; c < nc; ++c)
+          {
+            if (P[c * dim] <= tol * sP)
+              continue;
+            states[c] = ContactState::stick;
+            if (frictional_2d)
+              {
+                const double VT = V[c * dim + 1];
+                if (VT > tol * sV)
+                  states[c] = ContactState::slip_positive;
+                else if (VT < -tol * sV)
+                  states[c] = ContactState::slip_negative;
+              }
+          }
+      }
+
+
+
+      void
+      guess_from_states(const ContactLCP                &lcp,
+                        const std::vector<ContactState> &states,
+                        std::vector<bool>               &guess)
+      {
+        const std::size_t nc = states.size();
+        guess.assign(lcp.q.size(), false);
+        const std::size_t per_contact =
+          lcp.form == FrictionForm::frictionless ? 1 :
+          lcp.form == FrictionForm::klarbring    ? 3 :
+                                                   lcp.n_facets + 2;
+        if (lcp.q.size() != per_contact * nc)
+          throw std::invalid_argument(
+            "guess_from_states: one state per contact expected");
+        for (std::size_t c = 0; c < nc; ++c)
+          {
+            guess[c]            = closed(states[c]);
+            const bool slip_pos = states[c] == ContactState::slip_positive;
+            const bool slip_neg = states[c] == ContactState::slip_negative;
+            if (lcp.form == FrictionForm::klarbring)
+              {
+                guess[nc + c]     = slip_pos;
+                guess[2 * nc + c] = slip_neg;
+              }
+            else if (lcp.form == FrictionForm::facets)
+              {
+                const std::size_t k = lcp.n_facets;
+                guess[nc + k * nc + c] =
+                  slip_pos || slip_neg || states[c] == ContactState::open;
+                if (k == 2 && lcp.directions.size() == 2)
+                  {
+                    // P_T = -mu P_N along V_T: facet d_1 = -t for V_T > 0
+                    guess[nc + c * k + 1] = slip_pos;
+                    guess[nc + c * k + 0] = slip_neg;
+                  }
+              }
+          }
+      }
+    } // namespace internal
+
+
+
     std::vector<ContactState>
     contact_states(const ContactProblem      &p,
                    const std::vector<double> &P,
                    const double               tol)
     {
-      check_contact_problem(p);
-      const unsigned int nc = p.n_contacts, dim = p.n_directions;
-      if (P.size() != static_cast<std::size_t>(nc) * dim)
-        throw std::invalid_argument("contact_states: P has the wrong size");
-      std::vector<double> V;
-      local_velocities(p, P, V);
-      double bmax = 0.;
-      for (const double b : p.gap_term)
-        bmax = std::max(bmax, std::abs(b));
-      const double normW = p.W.linfty_norm(), pmax = linfty_norm(P),
-                   vfree = linfty_norm(p.free_velocity);
-      const double sV    = vfree + bmax + normW * pmax;
-      const double sP =
-        std::max(pmax, normW > 0. ? (vfree + bmax) / normW : 0.);
-      const bool frictional_2d = (dim == 2 && !all_zero(p.mu));
-
-      std::vector<ContactState> states(nc, ContactState::open);
-      for (unsigned int c = 0; c < nc; ++c)
-        {
-          if (P[c * dim] <= tol * sP)
-            continue;
-          states[c] = ContactState::stick;
-          if (frictional_2d)
-            {
-              const double VT = V[c * dim + 1];
-              if (VT > tol * sV)
-                states[c] = ContactState::slip_positive;
-              else if (VT < -tol * sV)
-                states[c] = ContactState::slip_negative;
-            }
-        }
+      std::vector<double>       V;
+      std::vector<ContactState> states;
+      internal::contact_states(p, P, tol, V, states);
       return states;
     }
 
@@ -490,39 +573,98 @@ namespace impactfe
     guess_from_states(const ContactLCP                &lcp,
                       const std::vector<ContactState> &states)
     {
-      const std::size_t nc = states.size();
-      std::vector<bool> guess(lcp.q.size(), false);
-      const std::size_t per_contact =
-        lcp.form == FrictionForm::frictionless ? 1 :
-        lcp.form == FrictionForm::klarbring    ? 3 :
-                                                 lcp.n_facets + 2;
-      if (lcp.q.size() != per_contact * nc)
+      std::vector<bool> guess;
+      internal::guess_from_states(lcp, states, guess);
+      return guess;
+    }
+
+
+
+    const ContactSolution &
+    ContactSolver::solve(const ContactProblem            &p,
+                         const ContactOptions            &options,
+                         const std::vector<ContactState> &state_guess)
+    {
+      const internal::FlushSubnormalsScope
+        flush_subnormals; // see floating_point_mode.h
+      check_contact_problem(p);
+      if (state_guess.size() != p.n_contacts)
         throw std::invalid_argument(
-          "guess_from_states: one state per contact expected");
-      for (std::size_t c = 0; c < nc; ++c)
+          "solve_contact_problem: one guessed state per contact expected");
+      const FrictionForm form = internal::resolved_form(p, options.form);
+      Workspace         &ws   = *workspace;
+      ContactSolution   &s    = ws.solution;
+
+      std::string &why_not_block_pivoting = ws.why_not_block_pivoting;
+      why_not_block_pivoting.clear();
+      unsigned int iterations = 0;
+      if (p.n_directions == 2 && form != FrictionForm::frictionless)
         {
-          guess[c]            = closed(states[c]);
-          const bool slip_pos = states[c] == ContactState::slip_positive;
-          const bool slip_neg = states[c] == ContactState::slip_negative;
-          if (lcp.form == FrictionForm::klarbring)
+          s.states.assign(state_guess.begin(), state_guess.end());
+          Verification verification;
+          if (block_pivoting_2d(p,
+                                options,
+                                ws,
+                                s.states,
+                                s.P,
+                                ws.velocity,
+                                s.lcp.z,
+                                s.lcp.w,
+                                verification,
+                                iterations,
+                                why_not_block_pivoting))
             {
-              guess[nc + c]     = slip_pos;
-              guess[2 * nc + c] = slip_neg;
-            }
-          else if (lcp.form == FrictionForm::facets)
-            {
-              const std::size_t k = lcp.n_facets;
-              guess[nc + k * nc + c] =
-                slip_pos || slip_neg || states[c] == ContactState::open;
-              if (k == 2 && lcp.directions.size() == 2)
-                {
-                  // P_T = -mu P_N along V_T: facet d_1 = -t for V_T > 0
-                  guess[nc + c * k + 1] = slip_pos;
-                  guess[nc + c * k + 0] = slip_neg;
-                }
+              s.form                      = FrictionForm::facets;
+              s.n_facets                  = 2;
+              s.block_pivoting_iterations = iterations;
+              s.lcp.status                = Status::solved;
+              s.lcp.pivots                = 0;
+              s.lcp.refactorisations      = 0;
+              s.lcp.driving_variable      = -1;
+              s.lcp.verification          = verification;
+              s.lcp.start_path            = StartPath::block_pivoting;
+              internal::set_text(
+                s.lcp.message,
+                "block pivoting on the contact states: verified in the facet "
+                "form (k = 2) after %u %s",
+                iterations,
+                iterations == 1 ? "solve" : "solves");
+              s.message.assign(s.lcp.message);
+              return s;
             }
         }
-      return guess;
+
+      // Lemke's method in the requested form, warm-started from the guess.
+      ContactLCP &lcp = ws.lcp;
+      internal::assemble_contact_lcp(p, options, ws, lcp);
+      internal::guess_from_states(lcp, state_guess, ws.guess);
+      s.form                      = lcp.form;
+      s.n_facets                  = lcp.n_facets;
+      s.block_pivoting_iterations = iterations;
+      s.P.clear();
+      s.states.clear();
+      s.lcp = ws.lemke.solve_warm(lcp.M, lcp.q, ws.guess, options.lemke);
+      if (s.lcp.status == Status::solved)
+        {
+          internal::impulses_from_lcp(
+            p, lcp, s.lcp.z, ws.tangential_residual, s.P);
+          internal::contact_states(p, s.P, 1e-8, ws.velocity, s.states);
+        }
+      s.message.clear();
+      if (!why_not_block_pivoting.empty())
+        {
+          s.message.assign("block pivoting gave up (");
+          s.message.append(why_not_block_pivoting);
+          s.message.append("); ");
+        }
+      s.message.append(lcp.message);
+      s.message.append("; ");
+      s.message.append(s.lcp.message);
+      // automatic: never stop at the first failure (contact_routes.h)
+      if (options.form == FrictionForm::automatic &&
+          s.lcp.status != Status::solved)
+        s = continue_with_other_routes(p, options, s);
+      return s;
     }
 
 
@@ -532,74 +674,8 @@ namespace impactfe
                           const ContactOptions            &options,
                           const std::vector<ContactState> &state_guess)
     {
-      const internal::FlushSubnormalsScope
-        flush_subnormals; // see floating_point_mode.h
-      check_contact_problem(p);
-      if (state_guess.size() != p.n_contacts)
-        throw std::invalid_argument(
-          "solve_contact_problem: one guessed state per contact expected");
-      const FrictionForm form = resolved_form(p, options.form);
-
-      std::string  why_not_block_pivoting;
-      unsigned int iterations = 0;
-      if (p.n_directions == 2 && form != FrictionForm::frictionless)
-        {
-          std::vector<ContactState> states = state_guess;
-          std::vector<double>       P, V, z, w;
-          Verification              verification;
-          if (block_pivoting_2d(p,
-                                options,
-                                states,
-                                P,
-                                V,
-                                z,
-                                w,
-                                verification,
-                                iterations,
-                                why_not_block_pivoting))
-            {
-              ContactSolution s;
-              s.form                      = FrictionForm::facets;
-              s.n_facets                  = 2;
-              s.P                         = std::move(P);
-              s.states                    = std::move(states);
-              s.block_pivoting_iterations = iterations;
-              s.lcp.status                = Status::solved;
-              s.lcp.z                     = std::move(z);
-              s.lcp.w                     = std::move(w);
-              s.lcp.verification          = verification;
-              s.lcp.start_path            = StartPath::block_pivoting;
-              std::ostringstream m;
-              m << "block pivoting on the contact states: verified in the facet form (k = 2) after "
-                << iterations << (iterations == 1 ? " solve" : " solves");
-              s.lcp.message = m.str();
-              s.message     = s.lcp.message;
-              return s;
-            }
-        }
-
-      // Lemke's method in the requested form, warm-started from the guess.
-      const ContactLCP        lcp   = assemble_contact_lcp(p, options);
-      const std::vector<bool> guess = guess_from_states(lcp, state_guess);
-      ContactSolution         s;
-      s.form                      = lcp.form;
-      s.n_facets                  = lcp.n_facets;
-      s.block_pivoting_iterations = iterations;
-      s.lcp = solve_lemke_warm(lcp.M, lcp.q, guess, options.lemke);
-      if (s.lcp.status == Status::solved)
-        {
-          s.P      = impulses_from_lcp(p, lcp, s.lcp.z);
-          s.states = contact_states(p, s.P);
-        }
-      s.message = lcp.message + "; " + s.lcp.message;
-      if (!why_not_block_pivoting.empty())
-        s.message = "block pivoting gave up (" + why_not_block_pivoting +
-                    "); " + s.message;
-      // automatic: never stop at the first failure (contact_routes.h)
-      if (options.form == FrictionForm::automatic &&
-          s.lcp.status != Status::solved)
-        return continue_with_other_routes(p, options, s);
-      return s;
+      ContactSolver solver;
+      return solver.solve(p, options, state_guess);
     }
   } // namespace lcp
 } // namespace impactfe

@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <set>
-#include <sstream>
 #include <stdexcept>
 
+#include "contact_workspace.h"
 #include "floating_point_mode.h"
+#include "text.h"
 
 namespace impactfe
 {
@@ -81,12 +81,12 @@ namespace impactfe
         return true;
       }
 
-      ContactLCP
-      assemble_frictionless(const ContactProblem &p)
+      void
+      assemble_frictionless(const ContactProblem &p, ContactLCP &lcp)
       {
         const unsigned int nc = p.n_contacts, dim = p.n_directions;
-        ContactLCP         lcp;
-        lcp.form = FrictionForm::frictionless;
+        lcp.form     = FrictionForm::frictionless;
+        lcp.n_facets = 0;
         lcp.M.reinit(nc, nc);
         lcp.q.resize(nc);
         for (unsigned int a = 0; a < nc; ++a)
@@ -95,36 +95,45 @@ namespace impactfe
               lcp.M(a, b) = p.W(a * dim, b * dim);
             lcp.q[a] = p.free_velocity[a * dim] + p.gap_term[a];
           }
-        return lcp;
       }
 
-      std::vector<std::vector<double>>
-      facet_directions(const unsigned int dim, const unsigned int k)
+      /// The unit tangent directions d_j of the facet form: +t, -t in 2D,
+      /// k directions at angles 2 pi j / k in the (t1, t2) plane in 3D.
+      void
+      facet_directions(const unsigned int                dim,
+                       const unsigned int                k,
+                       std::vector<std::vector<double>> &D)
       {
-        std::vector<std::vector<double>> D;
+        D.resize(dim == 2 ? 2 : k);
         if (dim == 2)
-          return {{1.}, {-1.}};
+          {
+            D[0].assign(1, 1.);
+            D[1].assign(1, -1.);
+            return;
+          }
         const double pi = std::acos(-1.);
         for (unsigned int j = 0; j < k; ++j)
           {
             const double theta = 2. * pi * j / k;
-            D.push_back({std::cos(theta), std::sin(theta)});
+            D[j].resize(2);
+            D[j][0] = std::cos(theta);
+            D[j][1] = std::sin(theta);
           }
-        return D;
       }
 
-      ContactLCP
-      assemble_facets(const ContactProblem &p, const unsigned int k_requested)
+      void
+      assemble_facets(const ContactProblem &p,
+                      const unsigned int    k_requested,
+                      ContactLCP           &lcp)
       {
         const unsigned int nc = p.n_contacts, dim = p.n_directions;
         const unsigned int k = (dim == 2 ? 2 : k_requested);
         if (dim == 3 && k < 3)
           throw std::invalid_argument(
             "facet form: need at least 3 facets in 3D");
-        ContactLCP lcp;
-        lcp.form             = FrictionForm::facets;
-        lcp.n_facets         = k;
-        lcp.directions       = facet_directions(dim, k);
+        lcp.form     = FrictionForm::facets;
+        lcp.n_facets = k;
+        facet_directions(dim, k, lcp.directions);
         const auto        &D = lcp.directions;
         const unsigned int n = (k + 2) * nc;
         lcp.M.reinit(n, n);
@@ -179,18 +188,18 @@ namespace impactfe
               }
             lcp.M(sigma(c), c) = p.mu[c];
           }
-        return lcp;
       }
 
       /// The block (r, s) of W, r, s in {0 (normal), 1 (tangential)}, as a
-      /// contiguous n_c x n_c matrix.
-      DenseMatrix
+      /// contiguous n_c x n_c matrix @p B.
+      void
       delassus_block(const ContactProblem &p,
                      const unsigned int    r,
-                     const unsigned int    s)
+                     const unsigned int    s,
+                     DenseMatrix          &B)
       {
         const unsigned int nc = p.n_contacts;
-        DenseMatrix        B(nc, nc);
+        B.reinit(nc, nc);
         for (unsigned int a = 0; a < nc; ++a)
           {
             const double *wa = p.W.row(2 * a + r);
@@ -198,15 +207,14 @@ namespace impactfe
             for (unsigned int b = 0; b < nc; ++b)
               ba[b] = wa[2 * b + s];
           }
-        return B;
       }
 
       /// C = A B, rows of C accumulated from rows of B (contiguous loops).
-      DenseMatrix
-      multiply(const DenseMatrix &A, const DenseMatrix &B)
+      void
+      multiply(const DenseMatrix &A, const DenseMatrix &B, DenseMatrix &C)
       {
         const std::size_t n = A.n_rows(), k = A.n_cols(), m = B.n_cols();
-        DenseMatrix       C(n, m, 0.);
+        C.reinit(n, m, 0.);
         for (std::size_t i = 0; i < n; ++i)
           {
             const double *ai = A.row(i);
@@ -221,28 +229,36 @@ namespace impactfe
                   ci[j] += a * bl[j];
               }
           }
-        return C;
       }
 
       /// Returns false if W_TT is singular. The blocks of W are copied into
       /// contiguous matrices first, so that the O(n_c^3) products run along
-      /// rows.
+      /// rows. A = W_TT^{-1} is stored in lcp.W_TT_inverse.
       bool
-      assemble_klarbring(const ContactProblem &p,
-                         const double          tol,
-                         ContactLCP           &lcp)
+      assemble_klarbring(const ContactProblem     &p,
+                         const double              tol,
+                         ContactSolver::Workspace &ws,
+                         ContactLCP               &lcp)
       {
         const unsigned int nc = p.n_contacts;
-        LUFactorization    lu;
-        if (!lu.factorize(delassus_block(p, 1, 1), tol))
+        delassus_block(p, 1, 1, ws.W_TT);
+        if (!ws.W_TT_lu.factorize(ws.W_TT, tol))
           return false;
-        const DenseMatrix A    = lu.inverse();
-        const DenseMatrix Wnt  = delassus_block(p, 0, 1);
-        const DenseMatrix AWtn = multiply(A, delassus_block(p, 1, 0));
-        const DenseMatrix WntA = multiply(Wnt, A);
-        const DenseMatrix S    = multiply(Wnt, AWtn); // W_NT A W_TN
+        DenseMatrix &A = lcp.W_TT_inverse;
+        ws.W_TT_lu.inverse(A);
+        const DenseMatrix &Wnt = ws.W_NT;
+        delassus_block(p, 0, 1, ws.W_NT);
+        delassus_block(p, 1, 0, ws.W_TN);
+        multiply(A, ws.W_TN, ws.AW_TN);
+        multiply(Wnt, A, ws.W_NT_A);
+        multiply(Wnt, ws.AW_TN, ws.W_NT_AW_TN);
+        const DenseMatrix &AWtn = ws.AW_TN;
+        const DenseMatrix &WntA = ws.W_NT_A;
+        const DenseMatrix &S    = ws.W_NT_AW_TN; // W_NT A W_TN
 
-        std::vector<double> Vt(nc), AVt;
+        std::vector<double> &Vt  = ws.V_T;
+        std::vector<double> &AVt = ws.AV_T;
+        Vt.resize(nc);
         for (unsigned int b = 0; b < nc; ++b)
           Vt[b] = p.free_velocity[2 * b + 1];
         A.vmult(AVt, Vt);
@@ -281,68 +297,216 @@ namespace impactfe
             lcp.q[nc + a]     = -AVt[a];
             lcp.q[2 * nc + a] = AVt[a];
           }
-        lcp.W_TT_inverse = A;
         return true;
       }
     } // namespace
 
 
 
+    namespace internal
+    {
+      FrictionForm
+      resolved_form(const ContactProblem &p, const FrictionForm requested)
+      {
+        if (requested != FrictionForm::automatic)
+          return requested;
+        if (p.n_directions == 1 || all_zero(p.mu))
+          return FrictionForm::frictionless;
+        return p.n_directions == 2 ? FrictionForm::klarbring :
+                                     FrictionForm::facets;
+      }
+
+
+
+      void
+      assemble_contact_lcp(const ContactProblem     &p,
+                           const ContactOptions     &options,
+                           ContactSolver::Workspace &ws,
+                           ContactLCP               &lcp)
+      {
+        const internal::FlushSubnormalsScope
+          flush_subnormals; // see floating_point_mode.h
+        check_contact_problem(p);
+        const FrictionForm form = resolved_form(p, options.form);
+        if (p.n_directions == 1 && form != FrictionForm::frictionless)
+          throw std::invalid_argument(
+            "contact problem with normal directions only: use the frictionless form");
+        if (form == FrictionForm::klarbring && p.n_directions != 2)
+          throw std::invalid_argument(
+            "the Klarbring form is for 2D contact (n_directions == 2)");
+
+        // (directions is left as it is outside the facet form, where it is
+        // not read: its vectors are reused by the next facet form)
+        lcp.W_TT_inverse.reinit(0, 0);
+        if (form == FrictionForm::frictionless)
+          {
+            assemble_frictionless(p, lcp);
+            lcp.message.assign("frictionless form");
+            if (options.form == FrictionForm::automatic)
+              lcp.message.append(p.n_directions == 1 ?
+                                   " (normal directions only)" :
+                                   " (all friction coefficients are 0)");
+          }
+        else if (form == FrictionForm::klarbring)
+          {
+            if (assemble_klarbring(p, options.singularity_tolerance, ws, lcp))
+              lcp.message.assign("Klarbring form");
+            else
+              {
+                lcp.W_TT_inverse.reinit(0, 0);
+                assemble_facets(p, 2, lcp);
+                lcp.message.assign(
+                  "W_TT is singular (rank-deficient tangential block): facet form with k = 2 instead of Klarbring");
+              }
+          }
+        else
+          {
+            assemble_facets(p, options.n_facets, lcp);
+            internal::set_text(lcp.message, "facet form, k = %u", lcp.n_facets);
+            if (p.n_directions == 2 && options.n_facets != 2)
+              lcp.message.append(" (in 2D the cone has the two facets +t, -t)");
+          }
+      }
+
+
+
+      void
+      impulses_from_lcp(const ContactProblem      &p,
+                        const ContactLCP          &lcp,
+                        const std::vector<double> &z,
+                        std::vector<double>       &r,
+                        std::vector<double>       &P)
+      {
+        const unsigned int nc = p.n_contacts, dim = p.n_directions;
+        if (z.size() != lcp.q.size())
+          throw std::invalid_argument(
+            "impulses_from_lcp: z has the wrong size");
+        P.assign(static_cast<std::size_t>(nc) * dim, 0.);
+        for (unsigned int c = 0; c < nc; ++c)
+          P[c * dim] = z[c];
+        if (lcp.form == FrictionForm::klarbring)
+          {
+            // P_T = A (lambda1 - lambda2 - V_free,T - W_TN P_N)
+            r.resize(nc);
+            for (unsigned int a = 0; a < nc; ++a)
+              {
+                double s =
+                  z[nc + a] - z[2 * nc + a] - p.free_velocity[2 * a + 1];
+                for (unsigned int b = 0; b < nc; ++b)
+                  s -= p.W(2 * a + 1, 2 * b) * z[b];
+                r[a] = s;
+              }
+            for (unsigned int a = 0; a < nc; ++a)
+              {
+                double s = 0.;
+                for (unsigned int b = 0; b < nc; ++b)
+                  s += lcp.W_TT_inverse(a, b) * r[b];
+                P[2 * a + 1] = s;
+              }
+          }
+        else if (lcp.form == FrictionForm::facets)
+          {
+            const unsigned int k = lcp.n_facets;
+            for (unsigned int c = 0; c < nc; ++c)
+              for (unsigned int j = 0; j < k; ++j)
+                for (unsigned int a = 0; a + 1 < dim; ++a)
+                  P[c * dim + 1 + a] +=
+                    lcp.directions[j][a] * z[nc + c * k + j];
+          }
+      }
+
+
+
+      ContactVerification
+      verify_contact_solution(const ContactProblem      &p,
+                              const std::vector<double> &P,
+                              const double               tol,
+                              std::vector<double>       &V)
+      {
+        check_contact_problem(p);
+        const unsigned int nc = p.n_contacts, dim = p.n_directions;
+        if (P.size() != static_cast<std::size_t>(nc) * dim)
+          throw std::invalid_argument(
+            "verify_contact_solution: P has the wrong size");
+        p.W.vmult(V, P);
+        double pmax = 0., vfree = 0., bmax = 0.;
+        for (std::size_t i = 0; i < P.size(); ++i)
+          {
+            V[i] += p.free_velocity[i];
+            pmax  = std::max(pmax, std::abs(P[i]));
+            vfree = std::max(vfree, std::abs(p.free_velocity[i]));
+          }
+        for (const double b : p.gap_term)
+          bmax = std::max(bmax, std::abs(b));
+        const double normW = p.W.linfty_norm();
+        const double sV    = vfree + bmax + normW * pmax;
+        // impulse scale: ||P||, or the impulse that the free velocities call
+        // for when P is (nearly) zero
+        const double sP =
+          std::max(pmax, normW > 0. ? (vfree + bmax) / normW : 0.);
+        auto rel = [](const double v, const double s) {
+          return s > 0. ? v / s : (v > 0. ? v * 1e300 : 0.);
+        };
+
+        ContactVerification r;
+        for (unsigned int c = 0; c < nc; ++c)
+          {
+            const double PN = P[c * dim];
+            const double wN = V[c * dim] + p.gap_term[c];
+            r.max_signorini_violation =
+              std::max({r.max_signorini_violation,
+                        rel(-PN, sP),
+                        rel(-wN, sV),
+                        rel(std::abs(PN * wN), sP * sV)});
+            if (dim == 1)
+              {
+                if (PN <= tol * sP)
+                  ++r.n_separated;
+                else
+                  ++r.n_sticking;
+                continue;
+              }
+            double PT2 = 0., VT2 = 0.;
+            for (unsigned int a = 1; a < dim; ++a)
+              {
+                PT2 += P[c * dim + a] * P[c * dim + a];
+                VT2 += V[c * dim + a] * V[c * dim + a];
+              }
+            const double PT = std::sqrt(PT2), VT = std::sqrt(VT2);
+            r.max_cone_violation =
+              std::max(r.max_cone_violation, rel(PT - p.mu[c] * PN, sP));
+            if (PN <= tol * sP)
+              ++r.n_separated;
+            else if (VT <= tol * sV)
+              ++r.n_sticking;
+            else
+              {
+                ++r.n_sliding;
+                double dev2 = 0.;
+                for (unsigned int a = 1; a < dim; ++a)
+                  {
+                    const double e =
+                      P[c * dim + a] + p.mu[c] * PN * V[c * dim + a] / VT;
+                    dev2 += e * e;
+                  }
+                r.max_sliding_violation =
+                  std::max(r.max_sliding_violation, rel(std::sqrt(dev2), sP));
+              }
+          }
+        r.ok = r.max_signorini_violation <= tol &&
+               r.max_cone_violation <= tol && r.max_sliding_violation <= tol;
+        return r;
+      }
+    } // namespace internal
+
+
+
     ContactLCP
     assemble_contact_lcp(const ContactProblem &p, const ContactOptions &options)
     {
-      const internal::FlushSubnormalsScope
-        flush_subnormals; // see floating_point_mode.h
-      check_contact_problem(p);
-      FrictionForm form = options.form;
-      std::string  why;
-      if (form == FrictionForm::automatic)
-        {
-          if (p.n_directions == 1 || all_zero(p.mu))
-            {
-              form = FrictionForm::frictionless;
-              why  = (p.n_directions == 1 ? "normal directions only" :
-                                            "all friction coefficients are 0");
-            }
-          else if (p.n_directions == 2)
-            form = FrictionForm::klarbring;
-          else
-            form = FrictionForm::facets;
-        }
-      if (p.n_directions == 1 && form != FrictionForm::frictionless)
-        throw std::invalid_argument(
-          "contact problem with normal directions only: use the frictionless form");
-      if (form == FrictionForm::klarbring && p.n_directions != 2)
-        throw std::invalid_argument(
-          "the Klarbring form is for 2D contact (n_directions == 2)");
-
-      ContactLCP lcp;
-      if (form == FrictionForm::frictionless)
-        {
-          lcp         = assemble_frictionless(p);
-          lcp.message = "frictionless form" +
-                        (why.empty() ? std::string() : " (" + why + ")");
-        }
-      else if (form == FrictionForm::klarbring)
-        {
-          if (assemble_klarbring(p, options.singularity_tolerance, lcp))
-            lcp.message = "Klarbring form";
-          else
-            {
-              lcp = assemble_facets(p, 2);
-              lcp.message =
-                "W_TT is singular (rank-deficient tangential block): facet form with k = 2 instead of Klarbring";
-            }
-        }
-      else
-        {
-          lcp = assemble_facets(p, options.n_facets);
-          std::ostringstream s;
-          s << "facet form, k = " << lcp.n_facets;
-          if (p.n_directions == 2 && options.n_facets != 2)
-            s << " (in 2D the cone has the two facets +t, -t)";
-          lcp.message = s.str();
-        }
+      ContactSolver::Workspace ws;
+      ContactLCP               lcp;
+      internal::assemble_contact_lcp(p, options, ws, lcp);
       return lcp;
     }
 
@@ -353,73 +517,9 @@ namespace impactfe
                       const ContactLCP          &lcp,
                       const std::vector<double> &z)
     {
-      const unsigned int  nc = p.n_contacts, dim = p.n_directions;
-      std::vector<double> P(static_cast<std::size_t>(nc) * dim, 0.);
-      if (z.size() != lcp.q.size())
-        throw std::invalid_argument("impulses_from_lcp: z has the wrong size");
-      for (unsigned int c = 0; c < nc; ++c)
-        P[c * dim] = z[c];
-      if (lcp.form == FrictionForm::klarbring)
-        {
-          // P_T = A (lambda1 - lambda2 - V_free,T - W_TN P_N)
-          std::vector<double> r(nc);
-          for (unsigned int a = 0; a < nc; ++a)
-            {
-              double s = z[nc + a] - z[2 * nc + a] - p.free_velocity[2 * a + 1];
-              for (unsigned int b = 0; b < nc; ++b)
-                s -= p.W(2 * a + 1, 2 * b) * z[b];
-              r[a] = s;
-            }
-          for (unsigned int a = 0; a < nc; ++a)
-            {
-              double s = 0.;
-              for (unsigned int b = 0; b < nc; ++b)
-                s += lcp.W_TT_inverse(a, b) * r[b];
-              P[2 * a + 1] = s;
-            }
-        }
-      else if (lcp.form == FrictionForm::facets)
-        {
-          const unsigned int k = lcp.n_facets;
-          for (unsigned int c = 0; c < nc; ++c)
-            for (unsigned int j = 0; j < k; ++j)
-              for (unsigned int a = 0; a + 1 < dim; ++a)
-                P[c * dim + 1 + a] += lcp.directions[j][a] * z[nc + c * k + j];
-        }
+      std::vector<double> r, P;
+      internal::impulses_from_lcp(p, lcp, z, r, P);
       return P;
-    }
-
-
-
-    ContactSolution
-    solve_contact_problem(const ContactProblem    &p,
-                          const ContactOptions    &options,
-                          const std::vector<bool> *guess)
-    {
-      const internal::FlushSubnormalsScope
-                       flush_subnormals; // see floating_point_mode.h
-      const ContactLCP lcp = assemble_contact_lcp(p, options);
-      ContactSolution  s;
-      s.form     = lcp.form;
-      s.n_facets = lcp.n_facets;
-      if (guess != nullptr && guess->size() == lcp.q.size())
-        s.lcp = solve_lemke_warm(lcp.M, lcp.q, *guess, options.lemke);
-      else
-        s.lcp = solve_lemke(lcp.M, lcp.q, options.lemke);
-      std::string warm_note;
-      if (guess != nullptr && guess->size() != lcp.q.size())
-        warm_note = "; guess ignored (wrong size for this form)";
-      if (s.lcp.status == Status::solved)
-        {
-          s.P      = impulses_from_lcp(p, lcp, s.lcp.z);
-          s.states = contact_states(p, s.P);
-        }
-      s.message = lcp.message + "; " + s.lcp.message + warm_note;
-      // automatic: never stop at the first failure (contact_routes.h)
-      if (options.form == FrictionForm::automatic &&
-          s.lcp.status != Status::solved)
-        return continue_with_other_routes(p, options, s);
-      return s;
     }
 
 
@@ -429,81 +529,90 @@ namespace impactfe
                             const std::vector<double> &P,
                             const double               tol)
     {
-      check_contact_problem(p);
-      const unsigned int nc = p.n_contacts, dim = p.n_directions;
-      if (P.size() != static_cast<std::size_t>(nc) * dim)
-        throw std::invalid_argument(
-          "verify_contact_solution: P has the wrong size");
       std::vector<double> V;
-      p.W.vmult(V, P);
-      double pmax = 0., vfree = 0., bmax = 0.;
-      for (std::size_t i = 0; i < P.size(); ++i)
-        {
-          V[i] += p.free_velocity[i];
-          pmax  = std::max(pmax, std::abs(P[i]));
-          vfree = std::max(vfree, std::abs(p.free_velocity[i]));
-        }
-      for (const double b : p.gap_term)
-        bmax = std::max(bmax, std::abs(b));
-      const double normW = p.W.linfty_norm();
-      const double sV    = vfree + bmax + normW * pmax;
-      // impulse scale: ||P||, or the impulse that the free velocities call
-      // for when P is (nearly) zero
-      const double sP =
-        std::max(pmax, normW > 0. ? (vfree + bmax) / normW : 0.);
-      auto rel = [](const double v, const double s) {
-        return s > 0. ? v / s : (v > 0. ? v * 1e300 : 0.);
-      };
-
-      ContactVerification r;
-      for (unsigned int c = 0; c < nc; ++c)
-        {
-          const double PN = P[c * dim];
-          const double wN = V[c * dim] + p.gap_term[c];
-          r.max_signorini_violation =
-            std::max({r.max_signorini_violation,
-                      rel(-PN, sP),
-                      rel(-wN, sV),
-                      rel(std::abs(PN * wN), sP * sV)});
-          if (dim == 1)
-            {
-              if (PN <= tol * sP)
-                ++r.n_separated;
-              else
-                ++r.n_sticking;
-              continue;
-            }
-          double PT2 = 0., VT2 = 0.;
-          for (unsigned int a = 1; a < dim; ++a)
-            {
-              PT2 += P[c * dim + a] * P[c * dim + a];
-              VT2 += V[c * dim + a] * V[c * dim + a];
-            }
-          const double PT = std::sqrt(PT2), VT = std::sqrt(VT2);
-          r.max_cone_violation =
-            std::max(r.max_cone_violation, rel(PT - p.mu[c] * PN, sP));
-          if (PN <= tol * sP)
-            ++r.n_separated;
-          else if (VT <= tol * sV)
-            ++r.n_sticking;
-          else
-            {
-              ++r.n_sliding;
-              double dev2 = 0.;
-              for (unsigned int a = 1; a < dim; ++a)
-                {
-                  const double e =
-                    P[c * dim + a] + p.mu[c] * PN * V[c * dim + a] / VT;
-                  dev2 += e * e;
-                }
-              r.max_sliding_violation =
-                std::max(r.max_sliding_violation, rel(std::sqrt(dev2), sP));
-            }
-        }
-      r.ok = r.max_signorini_violation <= tol && r.max_cone_violation <= tol &&
-             r.max_sliding_violation <= tol;
-      return r;
+      return internal::verify_contact_solution(p, P, tol, V);
     }
 
+
+
+    // @sect3{ContactSolver: the solves of a run, with storage kept}
+    ContactSolver::ContactSolver()
+      : workspace(std::make_unique<Workspace>())
+    {}
+
+    ContactSolver::~ContactSolver() = default;
+
+    ContactSolver::ContactSolver(ContactSolver &&) noexcept = default;
+
+    ContactSolver &
+    ContactSolver::operator=(ContactSolver &&) noexcept = default;
+
+
+
+    const ContactSolution &
+    ContactSolver::solution() const
+    {
+      return workspace->solution;
+    }
+
+
+
+    std::size_t
+    ContactSolver::memory_consumption() const
+    {
+      return workspace->memory_consumption();
+    }
+
+
+
+    const ContactSolution &
+    ContactSolver::solve(const ContactProblem    &p,
+                         const ContactOptions    &options,
+                         const std::vector<bool> *guess)
+    {
+      const internal::FlushSubnormalsScope
+                       flush_subnormals; // see floating_point_mode.h
+      Workspace       &ws  = *workspace;
+      ContactLCP      &lcp = ws.lcp;
+      ContactSolution &s   = ws.solution;
+      internal::assemble_contact_lcp(p, options, ws, lcp);
+      s.form                      = lcp.form;
+      s.n_facets                  = lcp.n_facets;
+      s.block_pivoting_iterations = 0;
+      s.P.clear();
+      s.states.clear();
+      const bool use_guess = guess != nullptr && guess->size() == lcp.q.size();
+      const Result &result =
+        use_guess ? ws.lemke.solve_warm(lcp.M, lcp.q, *guess, options.lemke) :
+                    ws.lemke.solve(lcp.M, lcp.q, options.lemke);
+      s.lcp = result;
+      if (s.lcp.status == Status::solved)
+        {
+          internal::impulses_from_lcp(
+            p, lcp, s.lcp.z, ws.tangential_residual, s.P);
+          internal::contact_states(p, s.P, 1e-8, ws.velocity, s.states);
+        }
+      s.message.assign(lcp.message);
+      s.message.append("; ");
+      s.message.append(s.lcp.message);
+      if (guess != nullptr && !use_guess)
+        s.message.append("; guess ignored (wrong size for this form)");
+      // automatic: never stop at the first failure (contact_routes.h)
+      if (options.form == FrictionForm::automatic &&
+          s.lcp.status != Status::solved)
+        s = continue_with_other_routes(p, options, s);
+      return s;
+    }
+
+
+
+    ContactSolution
+    solve_contact_problem(const ContactProblem    &p,
+                          const ContactOptions    &options,
+                          const std::vector<bool> *guess)
+    {
+      ContactSolver solver;
+      return solver.solve(p, options, guess);
+    }
   } // namespace lcp
 } // namespace impactfe

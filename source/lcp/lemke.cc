@@ -13,10 +13,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 
 #include "floating_point_mode.h"
+#include "text.h"
 
 namespace impactfe
 {
@@ -64,9 +64,94 @@ namespace impactfe
 
 
 
+    /**
+     * Everything a solve needs besides M and q, kept by LemkeSolver from one
+     * solve to the next: the basis and its inverse (LemkeEngine below), the
+     * work vectors of the ratio tests, refactorisation and drift check, and
+     * the Result. Sizes only grow, so repeated solves allocate nothing.
+     */
+    struct LemkeSolver::Workspace
+    {
+      Result result;
+
+      std::vector<double> d, binv, x;
+      std::vector<int>    basic, position, slack_pos, dense_cols, dense_index;
+
+      std::vector<double> y, delta, basis_sum, covering, residual, basic_z;
+      std::vector<double> slack_row, slack_update, z_end, w_end;
+      std::vector<int>    ties, kept_ties, basic_z_positions, dense_rows;
+      DenseMatrix         basis_block, basis_block_inverse;
+      LUFactorization     lu;
+      std::string         note, why;
+
+      std::size_t
+      memory_consumption() const
+      {
+        std::size_t bytes = lcp::memory_consumption(result.z) +
+                            lcp::memory_consumption(result.w) +
+                            result.message.capacity() + note.capacity() +
+                            why.capacity();
+        for (const auto *v : {&d,
+                              &binv,
+                              &x,
+                              &y,
+                              &delta,
+                              &basis_sum,
+                              &covering,
+                              &residual,
+                              &basic_z,
+                              &slack_row,
+                              &slack_update,
+                              &z_end,
+                              &w_end})
+          bytes += lcp::memory_consumption(*v);
+        for (const auto *v : {&basic,
+                              &position,
+                              &slack_pos,
+                              &dense_cols,
+                              &dense_index,
+                              &ties,
+                              &kept_ties,
+                              &basic_z_positions,
+                              &dense_rows})
+          bytes += lcp::memory_consumption(*v);
+        return bytes + basis_block.memory_consumption() +
+               basis_block_inverse.memory_consumption() +
+               lu.memory_consumption();
+      }
+    };
+
+
+
     namespace
     {
       constexpr double eps = std::numeric_limits<double>::epsilon();
+
+      /// verify() with the residual stored in @p residual.
+      Verification
+      verify_into(const DenseMatrix         &M,
+                  const std::vector<double> &q,
+                  const std::vector<double> &z,
+                  const std::vector<double> &w,
+                  const double               tolerance_factor,
+                  std::vector<double>       &residual)
+      {
+        const std::size_t n = q.size();
+        if (M.n_rows() != n || M.n_cols() != n || z.size() != n ||
+            w.size() != n)
+          throw std::invalid_argument("verify: inconsistent sizes");
+        residual.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+          {
+            double        r  = w[i] - q[i];
+            const double *mi = M.row(i);
+            for (std::size_t j = 0; j < n; ++j)
+              r -= mi[j] * z[j];
+            residual[i] = r;
+          }
+        return verify_with_residual(
+          M.linfty_norm(), q, z, w, residual, tolerance_factor);
+      }
 
       bool
       all_finite(const std::vector<double> &v)
@@ -106,20 +191,44 @@ namespace impactfe
       class LemkeEngine
       {
       public:
+        /// The engine's storage is @p workspace's (sized here, reused).
         LemkeEngine(const DenseMatrix         &M_,
                     const std::vector<double> &q_,
-                    const LemkeOptions        &options_)
+                    const LemkeOptions        &options_,
+                    LemkeSolver::Workspace    &workspace)
           : n(static_cast<int>(q_.size()))
           , M(M_)
           , q(q_)
           , options(options_)
-          , basic(n)
-          , position(2 * n + 1, -1)
-          , slack_pos(n, -1)
-          , binv(static_cast<std::size_t>(n) * n)
-          , dense_index(n, -1)
-          , x(n)
+          , ws(workspace)
+          , d(workspace.d)
+          , basic(workspace.basic)
+          , position(workspace.position)
+          , slack_pos(workspace.slack_pos)
+          , binv(workspace.binv)
+          , dense_cols(workspace.dense_cols)
+          , dense_index(workspace.dense_index)
+          , x(workspace.x)
+          , note(workspace.note)
         {
+          d.clear();
+          basic.assign(n, 0);
+          position.assign(2 * n + 1, -1);
+          slack_pos.assign(n, -1);
+          // Columns of binv are read only after they are written (a slack
+          // leaving the basis, or a refactorisation): no fill needed.
+          binv.resize(static_cast<std::size_t>(n) * n);
+          dense_cols.clear();
+          dense_index.assign(n, -1);
+          x.assign(n, 0.);
+          note.clear();
+          // lists of at most n entries: reserved once, so that they never
+          // grow during a solve
+          dense_cols.reserve(n);
+          ws.ties.reserve(n);
+          ws.kept_ties.reserve(n);
+          ws.basic_z_positions.reserve(n);
+          ws.dense_rows.reserve(n);
           norm_M = M.linfty_norm();
           norm_q = linfty_norm(q);
           vtol   = options.verification_tolerance_factor * eps * std::max(n, 1);
@@ -129,7 +238,7 @@ namespace impactfe
         void
         init_slack_basis(const std::vector<double> &covering)
         {
-          d = covering;
+          d.assign(covering.begin(), covering.end());
           for (int i = 0; i < n; ++i)
             {
               basic[i]     = i;
@@ -138,7 +247,7 @@ namespace impactfe
             }
           dense_cols.clear();
           std::fill(dense_index.begin(), dense_index.end(), -1);
-          x        = q;
+          x.assign(q.begin(), q.end());
           binv_max = 1.;
           update_scale();
         }
@@ -164,10 +273,11 @@ namespace impactfe
         void
         set_covering_to_basis_sum()
         {
-          std::vector<double> dd(n, 0.);
+          std::vector<double> &sum = ws.basis_sum;
+          sum.assign(n, 0.);
           for (int p = 0; p < n; ++p)
-            add_column(basic[p], 1., dd);
-          d = dd;
+            add_column(basic[p], 1., sum);
+          d.assign(sum.begin(), sum.end());
           update_scale();
         }
 
@@ -200,8 +310,9 @@ namespace impactfe
         void
         run(const unsigned int cap, Result &result)
         {
-          const int           z0 = 2 * n;
-          std::vector<double> y(n);
+          const int            z0 = 2 * n;
+          std::vector<double> &y  = ws.y;
+          y.resize(n);
 
           // --- the artificial variable enters
           compute_column(z0, y);
@@ -222,10 +333,11 @@ namespace impactfe
             {
               if (result.pivots >= cap)
                 {
-                  std::ostringstream s;
-                  s << "pivot cap " << cap
-                    << " reached; z0 = " << x[position[z0]];
-                  fail(result, Status::pivot_limit, s.str());
+                  fail(result, Status::pivot_limit);
+                  internal::set_text(result.message,
+                                     "pivot cap %u reached; z0 = %g",
+                                     cap,
+                                     x[position[z0]]);
                   return;
                 }
               const int entering = (leaving < n ? leaving + n : leaving - n);
@@ -240,32 +352,39 @@ namespace impactfe
               r = ratio_test(y);
               if (r < 0)
                 {
-                  std::ostringstream s;
-                  s << "ray termination after " << result.pivots
-                    << " pivots: " << (entering < n ? "w_" : "z_")
-                    << (entering % n)
-                    << " cannot enter (no positive entry in its column); z0 = "
-                    << x[position[z0]];
                   // z0 within rounding of 0 (a degenerate end of the path,
                   // e.g. a singular W): the point without z0 may already
                   // solve the LCP. Accepted only if it passes verify().
-                  std::vector<double> z_end, w_end;
-                  extract(z_end, w_end);
-                  const Verification v = verify(
-                    M, q, z_end, w_end, options.verification_tolerance_factor);
+                  extract(ws.z_end, ws.w_end);
+                  const Verification v =
+                    verify_into(M,
+                                q,
+                                ws.z_end,
+                                ws.w_end,
+                                options.verification_tolerance_factor,
+                                ws.residual);
                   if (v.ok)
                     {
                       result.status       = Status::solved;
                       result.verification = v;
-                      note =
-                        "; at the last pivot the entering column had no positive entry, but z0 = " +
-                        std::to_string(x[position[z0]]) +
-                        " was within rounding of 0 and the point "
-                        "without it passed verification";
+                      internal::set_text(
+                        note,
+                        "; at the last pivot the entering column had no "
+                        "positive entry, but z0 = %f was within rounding of "
+                        "0 and the point without it passed verification",
+                        x[position[z0]]);
                       return;
                     }
                   result.driving_variable = entering;
-                  fail(result, Status::ray_termination, s.str());
+                  fail(result, Status::ray_termination);
+                  internal::set_text(
+                    result.message,
+                    "ray termination after %u pivots: %s%d cannot enter (no "
+                    "positive entry in its column); z0 = %g",
+                    result.pivots,
+                    entering < n ? "w_" : "z_",
+                    entering % n,
+                    x[position[z0]]);
                   return;
                 }
               leaving = basic[r];
@@ -301,7 +420,10 @@ namespace impactfe
         bool
         refactor()
         {
-          std::vector<int> PC, R;
+          std::vector<int> &PC = ws.basic_z_positions;
+          std::vector<int> &R  = ws.dense_rows;
+          PC.clear();
+          R.clear();
           for (int p = 0; p < n; ++p)
             if (basic[p] >= n)
               PC.push_back(p);
@@ -313,21 +435,23 @@ namespace impactfe
             return false;
 
           ++refactorisations;
-          dense_cols = R;
+          dense_cols.assign(R.begin(), R.end());
           std::fill(dense_index.begin(), dense_index.end(), -1);
           for (int ii = 0; ii < k; ++ii)
             dense_index[R[ii]] = ii;
 
           if (k > 0)
             {
-              DenseMatrix BRC(k, k);
+              DenseMatrix &BRC = ws.basis_block;
+              BRC.reinit(k, k);
               for (int jj = 0; jj < k; ++jj)
                 for (int ii = 0; ii < k; ++ii)
                   BRC(ii, jj) = column_entry(basic[PC[jj]], R[ii]);
-              LUFactorization lu;
+              LUFactorization &lu = ws.lu;
               if (!lu.factorize(BRC, 1e2 * eps))
                 return false;
-              const DenseMatrix X = lu.inverse(); // X(jj, ii)
+              DenseMatrix &X = ws.basis_block_inverse; // X(jj, ii)
+              lu.inverse(X);
 
               for (int ii = 0; ii < k; ++ii)
                 {
@@ -337,7 +461,10 @@ namespace impactfe
                     col[PC[jj]] = X(jj, ii);
                 }
               // rows of slack positions: -B_SC X
-              std::vector<double> b(k), t(k);
+              std::vector<double> &b = ws.slack_row;
+              std::vector<double> &t = ws.slack_update;
+              b.assign(k, 0.);
+              t.assign(k, 0.);
               for (int c = 0; c < n; ++c)
                 if (slack_pos[c] >= 0)
                   {
@@ -389,24 +516,28 @@ namespace impactfe
         }
 
         unsigned int refactorisations = 0;
-        /// Appended to the message of a solved run (see the ray test in run()).
-        std::string note;
 
       private:
         const int                  n;
         const DenseMatrix         &M;
         const std::vector<double> &q;
         const LemkeOptions        &options;
-        std::vector<double>        d;
+        LemkeSolver::Workspace    &ws;
+        std::vector<double>       &d;
 
-        std::vector<int>    basic;      // variable at basis position p
-        std::vector<int>    position;   // basis position of a variable, or -1
-        std::vector<int>    slack_pos;  // position of w_c if basic, else -1
-        std::vector<double> binv;       // column-major; valid for dense columns
-        std::vector<int>    dense_cols; // columns c with slack_pos[c] < 0
-        std::vector<int>    dense_index;
-        std::vector<double> x;
+        std::vector<int>    &basic;     // variable at basis position p
+        std::vector<int>    &position;  // basis position of a variable, or -1
+        std::vector<int>    &slack_pos; // position of w_c if basic, else -1
+        std::vector<double> &binv;      // column-major; valid for dense columns
+        std::vector<int>    &dense_cols; // columns c with slack_pos[c] < 0
+        std::vector<int>    &dense_index;
+        std::vector<double> &x;
 
+      public:
+        /// Appended to the message of a solved run (see the ray test in run()).
+        std::string &note;
+
+      private:
         double norm_M = 0., norm_q = 0., scale_A = 1., binv_max = 1., vtol = 0.;
         double column_norm = 1.; // of the last column passed to compute_column
 
@@ -496,7 +627,8 @@ namespace impactfe
               double umin = std::numeric_limits<double>::infinity();
               for (const int p : T)
                 umin = std::min(umin, binv_entry(p, c) / delta[p]);
-              std::vector<int> keep;
+              std::vector<int> &keep = ws.kept_ties;
+              keep.clear();
               for (const int p : T)
                 if (binv_entry(p, c) / delta[p] <=
                     umin + tie * binv_max / delta[p])
@@ -510,9 +642,10 @@ namespace impactfe
         int
         initial_ratio_test(const std::vector<double> &y) const
         {
-          std::vector<double> delta(n);
-          double              vmin = std::numeric_limits<double>::infinity();
-          const double        ptol = pivot_tolerance();
+          std::vector<double> &delta = ws.delta;
+          delta.resize(n);
+          double       vmin = std::numeric_limits<double>::infinity();
+          const double ptol = pivot_tolerance();
           for (int p = 0; p < n; ++p)
             {
               delta[p] = -y[p];
@@ -521,9 +654,10 @@ namespace impactfe
             }
           if (!(vmin < 0.))
             return -1;
-          const double     xnorm = linfty_norm(x);
-          const double     tie   = options.tie_tolerance_factor * eps;
-          std::vector<int> T;
+          const double      xnorm = linfty_norm(x);
+          const double      tie   = options.tie_tolerance_factor * eps;
+          std::vector<int> &T     = ws.ties;
+          T.clear();
           for (int p = 0; p < n; ++p)
             if (delta[p] > ptol && x[p] / delta[p] - vmin <=
                                      tie * (std::abs(vmin) + xnorm / delta[p]))
@@ -542,9 +676,10 @@ namespace impactfe
               vmin = std::min(vmin, std::max(x[p], 0.) / y[p]);
           if (vmin == std::numeric_limits<double>::infinity())
             return -1;
-          const double     xnorm = linfty_norm(x);
-          const double     tie   = options.tie_tolerance_factor * eps;
-          std::vector<int> T;
+          const double      xnorm = linfty_norm(x);
+          const double      tie   = options.tie_tolerance_factor * eps;
+          std::vector<int> &T     = ws.ties;
+          T.clear();
           for (int p = 0; p < n; ++p)
             if (y[p] > ptol &&
                 std::max(x[p], 0.) / y[p] - vmin <= tie * (vmin + xnorm / y[p]))
@@ -631,8 +766,11 @@ namespace impactfe
         {
           // res = q - B x = q - w_B + M z_B + d z0, with M applied row by row
           // (contiguous) rather than column by column
-          std::vector<double> res = q, zb(n, 0.);
-          double              z0  = 0.;
+          std::vector<double> &res = ws.residual;
+          std::vector<double> &zb  = ws.basic_z;
+          res.assign(q.begin(), q.end());
+          zb.assign(n, 0.);
+          double z0 = 0.;
           for (int p = 0; p < n; ++p)
             {
               const int v = basic[p];
@@ -655,15 +793,15 @@ namespace impactfe
         }
 
         void
-        fail(Result            &result,
-             const Status       status,
-             const std::string &message) const
+        fail(Result      &result,
+             const Status status,
+             const char  *message = "") const
         {
           result.status = status;
           result.z.clear();
           result.w.clear();
           result.verification = Verification();
-          result.message      = message;
+          result.message.assign(message);
         }
       };
 
@@ -685,35 +823,42 @@ namespace impactfe
              const DenseMatrix         &M,
              const std::vector<double> &q,
              const LemkeOptions        &options,
+             std::vector<double>       &residual,
              Result                    &result)
       {
         engine.extract(result.z, result.w);
-        result.verification = verify(
-          M, q, result.z, result.w, options.verification_tolerance_factor);
+        result.verification = verify_into(M,
+                                          q,
+                                          result.z,
+                                          result.w,
+                                          options.verification_tolerance_factor,
+                                          residual);
         if (!result.verification.ok)
           {
             if (engine.refactor())
               {
                 engine.extract(result.z, result.w);
                 result.verification =
-                  verify(M,
-                         q,
-                         result.z,
-                         result.w,
-                         options.verification_tolerance_factor);
+                  verify_into(M,
+                              q,
+                              result.z,
+                              result.w,
+                              options.verification_tolerance_factor,
+                              residual);
               }
             if (!result.verification.ok)
               {
-                std::ostringstream s;
-                s << "the final point failed verification (min z "
-                  << result.verification.min_z << ", min w "
-                  << result.verification.min_w << ", residual "
-                  << result.verification.residual << ", max |z_i w_i| "
-                  << result.verification.max_complementarity << ")";
+                internal::set_text(
+                  result.message,
+                  "the final point failed verification (min z %g, min w %g, "
+                  "residual %g, max |z_i w_i| %g)",
+                  result.verification.min_z,
+                  result.verification.min_w,
+                  result.verification.residual,
+                  result.verification.max_complementarity);
                 result.status = Status::numerical_failure;
                 result.z.clear();
                 result.w.clear();
-                result.message = s.str();
               }
           }
         result.refactorisations = engine.refactorisations;
@@ -725,6 +870,7 @@ namespace impactfe
       trivial(const DenseMatrix         &M,
               const std::vector<double> &q,
               const LemkeOptions        &options,
+              std::vector<double>       &residual,
               Result                    &result)
       {
         for (const double v : q)
@@ -732,11 +878,15 @@ namespace impactfe
             return false;
         result.status = Status::solved;
         result.z.assign(q.size(), 0.);
-        result.w            = q;
+        result.w.assign(q.begin(), q.end());
         result.pivots       = 0;
-        result.verification = verify(
-          M, q, result.z, result.w, options.verification_tolerance_factor);
-        result.message = "q >= 0: z = 0 is the solution";
+        result.verification = verify_into(M,
+                                          q,
+                                          result.z,
+                                          result.w,
+                                          options.verification_tolerance_factor,
+                                          residual);
+        result.message.assign("q >= 0: z = 0 is the solution");
         return true;
       }
 
@@ -746,29 +896,49 @@ namespace impactfe
       solve_cold(const DenseMatrix         &M,
                  const std::vector<double> &q,
                  const LemkeOptions        &options,
+                 LemkeSolver::Workspace    &ws,
                  Result                    &result)
       {
-        const std::size_t   n = q.size();
-        std::vector<double> d = options.covering_vector;
-        if (d.empty())
+        const std::size_t    n = q.size();
+        std::vector<double> &d = ws.covering;
+        if (options.covering_vector.empty())
           d.assign(n, 1.);
-        LemkeEngine engine(M, q, options);
+        else
+          d.assign(options.covering_vector.begin(),
+                   options.covering_vector.end());
+        LemkeEngine engine(M, q, options, ws);
         engine.init_slack_basis(d);
         engine.run(pivot_cap(options, n), result);
         if (result.status == Status::solved)
           {
-            finish(engine, M, q, options, result);
+            finish(engine, M, q, options, ws.residual, result);
             if (result.status == Status::solved)
               {
-                std::ostringstream s;
-                s << "solved by Lemke's method in " << result.pivots
-                  << " pivots" << engine.note;
-                result.message = s.str();
+                internal::set_text(result.message,
+                                   "solved by Lemke's method in %u pivots",
+                                   result.pivots);
+                result.message.append(engine.note);
               }
           }
         result.refactorisations = engine.refactorisations;
       }
     } // namespace
+
+
+
+    void
+    clear(Result &result)
+    {
+      result.status = Status::numerical_failure;
+      result.z.clear();
+      result.w.clear();
+      result.pivots           = 0;
+      result.refactorisations = 0;
+      result.driving_variable = -1;
+      result.verification     = Verification();
+      result.start_path       = StartPath::cold;
+      result.message.clear();
+    }
 
 
 
@@ -779,20 +949,8 @@ namespace impactfe
            const std::vector<double> &w,
            const double               tolerance_factor)
     {
-      const std::size_t n = q.size();
-      if (M.n_rows() != n || M.n_cols() != n || z.size() != n || w.size() != n)
-        throw std::invalid_argument("verify: inconsistent sizes");
-      std::vector<double> residual(n);
-      for (std::size_t i = 0; i < n; ++i)
-        {
-          double        r  = w[i] - q[i];
-          const double *mi = M.row(i);
-          for (std::size_t j = 0; j < n; ++j)
-            r -= mi[j] * z[j];
-          residual[i] = r;
-        }
-      return verify_with_residual(
-        M.linfty_norm(), q, z, w, residual, tolerance_factor);
+      std::vector<double> residual;
+      return verify_into(M, q, z, w, tolerance_factor, residual);
     }
 
 
@@ -842,20 +1000,143 @@ namespace impactfe
 
 
 
+    // @sect3{LemkeSolver: the solves, with storage kept between them}
+    LemkeSolver::LemkeSolver()
+      : workspace(std::make_unique<Workspace>())
+    {}
+
+    LemkeSolver::~LemkeSolver() = default;
+
+    LemkeSolver::LemkeSolver(LemkeSolver &&) noexcept = default;
+
+    LemkeSolver &
+    LemkeSolver::operator=(LemkeSolver &&) noexcept = default;
+
+
+
+    const Result &
+    LemkeSolver::result() const
+    {
+      return workspace->result;
+    }
+
+
+
+    std::size_t
+    LemkeSolver::memory_consumption() const
+    {
+      return workspace->memory_consumption();
+    }
+
+
+
+    const Result &
+    LemkeSolver::solve(const DenseMatrix         &M,
+                       const std::vector<double> &q,
+                       const LemkeOptions        &options)
+    {
+      const internal::FlushSubnormalsScope
+        flush_subnormals; // see floating_point_mode.h
+      check_input(M, q, options);
+      Workspace &ws     = *workspace;
+      Result    &result = ws.result;
+      clear(result);
+      result.start_path = StartPath::cold;
+      if (trivial(M, q, options, ws.residual, result))
+        return result;
+      solve_cold(M, q, options, ws, result);
+      return result;
+    }
+
+
+
+    const Result &
+    LemkeSolver::solve_warm(const DenseMatrix         &M,
+                            const std::vector<double> &q,
+                            const std::vector<bool>   &guess,
+                            const LemkeOptions        &options)
+    {
+      const internal::FlushSubnormalsScope
+        flush_subnormals; // see floating_point_mode.h
+      check_input(M, q, options);
+      if (guess.size() != q.size())
+        throw std::invalid_argument("LCP: the guess has the wrong size");
+      Workspace &ws     = *workspace;
+      Result    &result = ws.result;
+      clear(result);
+      result.start_path = StartPath::cold;
+      if (trivial(M, q, options, ws.residual, result))
+        return result;
+
+      const std::size_t n   = q.size();
+      std::string      &why = ws.why;
+      why.clear();
+      {
+        LemkeEngine engine(M, q, options, ws);
+        if (engine.init_guess_basis(guess))
+          {
+            if (engine.basic_solution_feasible())
+              {
+                result.start_path = StartPath::guess_solved;
+                result.status     = Status::solved;
+                finish(engine, M, q, options, ws.residual, result);
+                if (result.status == Status::solved)
+                  {
+                    result.message.assign(
+                      "the guessed complementary basis is the solution (0 pivots)");
+                    return result;
+                  }
+                why.assign(
+                  "guessed basis looked feasible but failed verification");
+                result.pivots = 0;
+              }
+            else
+              {
+                engine.set_covering_to_basis_sum();
+                result.start_path = StartPath::guess_lemke;
+                engine.run(pivot_cap(options, n), result);
+                if (result.status == Status::solved)
+                  finish(engine, M, q, options, ws.residual, result);
+                if (result.status == Status::solved)
+                  {
+                    internal::set_text(
+                      result.message,
+                      "solved by Lemke's method from the guessed basis in %u pivots",
+                      result.pivots);
+                    result.message.append(engine.note);
+                    return result;
+                  }
+                why.assign("Lemke from the guessed basis: ");
+                why.append(result.message);
+              }
+          }
+        else
+          why.assign("the guessed principal block is singular");
+        result.refactorisations = engine.refactorisations;
+      }
+
+      const unsigned int warm_pivots = result.pivots;
+      const unsigned int warm_refac  = result.refactorisations;
+      clear(result);
+      solve_cold(M, q, options, ws, result);
+      result.pivots += warm_pivots;
+      result.refactorisations += warm_refac;
+      result.start_path = StartPath::guess_fallback_cold;
+      result.message.insert(0, "); cold: ");
+      result.message.insert(0, why);
+      result.message.insert(0, "guess rejected (");
+      return result;
+    }
+
+
+
     Result
     solve_lemke(const DenseMatrix         &M,
                 const std::vector<double> &q,
                 const LemkeOptions        &options)
     {
-      const internal::FlushSubnormalsScope
-        flush_subnormals; // see floating_point_mode.h
-      check_input(M, q, options);
-      Result result;
-      result.start_path = StartPath::cold;
-      if (trivial(M, q, options, result))
-        return result;
-      solve_cold(M, q, options, result);
-      return result;
+      LemkeSolver solver;
+      return solver.solve(M, q, options);
     }
 
 
@@ -866,69 +1147,8 @@ namespace impactfe
                      const std::vector<bool>   &guess,
                      const LemkeOptions        &options)
     {
-      const internal::FlushSubnormalsScope
-        flush_subnormals; // see floating_point_mode.h
-      check_input(M, q, options);
-      if (guess.size() != q.size())
-        throw std::invalid_argument("LCP: the guess has the wrong size");
-      Result result;
-      result.start_path = StartPath::cold;
-      if (trivial(M, q, options, result))
-        return result;
-
-      const std::size_t n = q.size();
-      std::string       why;
-      {
-        LemkeEngine engine(M, q, options);
-        if (engine.init_guess_basis(guess))
-          {
-            if (engine.basic_solution_feasible())
-              {
-                result.start_path = StartPath::guess_solved;
-                result.status     = Status::solved;
-                finish(engine, M, q, options, result);
-                if (result.status == Status::solved)
-                  {
-                    result.message =
-                      "the guessed complementary basis is the solution (0 pivots)";
-                    return result;
-                  }
-                why = "guessed basis looked feasible but failed verification";
-              }
-            else
-              {
-                engine.set_covering_to_basis_sum();
-                Result warm;
-                warm.start_path = StartPath::guess_lemke;
-                engine.run(pivot_cap(options, n), warm);
-                if (warm.status == Status::solved)
-                  finish(engine, M, q, options, warm);
-                if (warm.status == Status::solved)
-                  {
-                    std::ostringstream s;
-                    s << "solved by Lemke's method from the guessed basis in "
-                      << warm.pivots << " pivots" << engine.note;
-                    warm.message = s.str();
-                    return warm;
-                  }
-                result.pivots = warm.pivots;
-                why           = "Lemke from the guessed basis: " + warm.message;
-              }
-          }
-        else
-          why = "the guessed principal block is singular";
-        result.refactorisations = engine.refactorisations;
-      }
-
-      const unsigned int warm_pivots = result.pivots;
-      const unsigned int warm_refac  = result.refactorisations;
-      result                         = Result();
-      solve_cold(M, q, options, result);
-      result.pivots += warm_pivots;
-      result.refactorisations += warm_refac;
-      result.start_path = StartPath::guess_fallback_cold;
-      result.message = "guess rejected (" + why + "); cold: " + result.message;
-      return result;
+      LemkeSolver solver;
+      return solver.solve_warm(M, q, guess, options);
     }
   } // namespace lcp
 } // namespace impactfe

@@ -127,7 +127,8 @@ namespace impactfe
     void
     LUFactorization::solve(std::vector<double> &b) const
     {
-      std::vector<double> x(n);
+      std::vector<double> &x = work;
+      x.resize(n);
       for (std::size_t i = 0; i < n; ++i)
         x[i] = b[permutation[i]];
       // forward substitution with unit lower triangle
@@ -148,7 +149,7 @@ namespace impactfe
             s -= ri[j] * x[j];
           x[ii] = s / ri[ii];
         }
-      b = std::move(x);
+      std::copy(x.begin(), x.end(), b.begin());
     }
 
 
@@ -156,11 +157,19 @@ namespace impactfe
     DenseMatrix
     LUFactorization::inverse() const
     {
+      DenseMatrix X;
+      inverse(X);
+      return X;
+    }
+
+
+
+    void
+    LUFactorization::inverse(DenseMatrix &X) const
+    {
       // Solve for all columns at once, row-oriented for cache efficiency:
       // X = U^{-1} L^{-1} P.
-      DenseMatrix X(n, n, 0.);
-      for (std::size_t i = 0; i < n; ++i)
-        X(i, 0) = 0.;
+      X.reinit(n, n, 0.);
       // P: row i of P I is e_{permutation[i]}^T
       for (std::size_t i = 0; i < n; ++i)
         X(i, permutation[i]) = 1.;
@@ -195,7 +204,6 @@ namespace impactfe
           for (std::size_t c = 0; c < n; ++c)
             xi[c] *= inv;
         }
-      return X;
     }
 
 

@@ -15,7 +15,6 @@
 //  - The impulse balance of the block: change of momentum = sum of the
 //    impulses H P (the plane is the only external force), per step.
 
-#include <deal.II/grid/grid_generator.h>
 
 #include <deal.II/lac/sparse_direct.h>
 
@@ -25,6 +24,8 @@
 #include <memory>
 
 #include "../tests.h"
+
+#include "elastic_block.h"
 
 using namespace impactfe;
 using namespace impactfe_tests;
@@ -38,20 +39,7 @@ namespace
 
     explicit Scene(const std::size_t column_storage_budget)
     {
-      MaterialParameters material;
-      material.youngs_modulus = 1e6;
-      material.density        = 1000.;
-      material.poissons_ratio = 0.3;
-      material.plane_model    = PlaneModel::plane_strain;
-      DiscretizationParameters discretization;
-      block =
-        std::make_unique<ElasticBody<2>>("block", material, discretization, 1.);
-      GridGenerator::subdivided_hyper_rectangle(block->triangulation(),
-                                                std::vector<unsigned int>{6, 3},
-                                                Point<2>(0., 0.),
-                                                Point<2>(0.6, 0.3),
-                                                true);
-      block->setup();
+      block = make_elastic_block();
 
       TimeSteppingParameters time_stepping;
       time_stepping.scheme    = Scheme::theta_euler;

@@ -206,6 +206,13 @@ namespace impactfe
     enable_cost_breakdown(const bool enable = true);
     const CostBreakdown &
     cost_breakdown() const;
+    /**
+     * Bytes held by the step's contact problem and its solver (capacities).
+     * Storage is never given back, so the LCP part of a step allocates only
+     * when this grows (tests/dynamics/step_allocations).
+     */
+    std::size_t
+    lcp_memory_consumption() const;
     /** Total pivots, largest LCP, failures so far. */
     unsigned long long
     total_pivots() const;
@@ -259,6 +266,9 @@ namespace impactfe
     std::vector<ContactState> last_contact_states;
     std::vector<unsigned int> lcp_candidates;
     lcp::ContactProblem       problem;
+    /// The LCP solver and its storage, reused from step to step.
+    lcp::ContactSolver        contact_solver;
+    std::vector<ContactState> state_guess;
     unsigned int              last_lcp_size = 0;
 
     unsigned long long pivot_count  = 0;
@@ -274,8 +284,11 @@ namespace impactfe
      */
     void
     ensure_delassus_columns(const std::vector<unsigned int> &candidates) const;
-    /** Solve the LCP on lcp_candidates; fills local_impulses. */
-    lcp::Result
+    /**
+     * Solve the LCP on lcp_candidates; fills local_impulses. The result is
+     * the solver's own, valid until the next solve.
+     */
+    const lcp::Result &
     solve_contact_lcp();
     /** The condensed contact problem on the current candidate set. */
     void

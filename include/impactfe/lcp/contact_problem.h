@@ -8,6 +8,7 @@
 #include <impactfe/lcp/dense_matrix.h>
 #include <impactfe/lcp/lemke.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -209,6 +210,58 @@ namespace impactfe
     verify_contact_solution(const ContactProblem      &problem,
                             const std::vector<double> &P,
                             double                     tolerance = 1e-8);
+
+
+
+    /**
+     * The contact problems of a run, one per time step, solved with storage
+     * kept from one solve to the next: the LCP matrix of the form, the Lemke
+     * basis and its inverse, the blocks of the Klarbring form, the systems of
+     * the block pivoting and the ContactSolution itself. Once problems of the
+     * largest size have been solved, a solve on any of the usual paths (the
+     * three forms, cold or warm Lemke, block pivoting) allocates no memory;
+     * tests/lcp/allocations counts it. Only the fallback routes after a
+     * failed solve (contact_routes.h) allocate.
+     *
+     * solve_contact_problem() is this class used once: the same solution,
+     * bit for bit.
+     */
+    class ContactSolver
+    {
+    public:
+      ContactSolver();
+      ~ContactSolver();
+      ContactSolver(ContactSolver &&) noexcept;
+      ContactSolver &
+      operator=(ContactSolver &&) noexcept;
+
+      /// As solve_contact_problem(problem, options, guess). The reference
+      /// stays valid until the next solve.
+      const ContactSolution &
+      solve(const ContactProblem    &problem,
+            const ContactOptions    &options = {},
+            const std::vector<bool> *guess   = nullptr);
+
+      /// As solve_contact_problem(problem, options, state_guess).
+      const ContactSolution &
+      solve(const ContactProblem            &problem,
+            const ContactOptions            &options,
+            const std::vector<ContactState> &state_guess);
+
+      /// The solution of the last solve.
+      const ContactSolution &
+      solution() const;
+
+      /// Bytes of heap storage held (capacities). A solve on the usual
+      /// paths allocates only if this grows.
+      std::size_t
+      memory_consumption() const;
+
+      struct Workspace;
+
+    private:
+      std::unique_ptr<Workspace> workspace;
+    };
   } // namespace lcp
 } // namespace impactfe
 

@@ -128,11 +128,26 @@ namespace impactfe
         return values;
       }
 
+      /// Bytes of heap storage held (the capacity, not just the size).
+      std::size_t
+      memory_consumption() const
+      {
+        return values.capacity() * sizeof(double);
+      }
+
     private:
       std::size_t         rows = 0;
       std::size_t         cols = 0;
       std::vector<double> values;
     };
+
+    /** Bytes of heap storage held by a vector (its capacity). */
+    template <typename T>
+    std::size_t
+    memory_consumption(const std::vector<T> &v)
+    {
+      return v.capacity() * sizeof(T);
+    }
 
     /** max_i |v_i| (0 for an empty vector). */
     inline double

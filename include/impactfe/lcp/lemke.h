@@ -8,6 +8,7 @@
 
 #include <impactfe/lcp/dense_matrix.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -204,6 +205,58 @@ namespace impactfe
                      const std::vector<double> &q,
                      const std::vector<bool>   &guess,
                      const LemkeOptions        &options = {});
+
+
+
+    /**
+     * Lemke's method for a sequence of LCPs, e.g. one per time step: the
+     * basis, its inverse, the work vectors and the Result are kept from one
+     * solve to the next, so that once an LCP of the largest size has been
+     * solved, further solves allocate no memory (tests/lcp/allocations).
+     * solve_lemke() and solve_lemke_warm() are this class used once; the
+     * results are the same bit for bit.
+     */
+    class LemkeSolver
+    {
+    public:
+      LemkeSolver();
+      ~LemkeSolver();
+      LemkeSolver(LemkeSolver &&) noexcept;
+      LemkeSolver &
+      operator=(LemkeSolver &&) noexcept;
+
+      /// As solve_lemke(); the reference stays valid until the next solve.
+      const Result &
+      solve(const DenseMatrix         &M,
+            const std::vector<double> &q,
+            const LemkeOptions        &options = {});
+
+      /// As solve_lemke_warm().
+      const Result &
+      solve_warm(const DenseMatrix         &M,
+                 const std::vector<double> &q,
+                 const std::vector<bool>   &guess,
+                 const LemkeOptions        &options = {});
+
+      /// The result of the last solve.
+      const Result &
+      result() const;
+
+      /// Bytes of heap storage held (capacities). A solve allocates only if
+      /// this grows: the storage is never given back between solves.
+      std::size_t
+      memory_consumption() const;
+
+      struct Workspace;
+
+    private:
+      std::unique_ptr<Workspace> workspace;
+    };
+
+    /// Reset @p result to its default values, keeping the storage of its
+    /// vectors and message (no allocation when it is reused).
+    void
+    clear(Result &result);
   } // namespace lcp
 } // namespace impactfe
 

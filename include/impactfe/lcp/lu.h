@@ -35,6 +35,11 @@ namespace impactfe
       DenseMatrix
       inverse() const;
 
+      /// The inverse of A in @p X (resized; no allocation when it has the
+      /// capacity already).
+      void
+      inverse(DenseMatrix &X) const;
+
       /// min |u_kk| / max |a_ij|: a cheap (and rough) indicator of singularity.
       double
       min_pivot_ratio() const
@@ -48,11 +53,22 @@ namespace impactfe
         return n;
       }
 
+      /// Bytes of heap storage held.
+      std::size_t
+      memory_consumption() const
+      {
+        return lu.memory_consumption() +
+               permutation.capacity() * sizeof(std::size_t) +
+               work.capacity() * sizeof(double);
+      }
+
     private:
       std::size_t              n = 0;
       DenseMatrix              lu;
       std::vector<std::size_t> permutation;
       double                   pivot_ratio = 0.;
+      /// Work vector of solve(), kept so that repeated solves do not allocate.
+      mutable std::vector<double> work;
     };
 
     /**
@@ -82,6 +98,13 @@ namespace impactfe
       size() const
       {
         return n;
+      }
+
+      /// Bytes of heap storage held.
+      std::size_t
+      memory_consumption() const
+      {
+        return u.memory_consumption();
       }
 
     private:

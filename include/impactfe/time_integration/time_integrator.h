@@ -81,6 +81,21 @@ namespace impactfe
   };
 
 
+  /**
+   * Exchange two states without copying or allocating (the vectors' storage
+   * is swapped); std::swap would move through a temporary, and moving a
+   * deal.II BlockVector allocates.
+   */
+  inline void
+  swap(MechanicalState &a, MechanicalState &b)
+  {
+    std::swap(a.time, b.time);
+    a.displacement.swap(b.displacement);
+    a.velocity.swap(b.velocity);
+    a.acceleration.swap(b.acceleration);
+  }
+
+
 
   /**
    * One time step of any scheme, written at the velocity level:

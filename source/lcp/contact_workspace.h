@@ -1,0 +1,146 @@
+// Internal to the LCP module: the storage of ContactSolver, shared by the
+// LCP forms (contact_problem.cc) and the block pivoting on contact states
+// (block_pivoting.cc). Every member is sized with assign()/resize()/
+// reinit(), which keep the capacity, so a solve of a size that was seen
+// before allocates nothing.
+#ifndef impactfe_lcp_contact_workspace_h
+#define impactfe_lcp_contact_workspace_h
+
+#include <impactfe/lcp/contact_problem.h>
+#include <impactfe/lcp/lemke.h>
+#include <impactfe/lcp/lu.h>
+
+#include <string>
+#include <vector>
+
+namespace impactfe
+{
+  namespace lcp
+  {
+    struct ContactSolver::Workspace
+    {
+      ContactSolution   solution;
+      ContactLCP        lcp;
+      LemkeSolver       lemke;
+      std::vector<bool> guess;
+
+      // The Klarbring form: blocks of W, W_TT^{-1} and its products.
+      DenseMatrix         W_TT, W_NT, W_TN, AW_TN, W_NT_A, W_NT_AW_TN;
+      LUFactorization     W_TT_lu;
+      std::vector<double> V_T, AV_T;
+
+      // Impulses, states and verification from an LCP solution.
+      std::vector<double> tangential_residual, velocity, verification_velocity;
+
+      // Block pivoting on the contact states (2D friction).
+      std::vector<ContactState> states, visited_states;
+      std::vector<double>       P, z, w, q, residual, Mz_q, slip_factor, rhs;
+      std::vector<double>       slip_impulses;
+      std::vector<unsigned int> rows, unknown_column, unknown_contact;
+      std::vector<unsigned int> stick_rows, slip_contacts;
+      DenseMatrix               W_SS, Z, schur, G;
+      CholeskyFactorization     cholesky;
+      LUFactorization           schur_lu, G_lu;
+      std::string               why_not_block_pivoting;
+
+      std::size_t
+      memory_consumption() const
+      {
+        std::size_t bytes =
+          lemke.memory_consumption() + lcp::memory_consumption(solution.P) +
+          lcp::memory_consumption(solution.lcp.z) +
+          lcp::memory_consumption(solution.lcp.w) +
+          lcp::memory_consumption(solution.states) +
+          solution.lcp.message.capacity() + solution.message.capacity() +
+          lcp.M.memory_consumption() + lcp::memory_consumption(lcp.q) +
+          lcp.W_TT_inverse.memory_consumption() +
+          lcp::memory_consumption(lcp.directions) + lcp.message.capacity() +
+          guess.capacity() / 8 + why_not_block_pivoting.capacity() +
+          lcp::memory_consumption(states) +
+          lcp::memory_consumption(visited_states);
+        for (const auto &d : lcp.directions)
+          bytes += lcp::memory_consumption(d);
+        for (const auto *v : {&V_T,
+                              &AV_T,
+                              &tangential_residual,
+                              &velocity,
+                              &verification_velocity,
+                              &P,
+                              &z,
+                              &w,
+                              &q,
+                              &residual,
+                              &Mz_q,
+                              &slip_factor,
+                              &rhs,
+                              &slip_impulses})
+          bytes += lcp::memory_consumption(*v);
+        for (const auto *v : {&rows,
+                              &unknown_column,
+                              &unknown_contact,
+                              &stick_rows,
+                              &slip_contacts})
+          bytes += lcp::memory_consumption(*v);
+        for (const auto *m : {&W_TT,
+                              &W_NT,
+                              &W_TN,
+                              &AW_TN,
+                              &W_NT_A,
+                              &W_NT_AW_TN,
+                              &W_SS,
+                              &Z,
+                              &schur,
+                              &G})
+          bytes += m->memory_consumption();
+        return bytes + W_TT_lu.memory_consumption() +
+               cholesky.memory_consumption() + schur_lu.memory_consumption() +
+               G_lu.memory_consumption();
+      }
+    };
+
+    namespace internal
+    {
+      /// assemble_contact_lcp() into @p lcp with the storage of @p ws.
+      void
+      assemble_contact_lcp(const ContactProblem     &p,
+                           const ContactOptions     &options,
+                           ContactSolver::Workspace &ws,
+                           ContactLCP               &lcp);
+
+      /// impulses_from_lcp() into @p P.
+      void
+      impulses_from_lcp(const ContactProblem      &p,
+                        const ContactLCP          &lcp,
+                        const std::vector<double> &z,
+                        std::vector<double>       &tangential_residual,
+                        std::vector<double>       &P);
+
+      /// contact_states() into @p states (V: work vector).
+      void
+      contact_states(const ContactProblem      &p,
+                     const std::vector<double> &P,
+                     double                     tolerance,
+                     std::vector<double>       &V,
+                     std::vector<ContactState> &states);
+
+      /// guess_from_states() into @p guess.
+      void
+      guess_from_states(const ContactLCP                &lcp,
+                        const std::vector<ContactState> &states,
+                        std::vector<bool>               &guess);
+
+      /// verify_contact_solution() with the work vector @p V.
+      ContactVerification
+      verify_contact_solution(const ContactProblem      &p,
+                              const std::vector<double> &P,
+                              double                     tolerance,
+                              std::vector<double>       &V);
+
+      /// The form solve_contact_problem() uses for @p requested.
+      FrictionForm
+      resolved_form(const ContactProblem &p, FrictionForm requested);
+    } // namespace internal
+  }   // namespace lcp
+} // namespace impactfe
+
+#endif

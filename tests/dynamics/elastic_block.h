@@ -1,0 +1,38 @@
+// The elastic block of the tests in tests/dynamics: plane strain, 0.6 m x
+// 0.3 m, 6 x 3 Q1 cells, E = 1 MPa, rho = 1000 kg/m^3, nu = 0.3; boundary
+// ids by face (GridGenerator's colorize): the bottom face y = 0 has id 2.
+#ifndef impactfe_tests_dynamics_elastic_block_h
+#define impactfe_tests_dynamics_elastic_block_h
+
+#include <deal.II/grid/grid_generator.h>
+
+#include <impactfe/bodies/elastic_body.h>
+
+#include <memory>
+
+namespace impactfe_tests
+{
+  inline std::unique_ptr<impactfe::ElasticBody<2>>
+  make_elastic_block()
+  {
+    using namespace impactfe;
+    MaterialParameters material;
+    material.youngs_modulus = 1e6;
+    material.density        = 1000.;
+    material.poissons_ratio = 0.3;
+    material.plane_model    = PlaneModel::plane_strain;
+    DiscretizationParameters discretization;
+    auto                     block =
+      std::make_unique<ElasticBody<2>>("block", material, discretization, 1.);
+    dealii::GridGenerator::subdivided_hyper_rectangle(
+      block->triangulation(),
+      std::vector<unsigned int>{6, 3},
+      dealii::Point<2>(0., 0.),
+      dealii::Point<2>(0.6, 0.3),
+      true);
+    block->setup();
+    return block;
+  }
+} // namespace impactfe_tests
+
+#endif
