@@ -41,12 +41,8 @@ namespace
     {
       block = make_elastic_block();
 
-      TimeSteppingParameters time_stepping;
-      time_stepping.scheme    = Scheme::theta_euler;
-      time_stepping.theta     = 0.55;
-      time_stepping.time_step = 2e-3;
-      time_stepping.end_time  = 1.;
-      ContactSolverParameters solver;
+      const TimeSteppingParameters time_stepping = block_time_stepping();
+      ContactSolverParameters      solver;
       system = std::make_unique<MultibodySystem<2>>(time_stepping, solver, 2);
       system->add_body(*block);
       system->contacts().add_node_to_plane(

@@ -1,12 +1,14 @@
 // The elastic block of the tests in tests/dynamics: plane strain, 0.6 m x
 // 0.3 m, 6 x 3 Q1 cells, E = 1 MPa, rho = 1000 kg/m^3, nu = 0.3; boundary
-// ids by face (GridGenerator's colorize): the bottom face y = 0 has id 2.
+// ids by face (GridGenerator's colorize): the bottom face y = 0 has id 2;
+// and their time stepping.
 #ifndef impactfe_tests_dynamics_elastic_block_h
 #define impactfe_tests_dynamics_elastic_block_h
 
 #include <deal.II/grid/grid_generator.h>
 
 #include <impactfe/bodies/elastic_body.h>
+#include <impactfe/time_integration/time_integrator.h>
 
 #include <memory>
 
@@ -32,6 +34,18 @@ namespace impactfe_tests
       true);
     block->setup();
     return block;
+  }
+
+  /// The time stepping of these tests: theta-Euler, theta = 0.55, h = 2 ms.
+  inline impactfe::TimeSteppingParameters
+  block_time_stepping()
+  {
+    impactfe::TimeSteppingParameters time_stepping;
+    time_stepping.scheme    = impactfe::Scheme::theta_euler;
+    time_stepping.theta     = 0.55;
+    time_stepping.time_step = 2e-3;
+    time_stepping.end_time  = 1.;
+    return time_stepping;
   }
 } // namespace impactfe_tests
 

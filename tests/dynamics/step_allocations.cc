@@ -42,13 +42,9 @@ namespace
     ElasticBody<2>                       &block         = *block_pointer;
     block.set_body_force(Tensor<1, 2>({0., -9.81 * 1000.})); // rho g
 
-    TimeSteppingParameters time_stepping;
-    time_stepping.scheme    = Scheme::theta_euler;
-    time_stepping.theta     = 0.55;
-    time_stepping.time_step = 2e-3;
-    time_stepping.end_time  = 1.;
-    ContactSolverParameters solver;
-    MultibodySystem<2>      system(time_stepping, solver, mu > 0. ? 2 : 1);
+    const TimeSteppingParameters time_stepping = block_time_stepping();
+    ContactSolverParameters      solver;
+    MultibodySystem<2>           system(time_stepping, solver, mu > 0. ? 2 : 1);
     system.add_body(block);
     system.contacts().add_node_to_plane(
       system.bodies(), 0, 2, Point<2>(0., 0.), Tensor<1, 2>({0., 1.}), mu);
