@@ -365,13 +365,18 @@ main(int argc, char **argv)
            "open_start_pivots,open_start_seconds,open,stick,slip,relative_difference,system_difference,"
            "open_start_difference\n";
 
-      bool ok = true;
+      bool         ok = true;
+      StepRow      last_row; // the largest size's last step, for RESULT
+      unsigned int n_failed_sizes = 0;
       for (const unsigned int n_contacts : sizes)
         {
           std::vector<StepRow> rows;
           const bool           good =
             run(n_contacts, n_steps, cold_steps, scene, dump_directory, rows);
           ok = ok && good;
+          n_failed_sizes += good ? 0 : 1;
+          if (!rows.empty())
+            last_row = rows.back();
           for (const StepRow &r : rows)
             {
               out << r.n_contacts << ',' << r.step << ',' << r.lcp_size << ','
@@ -411,6 +416,15 @@ main(int argc, char **argv)
             std::cerr << "n_c = " << n_contacts
                       << ": a check failed (see above)\n";
         }
+      // one machine-readable line (after the CSV rows when they go to
+      // standard output; plot_fe_friction_scaling.py skips it)
+      std::cout << "RESULT contacts=" << last_row.n_contacts
+                << " lcp_size=" << last_row.lcp_size
+                << " warm_seconds=" << last_row.warm_seconds
+                << " warm_block_iterations=" << last_row.warm_block_iterations
+                << " warm_pivots=" << last_row.warm_pivots
+                << " relative_difference=" << last_row.difference
+                << " failed_sizes=" << n_failed_sizes << std::endl;
       return ok ? 0 : 1;
     }
   catch (const std::exception &e)

@@ -98,6 +98,14 @@ main(int argc, char **argv)
               "warm piv",
               "warm s",
               "warm paths (solved/lemke/fallback)");
+  // the largest size of each form, for the RESULT line
+  struct Largest
+  {
+    unsigned int contacts = 0;
+    double       cold_s = 0., warm_s = 0.;
+  };
+  Largest      largest[2];
+  unsigned int total_failures = 0;
   for (const FrictionForm form :
        {FrictionForm::frictionless, FrictionForm::klarbring})
     for (const unsigned int nc :
@@ -158,6 +166,20 @@ main(int argc, char **argv)
           paths[3],
           failures ? "  (FAILURES)" : "");
         std::fflush(stdout);
+        Largest &l = largest[form == FrictionForm::frictionless ? 0 : 1];
+        l          = {nc, cold_s / steps, warm_s / steps};
+        total_failures += failures;
       }
-  return 0;
+  std::printf("RESULT frictionless_contacts=%u frictionless_cold_seconds=%g "
+              "frictionless_warm_seconds=%g klarbring_contacts=%u "
+              "klarbring_cold_seconds=%g klarbring_warm_seconds=%g "
+              "failures=%u\n",
+              largest[0].contacts,
+              largest[0].cold_s,
+              largest[0].warm_s,
+              largest[1].contacts,
+              largest[1].cold_s,
+              largest[1].warm_s,
+              total_failures);
+  return total_failures == 0 ? 0 : 1;
 }

@@ -33,7 +33,9 @@ def main():
 
     rows = defaultdict(list)
     with open(csv_file) as f:
-        for r in csv.DictReader(f):
+        # the program ends with a "RESULT key=value ..." line: not a CSV row
+        lines = [line for line in f if not line.startswith("RESULT")]
+        for r in csv.DictReader(lines):
             if int(r["step"]) >= 2:
                 rows[int(r["n_contacts"])].append(r)
 
