@@ -182,16 +182,12 @@ namespace CylinderImpact
     n_rings   = prm.get_integer("Number of rings");
     thickness = prm.get_double("Thickness");
     prm.leave_subsection();
-    AssertThrow(radius > 0.,
-                ExcMessage("Geometry: 'Radius' must be > 0, got " +
-                           format_number(radius) + "."));
+    require_positive(radius, "Geometry", "Radius");
     AssertThrow(n_core % 2 == 0,
                 ExcMessage("Geometry: 'Number of core cells' must be even, "
                            "got " +
                            std::to_string(n_core) + "."));
-    AssertThrow(thickness > 0.,
-                ExcMessage("Geometry: 'Thickness' must be > 0, got " +
-                           format_number(thickness) + "."));
+    require_positive(thickness, "Geometry", "Thickness");
     prm.enter_subsection("Initial conditions");
     impact_velocity = prm.get_double("Impact velocity");
     initial_gap     = prm.get_double("Initial gap");
@@ -200,10 +196,7 @@ namespace CylinderImpact
                 ExcMessage("Initial conditions: 'Impact velocity' must be > "
                            "0, got " +
                            format_number(impact_velocity) + "."));
-    AssertThrow(initial_gap >= 0.,
-                ExcMessage("Initial conditions: 'Initial gap' must be >= 0, "
-                           "got " +
-                           format_number(initial_gap) + "."));
+    require_non_negative(initial_gap, "Initial conditions", "Initial gap");
     prm.enter_subsection("Verification");
     max_symmetry_error = prm.get_double("Maximum symmetry error");
     prm.leave_subsection();

@@ -173,12 +173,8 @@ namespace ObliquePlate
                 ExcMessage("Geometry: 'Radius of the round side' must exceed "
                            "half the width, got " +
                            format_number(radius) + "."));
-    AssertThrow(thickness > 0.,
-                ExcMessage("Geometry: 'Thickness' must be > 0, got " +
-                           format_number(thickness) + "."));
-    AssertThrow(initial_gap >= 0.,
-                ExcMessage("Geometry: 'Initial gap' must be >= 0, got " +
-                           format_number(initial_gap) + "."));
+    require_positive(thickness, "Geometry", "Thickness");
+    require_non_negative(initial_gap, "Geometry", "Initial gap");
     prm.enter_subsection("Initial conditions");
     velocity[0] = prm.get_double("Horizontal velocity");
     velocity[1] = prm.get_double("Vertical velocity");

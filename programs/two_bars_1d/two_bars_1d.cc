@@ -119,9 +119,7 @@ namespace TwoBars1D
     n_cells = prm.get_integer("Number of cells per bar");
     area    = prm.get_double("Cross-section area");
     prm.leave_subsection();
-    AssertThrow(area > 0.,
-                ExcMessage("Geometry: 'Cross-section area' must be > 0, got " +
-                           format_number(area) + "."));
+    require_positive(area, "Geometry", "Cross-section area");
   }
 
 

@@ -74,21 +74,14 @@ namespace impactfe
     rayleigh_stiffness = prm.get_double("Rayleigh stiffness coefficient");
     prm.leave_subsection();
 
-    AssertThrow(youngs_modulus > 0. && std::isfinite(youngs_modulus),
-                ExcMessage(subsection +
-                           ": 'Young's modulus' must be > 0, got " +
-                           format_number(youngs_modulus) + "."));
-    AssertThrow(density > 0. && std::isfinite(density),
-                ExcMessage(subsection + ": 'Density' must be > 0, got " +
-                           format_number(density) + "."));
+    require_positive(youngs_modulus, subsection, "Young's modulus");
+    require_positive(density, subsection, "Density");
     AssertThrow(poissons_ratio >= 0. && poissons_ratio < 0.5,
                 ExcMessage(subsection +
                            ": 'Poisson's ratio' must be in [0, 0.5), "
                            "got " +
                            format_number(poissons_ratio) + "."));
-    AssertThrow(viscosity >= 0.,
-                ExcMessage(subsection + ": 'Viscosity' must be >= 0, got " +
-                           format_number(viscosity) + "."));
+    require_non_negative(viscosity, subsection, "Viscosity");
     AssertThrow(rayleigh_mass >= 0. && rayleigh_stiffness >= 0.,
                 ExcMessage(subsection +
                            ": the Rayleigh coefficients must be >= 0."));

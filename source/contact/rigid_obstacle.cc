@@ -69,9 +69,7 @@ namespace impactfe
     : center(center)
     , radius(radius)
   {
-    AssertThrow(radius > 0.,
-                ExcMessage("Obstacle: 'Radius' must be > 0, got " +
-                           format_number(radius) + "."));
+    require_positive(radius, "Obstacle", "Radius");
   }
 
   template <int dim>
@@ -267,14 +265,11 @@ namespace impactfe
       normal_norm += x * x;
     AssertThrow(type != Type::plane || normal_norm > 0.,
                 ExcMessage("Obstacle: 'Normal' must not be zero."));
-    AssertThrow(type != Type::ball || radius > 0.,
-                ExcMessage("Obstacle: 'Radius' must be > 0, got " +
-                           format_number(radius) + "."));
-    AssertThrow(friction_coefficient >= 0. &&
-                  std::isfinite(friction_coefficient),
-                ExcMessage("Obstacle: 'Friction coefficient' must be >= 0, "
-                           "got " +
-                           format_number(friction_coefficient) + "."));
+    if (type == Type::ball)
+      require_positive(radius, "Obstacle", "Radius");
+    require_non_negative(friction_coefficient,
+                         "Obstacle",
+                         "Friction coefficient");
   }
 
 

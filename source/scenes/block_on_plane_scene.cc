@@ -99,12 +99,8 @@ namespace impactfe
     thickness   = prm.get_double("Thickness");
     initial_gap = prm.get_double("Initial gap");
     prm.leave_subsection();
-    AssertThrow(thickness > 0.,
-                ExcMessage("Geometry: 'Thickness' must be > 0, got " +
-                           format_number(thickness) + "."));
-    AssertThrow(initial_gap >= 0.,
-                ExcMessage("Geometry: 'Initial gap' must be >= 0, got " +
-                           format_number(initial_gap) + "."));
+    require_positive(thickness, "Geometry", "Thickness");
+    require_non_negative(initial_gap, "Geometry", "Initial gap");
     prm.enter_subsection("Initial conditions");
     velocity = get_velocity();
     prm.leave_subsection();
@@ -127,14 +123,8 @@ namespace impactfe
                                format_number(block.width) +
                                "): each of its lower nodes must lie above "
                                "the first block."));
-        AssertThrow(gap_2 >= 0.,
-                    ExcMessage("Body 2: 'Gap above body 1' must be >= 0, "
-                               "got " +
-                               format_number(gap_2) + "."));
-        AssertThrow(mu_2 >= 0.,
-                    ExcMessage("Body 2: 'Friction coefficient' must be >= 0, "
-                               "got " +
-                               format_number(mu_2) + "."));
+        require_non_negative(gap_2, "Body 2", "Gap above body 1");
+        require_non_negative(mu_2, "Body 2", "Friction coefficient");
       }
     prm.leave_subsection();
     print_figures = parse_figures_entry(prm);

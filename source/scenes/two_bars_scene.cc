@@ -57,12 +57,8 @@ namespace impactfe
     bar_length  = prm.get_double("Bar length");
     initial_gap = prm.get_double("Initial gap");
     prm.leave_subsection();
-    AssertThrow(bar_length > 0.,
-                ExcMessage("Geometry: 'Bar length' must be > 0, got " +
-                           format_number(bar_length) + "."));
-    AssertThrow(initial_gap >= 0.,
-                ExcMessage("Geometry: 'Initial gap' must be >= 0, got " +
-                           format_number(initial_gap) + "."));
+    require_positive(bar_length, "Geometry", "Bar length");
+    require_non_negative(initial_gap, "Geometry", "Initial gap");
     parse_geometry(prm);
     bar_material.parse_parameters(prm, dim);
     prm.enter_subsection("Initial conditions");

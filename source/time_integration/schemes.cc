@@ -102,12 +102,8 @@ namespace impactfe
                 ExcMessage("Time stepping: 'Newmark gamma' must be in "
                            "[0.5, 1], got " +
                            format_number(newmark_gamma) + "."));
-    AssertThrow(time_step > 0. && std::isfinite(time_step),
-                ExcMessage("Time stepping: 'Time step' must be > 0, got " +
-                           format_number(time_step) + "."));
-    AssertThrow(end_time > 0. && std::isfinite(end_time),
-                ExcMessage("Time stepping: 'End time' must be > 0, got " +
-                           format_number(end_time) + "."));
+    require_positive(time_step, "Time stepping", "Time step");
+    require_positive(end_time, "Time stepping", "End time");
     AssertThrow(end_time / time_step < 1e9,
                 ExcMessage("Time stepping: 'End time' / 'Time step' = " +
                            format_number(end_time / time_step) +

@@ -20,6 +20,32 @@ namespace impactfe
 
 
 
+  void
+  require_positive(const double       value,
+                   const std::string &subsection,
+                   const std::string &entry)
+  {
+    AssertThrow(value > 0. && std::isfinite(value),
+                dealii::ExcMessage(subsection + ": '" + entry +
+                                   "' must be > 0, got " +
+                                   format_number(value) + "."));
+  }
+
+
+
+  void
+  require_non_negative(const double       value,
+                       const std::string &subsection,
+                       const std::string &entry)
+  {
+    AssertThrow(value >= 0. && std::isfinite(value),
+                dealii::ExcMessage(subsection + ": '" + entry +
+                                   "' must be >= 0, got " +
+                                   format_number(value) + "."));
+  }
+
+
+
   std::string
   format_figure(const double value, const double round_off)
   {

@@ -19,6 +19,22 @@ namespace impactfe
   format_figure(const double value, const double round_off = 1e-12);
 
   /**
+   * Throw, with the message "<subsection>: '<entry>' must be > 0, got
+   * <value>.", unless @p value is finite and > 0. For the checks that
+   * parse_parameters() makes on the entries it has read.
+   */
+  void
+  require_positive(const double       value,
+                   const std::string &subsection,
+                   const std::string &entry);
+
+  /** The same for "must be >= 0". */
+  void
+  require_non_negative(const double       value,
+                       const std::string &subsection,
+                       const std::string &entry);
+
+  /**
    * Print an exception caught in main() to stderr and return the exit code
    * 1. For deal.II exceptions only the message is printed (what went wrong
    * and which entry, value or step), not the library's source location.
