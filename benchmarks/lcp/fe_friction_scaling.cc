@@ -72,14 +72,6 @@ namespace
     return thread_cpu_seconds() - start;
   }
 
-  double
-  max_abs(const std::vector<double> &v)
-  {
-    double m = 0.;
-    for (const double x : v)
-      m = std::max(m, std::abs(x));
-    return m;
-  }
 
   /// max |a - b| over the impulse scale of lcp::verify_contact_solution():
   /// max(||b||, (||V_free|| + ||b_N||) / ||W||).
@@ -91,10 +83,10 @@ namespace
     double d = 0.;
     for (std::size_t i = 0; i < a.size(); ++i)
       d = std::max(d, std::abs(a[i] - b[i]));
-    const double scale =
-      std::max(max_abs(b),
-               (max_abs(p.free_velocity) + max_abs(p.gap_term)) /
-                 p.W.linfty_norm());
+    const double scale = std::max(lcp::linfty_norm(b),
+                                  (lcp::linfty_norm(p.free_velocity) +
+                                   lcp::linfty_norm(p.gap_term)) /
+                                    p.W.linfty_norm());
     return d / scale;
   }
 

@@ -644,12 +644,6 @@ namespace impactfe
       s.P.clear();
       s.states.clear();
       s.lcp = ws.lemke.solve_warm(lcp.M, lcp.q, ws.guess, options.lemke);
-      if (s.lcp.status == Status::solved)
-        {
-          internal::impulses_from_lcp(
-            p, lcp, s.lcp.z, ws.tangential_residual, s.P);
-          internal::contact_states(p, s.P, 1e-8, ws.velocity, s.states);
-        }
       s.message.clear();
       if (!why_not_block_pivoting.empty())
         {
@@ -657,13 +651,7 @@ namespace impactfe
           s.message.append(why_not_block_pivoting);
           s.message.append("); ");
         }
-      s.message.append(lcp.message);
-      s.message.append("; ");
-      s.message.append(s.lcp.message);
-      // automatic: never stop at the first failure (contact_routes.h)
-      if (options.form == FrictionForm::automatic &&
-          s.lcp.status != Status::solved)
-        s = continue_with_other_routes(p, options, s);
+      internal::finish_lemke_route(p, options, ws, s);
       return s;
     }
 

@@ -497,6 +497,28 @@ namespace impactfe
                r.max_cone_violation <= tol && r.max_sliding_violation <= tol;
         return r;
       }
+
+
+
+      void
+      finish_lemke_route(const ContactProblem     &p,
+                         const ContactOptions     &options,
+                         ContactSolver::Workspace &ws,
+                         ContactSolution          &s)
+      {
+        if (s.lcp.status == Status::solved)
+          {
+            impulses_from_lcp(p, ws.lcp, s.lcp.z, ws.tangential_residual, s.P);
+            contact_states(p, s.P, 1e-8, ws.velocity, s.states);
+          }
+        s.message.append(ws.lcp.message);
+        s.message.append("; ");
+        s.message.append(s.lcp.message);
+        // automatic: never stop at the first failure (contact_routes.h)
+        if (options.form == FrictionForm::automatic &&
+            s.lcp.status != Status::solved)
+          s = continue_with_other_routes(p, options, s);
+      }
     } // namespace internal
 
 
@@ -586,21 +608,10 @@ namespace impactfe
         use_guess ? ws.lemke.solve_warm(lcp.M, lcp.q, *guess, options.lemke) :
                     ws.lemke.solve(lcp.M, lcp.q, options.lemke);
       s.lcp = result;
-      if (s.lcp.status == Status::solved)
-        {
-          internal::impulses_from_lcp(
-            p, lcp, s.lcp.z, ws.tangential_residual, s.P);
-          internal::contact_states(p, s.P, 1e-8, ws.velocity, s.states);
-        }
-      s.message.assign(lcp.message);
-      s.message.append("; ");
-      s.message.append(s.lcp.message);
+      s.message.clear();
       if (guess != nullptr && !use_guess)
-        s.message.append("; guess ignored (wrong size for this form)");
-      // automatic: never stop at the first failure (contact_routes.h)
-      if (options.form == FrictionForm::automatic &&
-          s.lcp.status != Status::solved)
-        s = continue_with_other_routes(p, options, s);
+        s.message.assign("guess ignored (wrong size for this form); ");
+      internal::finish_lemke_route(p, options, ws, s);
       return s;
     }
 

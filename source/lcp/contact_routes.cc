@@ -109,14 +109,6 @@ namespace impactfe
         return guess;
       }
 
-      double
-      max_abs(const std::vector<double> &v)
-      {
-        double m = 0.;
-        for (const double x : v)
-          m = std::max(m, std::abs(x));
-        return m;
-      }
     } // namespace
 
     Status
@@ -163,8 +155,10 @@ namespace impactfe
               }
           }
         const double normW = p.W.max_abs(),
-                     qmax  = max_abs(p.free_velocity) + max_abs(p.gap_term);
-        const bool huge = max_abs(s.P) > 1e6 * (normW > 0. ? qmax / normW : 0.);
+                     qmax =
+                       linfty_norm(p.free_velocity) + linfty_norm(p.gap_term);
+        const bool huge =
+          linfty_norm(s.P) > 1e6 * (normW > 0. ? qmax / normW : 0.);
         if (regularised || huge)
           {
             ContactOptions   o   = copositive_form(p, options);
@@ -173,7 +167,7 @@ namespace impactfe
                 Status::ray_termination)
               {
                 std::ostringstream m;
-                m << "impulses up to " << max_abs(s.P)
+                m << "impulses up to " << linfty_norm(s.P)
                   << ", but the form is infeasible (feasibility test): a solution only of a problem within "
                      "rounding of this one";
                 return m.str();

@@ -136,6 +136,18 @@ namespace impactfe
                               double                     tolerance,
                               std::vector<double>       &V);
 
+      /**
+       * The end of every solve that ran Lemke on ws.lcp, with the result in
+       * s.lcp: impulses and states if it solved, "<form>; <Lemke>" appended
+       * to s.message (which holds what came before, or is empty), and, for
+       * the automatic form, the other routes if it did not solve.
+       */
+      void
+      finish_lemke_route(const ContactProblem     &p,
+                         const ContactOptions     &options,
+                         ContactSolver::Workspace &ws,
+                         ContactSolution          &s);
+
       /// The form solve_contact_problem() uses for @p requested.
       FrictionForm
       resolved_form(const ContactProblem &p, FrictionForm requested);

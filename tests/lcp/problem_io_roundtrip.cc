@@ -11,26 +11,11 @@
 #include "../tests.h"
 
 #include "lcp_test_tools.h"
+#include "read_error.h"
 
 using namespace impactfe::lcp;
 
-namespace
-{
-  std::string
-  error_of(const std::string &text)
-  {
-    std::istringstream in(text);
-    try
-      {
-        read_problem(in, "bad.dat");
-      }
-    catch (const std::runtime_error &e)
-      {
-        return e.what();
-      }
-    return "no error";
-  }
-} // namespace
+using lcp_test::read_error;
 
 int
 main()
@@ -127,13 +112,14 @@ main()
   }
 
   // 5. Errors name the file and what is wrong
-  dealii::deallog << error_of("") << std::endl;
-  dealii::deallog << error_of("3\n0\n3\n3\n3\t3\n1 0 0\n0 1 0\n0 0 1\n-1 -1\n")
+  dealii::deallog << read_error("") << std::endl;
+  dealii::deallog << read_error(
+                       "3\n0\n3\n3\n3\t3\n1 0 0\n0 1 0\n0 0 1\n-1 -1\n")
                   << std::endl;
-  dealii::deallog << error_of("2\n0\n2\n2\n2\t2\n1 x\n0 1\n-1 -1\n")
+  dealii::deallog << read_error("2\n0\n2\n2\n2\t2\n1 x\n0 1\n-1 -1\n")
                   << std::endl;
-  dealii::deallog << error_of("2\n2\n2\n4\n4\n") << std::endl;
-  dealii::deallog << error_of("hello world\n") << std::endl;
+  dealii::deallog << read_error("2\n2\n2\n4\n4\n") << std::endl;
+  dealii::deallog << read_error("hello world\n") << std::endl;
   {
     bool thrown = false;
     try

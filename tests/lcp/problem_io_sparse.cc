@@ -11,25 +11,13 @@
 #include "../tests.h"
 
 #include "lcp_test_tools.h"
+#include "read_error.h"
 
 using namespace impactfe::lcp;
 
 namespace
 {
-  std::string
-  error_of(const std::string &text)
-  {
-    std::istringstream in(text);
-    try
-      {
-        read_problem(in, "bad.dat");
-      }
-    catch (const std::runtime_error &e)
-      {
-        return e.what();
-      }
-    return "no error";
-  }
+  using lcp_test::read_error;
 
   ProblemFile
   read_text(const std::string &text)
@@ -151,34 +139,37 @@ main()
 
   // 3. Malformed sparse input: file, line and what is wrong.
   const std::string start = "2\n2\n2\n4\n4\n2\n" + header;
-  dealii::deallog << error_of("2\n2\n2\n4\n4\n") << std::endl;
-  dealii::deallog << error_of(start + "4-by-3, nzmax: 6 nnz: 6, 1-norm: 5.5\n" +
-                              csc_body + tail)
+  dealii::deallog << read_error("2\n2\n2\n4\n4\n") << std::endl;
+  dealii::deallog << read_error(start +
+                                "4-by-3, nzmax: 6 nnz: 6, 1-norm: 5.5\n" +
+                                csc_body + tail)
                   << std::endl;
   dealii::deallog
-    << error_of(start + "4-by-4, nzmax: 6 nnz: 6, 1-norm: 5.5\n" +
-                "    col 0 : locations 0 to 1\n      0 : 2\n      4 : -0.5\n")
+    << read_error(start + "4-by-4, nzmax: 6 nnz: 6, 1-norm: 5.5\n" +
+                  "    col 0 : locations 0 to 1\n      0 : 2\n      4 : -0.5\n")
     << std::endl;
   dealii::deallog
-    << error_of(start + "4-by-4, nzmax: 6 nnz: 6, 1-norm: 5.5\n" +
-                "    col 0 : locations 0 to 1\n      0 : 2\n      3 : -0.5\n"
-                "    col 1 : locations 1 to 2\n")
+    << read_error(start + "4-by-4, nzmax: 6 nnz: 6, 1-norm: 5.5\n" +
+                  "    col 0 : locations 0 to 1\n      0 : 2\n      3 : -0.5\n"
+                  "    col 1 : locations 1 to 2\n")
     << std::endl;
-  dealii::deallog << error_of(start + "4-by-4, nzmax: 6 nnz: 5, 1-norm: 5.5\n" +
-                              csc_body + tail)
+  dealii::deallog << read_error(start +
+                                "4-by-4, nzmax: 6 nnz: 5, 1-norm: 5.5\n" +
+                                csc_body + tail)
                   << std::endl;
-  dealii::deallog << error_of(
+  dealii::deallog << read_error(
                        start + "4-by-4, nzmax: 6 nnz: 6, 1-norm: 5.5\n" +
                        "    col 0 : locations 0 to 1\n      0 : 2\n  ...\n")
                   << std::endl;
-  dealii::deallog << error_of("2\n2\n2\n4\n4\n1\n" + header +
-                              "triplet: 4-by-4, nzmax: 2 nnz: 2\n" +
-                              "    0 0 : 2\n    0 9 : 1\n")
+  dealii::deallog << read_error("2\n2\n2\n4\n4\n1\n" + header +
+                                "triplet: 4-by-4, nzmax: 2 nnz: 2\n" +
+                                "    0 0 : 2\n    0 9 : 1\n")
                   << std::endl;
-  dealii::deallog << error_of("2\n2\n2\n4\n4\n2\n(null)\n") << std::endl;
+  dealii::deallog << read_error("2\n2\n2\n4\n4\n2\n(null)\n") << std::endl;
   dealii::deallog
-    << error_of(start + "4-by-4, nzmax: 6 nnz: 6, 1-norm: 5.5\n" +
-                "    col 0 : locations 0 to 1\n      0 : 2\n      3 : 1e999\n")
+    << read_error(
+         start + "4-by-4, nzmax: 6 nnz: 6, 1-norm: 5.5\n" +
+         "    col 0 : locations 0 to 1\n      0 : 2\n      3 : 1e999\n")
     << std::endl;
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
 }
