@@ -101,6 +101,7 @@ namespace impactfe
   MechanicalState &
   MultibodySystem<dim>::state()
   {
+    ++state_version; // the caller may change it
     return current;
   }
 
@@ -185,6 +186,8 @@ namespace impactfe
         step_matrices.push_back(std::move(step_matrix));
         step_solvers.push_back(std::move(solver));
       }
+
+    free_rhs_operator.reinit(operators, scheme->free_rhs_coefficients());
 
     for (unsigned int d = 0; d < dim; ++d)
       {
@@ -461,7 +464,7 @@ namespace impactfe
     CostClock clock(measure_costs);
 
     // 1. Free velocity.
-    scheme->free_rhs(operators, current, free_velocity);
+    scheme->free_rhs(free_rhs_operator, current, free_velocity);
     solve_step_matrix(free_velocity);
 
     // 2. Local free velocities and the scheme's gap terms.
@@ -577,6 +580,7 @@ namespace impactfe
     scheme->complete_step(current, next);
     next.time = report.time;
     swap(current, next); // no allocation (time_integrator.h)
+    ++state_version;
 
     // Report.
     Tensor<1, dim> tangential;
@@ -603,8 +607,8 @@ namespace impactfe
   double
   MultibodySystem<dim>::kinetic_energy(const unsigned int b) const
   {
-    return 0.5 * body_list[b]->mass_matrix().matrix_norm_square(
-                   current.velocity.block(b));
+    update_energies();
+    return energies[b].first;
   }
 
   template <int dim>
@@ -621,8 +625,29 @@ namespace impactfe
   double
   MultibodySystem<dim>::elastic_energy(const unsigned int b) const
   {
-    return 0.5 * body_list[b]->stiffness_matrix().matrix_norm_square(
-                   current.displacement.block(b));
+    update_energies();
+    return energies[b].second;
+  }
+
+
+
+  // The monitor, the history and the scene ask for the energies several
+  // times per step; each costs a product with M or K, so they are computed
+  // once per state.
+  template <int dim>
+  void
+  MultibodySystem<dim>::update_energies() const
+  {
+    if (energies_version == state_version &&
+        energies.size() == body_list.size())
+      return;
+    energies.resize(body_list.size());
+    for (unsigned int b = 0; b < body_list.size(); ++b)
+      energies[b] = {0.5 * body_list[b]->mass_matrix().matrix_norm_square(
+                             current.velocity.block(b)),
+                     0.5 * body_list[b]->stiffness_matrix().matrix_norm_square(
+                             current.displacement.block(b))};
+    energies_version = state_version;
   }
 
   template <int dim>

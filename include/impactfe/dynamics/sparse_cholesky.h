@@ -58,11 +58,23 @@ namespace impactfe
     std::size_t
     size() const;
 
+    /**
+     * Whether CHOLMOD chose a simplicial factor (small fill: 1D, small 2D
+     * meshes); solve() then substitutes in arrays of its own instead of
+     * calling CHOLMOD.
+     */
+    bool
+    simplicial() const;
+
     /** Entries of L (the cost of one solve pair is about 4 of these). */
     std::size_t
     n_factor_entries() const;
 
   private:
+    /// Keep a simplicial factor as L D L^T in our own arrays (solve()).
+    void
+    copy_simplicial_factor();
+
     struct Data;
     std::unique_ptr<Data> data;
   };

@@ -32,6 +32,8 @@ namespace impactfe
     ContactSolverParameters       contact_solver;
     OutputParameters              output;
     ContactVerificationParameters verification;
+    /// Top-level entry `Number of threads` (0: one per core).
+    unsigned int n_threads = 1;
 
     static void
     declare_parameters(ParameterHandler  &prm,

@@ -6,8 +6,11 @@
 #include <deal.II/lac/block_vector.h>
 #include <deal.II/lac/sparse_matrix.h>
 
+#include <impactfe/time_integration/free_rhs_operator.h>
+
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace impactfe
@@ -125,11 +128,26 @@ namespace impactfe
     virtual double
     stiffness_coefficient() const = 0;
 
-    /** F~ of M~ v^{i+1} = F~ + H P from the state at t_i. */
-    virtual void
-    free_rhs(const MechanicalOperators &operators,
-             const MechanicalState     &state,
-             BlockVector<double>       &rhs) const = 0;
+    /**
+     * F~ of M~ v^{i+1} = F~ + H P is (M + a_C C + a_K K) x + b_K K y +
+     * gamma f: the scheme's a_C, a_K, b_K and gamma. FreeRhsOperator
+     * combines the matrices with them once.
+     */
+    virtual FreeRhsCoefficients
+    free_rhs_coefficients() const = 0;
+
+    /**
+     * x and y of F~ for @p state: its velocity and displacement, unless the
+     * scheme predicts them first (Newmark).
+     */
+    virtual std::pair<const BlockVector<double> *, const BlockVector<double> *>
+    free_rhs_arguments(const MechanicalState &state) const;
+
+    /** F~ from the state at t_i, with the operator of the coefficients. */
+    void
+    free_rhs(const FreeRhsOperator &op,
+             const MechanicalState &state,
+             BlockVector<double>   &rhs) const;
 
     /** b_N per contact candidate for the step from @p state. */
     virtual void
@@ -162,13 +180,6 @@ namespace impactfe
   protected:
     const TimeSteppingParameters parameters;
     const double                 h;
-
-    /** out += alpha A x for block-diagonal A, skipping null blocks. */
-    static void
-    add_vmult(BlockVector<double>                             &out,
-              const double                                     alpha,
-              const std::vector<const SparseMatrix<double> *> &A,
-              const BlockVector<double>                       &x);
   };
 
   std::unique_ptr<TimeIntegrator>

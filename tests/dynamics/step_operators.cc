@@ -1,0 +1,176 @@
+// The two kernels of a time step against independent computations:
+// * FreeRhsOperator (F~ = (M + a_C C + a_K K) x + b_K K y + gamma f in one
+//   pass) against deal.II's products, for the coefficients of all four
+//   schemes, on bodies with and without damping;
+// * SparseCholesky::solve() against the residual of M~ x = b and against
+//   CHOLMOD's own solve (the multi-column path), on a 1D bar and 2D blocks,
+//   whose factors are simplicial (our substitutions) or supernodal
+//   (CHOLMOD's).
+#include <deal.II/grid/grid_generator.h>
+
+#include <impactfe/bodies/elastic_body.h>
+#include <impactfe/dynamics/sparse_cholesky.h>
+#include <impactfe/time_integration/free_rhs_operator.h>
+#include <impactfe/time_integration/time_integrator.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "../tests.h"
+
+using namespace impactfe;
+
+namespace
+{
+  template <int dim>
+  std::unique_ptr<ElasticBody<dim>>
+  make_body(const std::vector<unsigned int> &cells, const double viscosity)
+  {
+    MaterialParameters material;
+    material.youngs_modulus = 2e11;
+    material.density        = 7800.;
+    material.poissons_ratio = 0.3;
+    material.viscosity      = viscosity;
+    auto       body         = std::make_unique<ElasticBody<dim>>("body",
+                                                   material,
+                                                   DiscretizationParameters(),
+                                                   1.);
+    Point<dim> corner;
+    for (unsigned int d = 0; d < dim; ++d)
+      corner[d] = 0.1 * cells[d];
+    GridGenerator::subdivided_hyper_rectangle(body->triangulation(),
+                                              cells,
+                                              Point<dim>(),
+                                              corner);
+    body->setup();
+    return body;
+  }
+
+  // Deterministic, not symmetric in the entries, O(1).
+  void
+  fill(Vector<double> &v, const double phase)
+  {
+    for (unsigned int i = 0; i < v.size(); ++i)
+      v[i] = std::sin(0.7 * i + phase) + 0.3 * std::cos(1.3 * i * i + phase);
+  }
+
+  template <int dim>
+  void
+  check_free_rhs(const std::string               &name,
+                 const std::vector<unsigned int> &cells,
+                 const double                     viscosity)
+  {
+    const auto          body = make_body<dim>(cells, viscosity);
+    const unsigned int  n    = body->n_dofs();
+    MechanicalOperators op;
+    op.mass.push_back(&body->mass_matrix());
+    op.stiffness.push_back(&body->stiffness_matrix());
+    op.damping.push_back(body->has_damping() ? &body->damping_matrix() :
+                                               nullptr);
+    op.external_force.reinit(std::vector<types::global_dof_index>{n});
+    fill(op.external_force.block(0), 0.5);
+
+    BlockVector<double> x(std::vector<types::global_dof_index>{n}), y(x),
+      rhs(x);
+    fill(x.block(0), 1.);
+    fill(y.block(0), 2.);
+    for (const Scheme scheme : {Scheme::theta,
+                                Scheme::theta_euler,
+                                Scheme::modified_theta,
+                                Scheme::newmark})
+      {
+        TimeSteppingParameters ts;
+        ts.scheme                            = scheme;
+        ts.time_step                         = 1e-6;
+        const auto                integrator = create_time_integrator(ts);
+        const FreeRhsCoefficients c = integrator->free_rhs_coefficients();
+        FreeRhsOperator           free_rhs;
+        free_rhs.reinit(op, c);
+        free_rhs.apply(x, y, rhs);
+
+        // The same with deal.II's products, term by term.
+        Vector<double> expected(n), tmp(n);
+        body->mass_matrix().vmult(expected, x.block(0));
+        body->stiffness_matrix().vmult(tmp, x.block(0));
+        expected.add(c.velocity_stiffness, tmp);
+        if (body->has_damping())
+          {
+            body->damping_matrix().vmult(tmp, x.block(0));
+            expected.add(c.velocity_damping, tmp);
+          }
+        body->stiffness_matrix().vmult(tmp, y.block(0));
+        expected.add(c.displacement_stiffness, tmp);
+        expected.add(c.force, op.external_force.block(0));
+        double scale = 0., diff = 0.;
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            scale = std::max(scale, std::abs(expected[i]));
+            diff  = std::max(diff, std::abs(expected[i] - rhs.block(0)[i]));
+          }
+        impactfe_tests::check(diff <= 1e-13 * scale,
+                              name + ", " + to_string(scheme) +
+                                ": F~ equals deal.II's products",
+                              "");
+      }
+  }
+
+  template <int dim>
+  void
+  check_cholesky(const std::string               &name,
+                 const std::vector<unsigned int> &cells,
+                 const bool                       expect_simplicial)
+  {
+    const auto           body = make_body<dim>(cells, 0.);
+    const unsigned int   n    = body->n_dofs();
+    SparseMatrix<double> step_matrix(body->sparsity_pattern());
+    step_matrix.copy_from(body->mass_matrix());
+    step_matrix.add(1e-12, body->stiffness_matrix()); // h^2 theta^2, h ~ 1 us
+    SparseCholesky cholesky;
+    cholesky.factorize(step_matrix, name);
+    impactfe_tests::check(cholesky.simplicial() == expect_simplicial,
+                          name + ": the factor is " +
+                            (expect_simplicial ? "simplicial" : "supernodal"),
+                          "");
+
+    Vector<double> b(n), x(n), residual(n);
+    fill(b, 3.);
+    x = b;
+    cholesky.solve(x);
+    step_matrix.vmult(residual, x);
+    residual -= b;
+    impactfe_tests::check(residual.linfty_norm() <= 1e-13 * b.linfty_norm(),
+                          name + ": |M~ x - b| <= 1e-13 |b|",
+                          "");
+
+    // CHOLMOD's solve of the same right-hand side (two columns: b, 2b).
+    std::vector<double> columns(2 * n);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        columns[i]     = b[i];
+        columns[n + i] = 2. * b[i];
+      }
+    cholesky.solve(columns.data(), 2);
+    double diff = 0.;
+    for (unsigned int i = 0; i < n; ++i)
+      diff = std::max({diff,
+                       std::abs(columns[i] - x[i]),
+                       std::abs(columns[n + i] - 2. * x[i])});
+    impactfe_tests::check(diff <= 1e-13 * x.linfty_norm(),
+                          name + ": solve() equals CHOLMOD's solve",
+                          "");
+  }
+} // namespace
+
+int
+main()
+{
+  impactfe_tests::initlog();
+  check_free_rhs<1>("1D bar, 320 cells", {320}, 0.);
+  check_free_rhs<2>("2D block 6 x 3, damped", {6, 3}, 1e3);
+  check_free_rhs<3>("3D bar 8 x 2 x 2, damped", {8, 2, 2}, 1e3);
+  check_cholesky<1>("1D bar, 320 cells", {320}, true);
+  check_cholesky<2>("2D block 6 x 3", {6, 3}, true);
+  check_cholesky<2>("2D block 60 x 60", {60, 60}, false);
+  return impactfe_tests::n_failed_checks;
+}
