@@ -1,6 +1,7 @@
 #include <deal.II/base/exceptions.h>
 
 #include <impactfe/dynamics/contact_monitor.h>
+#include <impactfe/utilities/program.h>
 
 #include <algorithm>
 #include <cmath>
@@ -297,18 +298,26 @@ namespace impactfe
 
         if (node_output)
           {
-            *node_output << t << "," << c;
-            for (unsigned int d = 0; d < dim; ++d)
-              *node_output << "," << contacts.candidate(c).position[d];
             // Signed tangential values in 2D (along t = n turned by +90
             // degrees); magnitudes in 3D.
             const double signed_p_t = nd == 2 ? P[c * nd + 1] : p_t;
             const double signed_v_t =
               nd == 2 ? local_velocity[c * nd + 1] : v_t;
-            *node_output << "," << force_factor * p_n << ","
-                         << force_factor * signed_p_t << "," << gaps[c] << ","
-                         << local_velocity[c * nd] << "," << signed_v_t << ","
-                         << contact_mode(s) << "\n";
+            node_line.clear();
+            append_csv_number(node_line, t, ',');
+            append_csv_number(node_line, c, ',');
+            for (unsigned int d = 0; d < dim; ++d)
+              append_csv_number(node_line,
+                                contacts.candidate(c).position[d],
+                                ',');
+            for (const double x : {force_factor * p_n,
+                                   force_factor * signed_p_t,
+                                   gaps[c],
+                                   local_velocity[c * nd],
+                                   signed_v_t})
+              append_csv_number(node_line, x, ',');
+            append_csv_number(node_line, contact_mode(s), '\n');
+            node_output->write(node_line.data(), node_line.size());
           }
       }
 

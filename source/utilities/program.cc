@@ -2,6 +2,7 @@
 
 #include <impactfe/utilities/program.h>
 
+#include <charconv>
 #include <cmath>
 #include <ctime>
 #include <iomanip>
@@ -16,6 +17,22 @@ namespace impactfe
     std::ostringstream s;
     s << value;
     return s.str();
+  }
+
+
+
+  void
+  append_csv_number(std::string &line, const double value, const char separator)
+  {
+    char       text[40];
+    const auto end = std::to_chars(text,
+                                   text + sizeof(text) - 1,
+                                   value,
+                                   std::chars_format::general,
+                                   10)
+                       .ptr;
+    *end = separator;
+    line.append(text, end + 1);
   }
 
 

@@ -183,6 +183,8 @@ namespace impactfe
   private:
     const MultibodySystem<dim>    &system;
     std::unique_ptr<std::ofstream> node_output;
+    /// The row of contact_nodes.csv being written (reused).
+    std::string node_line;
 
     ContactRunSummary run;
     double            initial_energy = 0., last_energy = 0.;

@@ -58,6 +58,8 @@ namespace impactfe
   private:
     std::ofstream            out;
     std::vector<std::string> column_names;
+    /// The row being written, kept so that a row does not allocate.
+    std::string line;
   };
 
 

@@ -19,6 +19,16 @@ namespace impactfe
   format_figure(const double value, const double round_off = 1e-12);
 
   /**
+   * Append @p value to @p line as printf's "%.10g" would write it, then
+   * @p separator: the CSV files' number format. std::to_chars, several
+   * times faster than a stream, matters for files written at every step.
+   */
+  void
+  append_csv_number(std::string &line,
+                    const double value,
+                    const char   separator);
+
+  /**
    * Throw, with the message "<subsection>: '<entry>' must be > 0, got
    * <value>.", unless @p value is finite and > 0. For the checks that
    * parse_parameters() makes on the entries it has read.
