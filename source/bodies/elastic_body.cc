@@ -9,8 +9,76 @@
 
 #include <impactfe/bodies/elastic_body.h>
 
+#include <sstream>
+
 namespace impactfe
 {
+  namespace
+  {
+    // The element mass of a cell with massless vertices, as documented at
+    // ElasticBody::redistribute_mass(). The mass matrix couples equal
+    // components only, so each component is treated alike.
+    template <int dim>
+    void
+    redistribute_cell_mass(const FiniteElement<dim> &fe,
+                           const std::vector<bool>  &massless,
+                           FullMatrix<double>       &cell_mass)
+    {
+      const unsigned int n      = fe.n_dofs_per_cell();
+      auto               vertex = [&](const unsigned int i) {
+        return fe.system_to_component_index(i).second;
+      };
+      auto component = [&](const unsigned int i) {
+        return fe.system_to_component_index(i).first;
+      };
+      auto joined = [](const unsigned int v, const unsigned int w) {
+        for (unsigned int l = 0; l < GeometryInfo<dim>::lines_per_cell; ++l)
+          {
+            const unsigned int a =
+                                 GeometryInfo<dim>::line_to_cell_vertices(l, 0),
+                               b =
+                                 GeometryInfo<dim>::line_to_cell_vertices(l, 1);
+            if ((a == v && b == w) || (a == w && b == v))
+              return true;
+          }
+        return false;
+      };
+
+      FullMatrix<double> result(n, n);
+      for (unsigned int i = 0; i < n; ++i)
+        if (!massless[vertex(i)])
+          for (unsigned int j = 0; j < n; ++j)
+            {
+              if (massless[vertex(j)])
+                result(i, i) += cell_mass(i, j);
+              else
+                result(i, j) += cell_mass(i, j);
+            }
+      for (unsigned int i = 0; i < n; ++i)
+        if (massless[vertex(i)])
+          {
+            double row_sum = 0.;
+            for (unsigned int j = 0; j < n; ++j)
+              row_sum += cell_mass(i, j);
+            std::vector<unsigned int> receivers;
+            for (unsigned int j = 0; j < n; ++j)
+              if (component(j) == component(i) && !massless[vertex(j)] &&
+                  joined(vertex(i), vertex(j)))
+                receivers.push_back(j);
+            if (receivers.empty())
+              for (unsigned int j = 0; j < n; ++j)
+                if (component(j) == component(i) && !massless[vertex(j)])
+                  receivers.push_back(j);
+            Assert(!receivers.empty(), ExcInternalError());
+            for (const unsigned int j : receivers)
+              result(j, j) += row_sum / receivers.size();
+          }
+      cell_mass = result;
+    }
+  } // namespace
+
+
+
   void
   DiscretizationParameters::declare_parameters(ParameterHandler &prm)
   {
@@ -20,6 +88,15 @@ namespace impactfe
       "consistent",
       Patterns::Selection("consistent|lumped"),
       "Consistent Q1/P1 mass matrix, or its row-sum lumped (diagonal) form.");
+    prm.declare_entry(
+      "Mass redistribution",
+      "false",
+      Patterns::Bool(),
+      "Move the mass of every contact candidate's nodes to their neighbours "
+      "in the same cells (Khenous, Laborde, Renard 2008): the contact nodes "
+      "carry no mass, the total mass is kept, and a closed contact does not "
+      "chatter. Theta-schemes only (Newmark needs an invertible mass for its "
+      "initial acceleration).");
     prm.leave_subsection();
   }
 
@@ -29,7 +106,8 @@ namespace impactfe
   DiscretizationParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Discretization");
-    lumped_mass = (prm.get("Mass matrix") == "lumped");
+    lumped_mass         = (prm.get("Mass matrix") == "lumped");
+    mass_redistribution = prm.get_bool("Mass redistribution");
     prm.leave_subsection();
   }
 
@@ -242,6 +320,32 @@ namespace impactfe
               }
           }
         cell->get_dof_indices(local_dofs);
+        if (!massless_vertex.empty())
+          {
+            std::vector<bool> massless(cell->n_vertices());
+            unsigned int      n_massless = 0;
+            for (const unsigned int v : cell->vertex_indices())
+              {
+                massless[v] = massless_vertex[cell->vertex_index(v)];
+                n_massless += massless[v] ? 1 : 0;
+              }
+            if (n_massless == cell->n_vertices())
+              {
+                std::ostringstream where;
+                where << cell->center();
+                AssertThrow(false,
+                            ExcMessage(
+                              "Body '" + body_name +
+                              "': mass redistribution would leave the cell "
+                              "at (" +
+                              where.str() +
+                              ") without mass: all its vertices are contact "
+                              "nodes. Refine the mesh or set 'Mass "
+                              "redistribution' to false."));
+              }
+            if (n_massless > 0)
+              redistribute_cell_mass(fe, massless, cell_mass);
+          }
         if (discretization_parameters.lumped_mass)
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
             {
@@ -337,6 +441,41 @@ namespace impactfe
   ElasticBody<dim>::external_force() const
   {
     return body_force_vector;
+  }
+
+
+
+  template <int dim>
+  void
+  ElasticBody<dim>::redistribute_mass(
+    const std::vector<unsigned int> &massless_vertices)
+  {
+    AssertThrow(dofs.n_dofs() > 0,
+                ExcMessage("Body '" + body_name +
+                           "': redistribute_mass() before setup()."));
+    massless_vertex.assign(mesh.n_vertices(), false);
+    for (const unsigned int v : massless_vertices)
+      {
+        AssertThrow(v < mesh.n_vertices(),
+                    ExcMessage("Body '" + body_name + "': vertex " +
+                               std::to_string(v) + " does not exist."));
+        massless_vertex[v] = true;
+      }
+    assemble();
+  }
+
+
+
+  template <int dim>
+  std::vector<types::global_dof_index>
+  ElasticBody<dim>::massless_dofs() const
+  {
+    std::vector<types::global_dof_index> result;
+    for (unsigned int v = 0; v < massless_vertex.size(); ++v)
+      if (massless_vertex[v])
+        for (unsigned int c = 0; c < dim; ++c)
+          result.push_back(vertex_dof(v, c));
+    return result;
   }
 
 

@@ -69,9 +69,12 @@ namespace impactfe
         double                      mass = 0.;
         for (auto entry = M.begin(row); entry != M.end(row); ++entry)
           mass += std::abs(entry->value());
-        smallest_nodal_mass = std::min(smallest_nodal_mass, mass);
+        // A massless node (mass redistribution) moves with the body
+        // around it, whose velocities are in the scale anyway.
+        if (mass > 0.)
+          smallest_nodal_mass = std::min(smallest_nodal_mass, mass);
       }
-    if (!system.contacts().candidates().empty() && smallest_nodal_mass > 0.)
+    if (smallest_nodal_mass < std::numeric_limits<double>::max())
       largest_inverse_nodal_mass = 1. / smallest_nodal_mass;
 
     if (!node_file.empty())

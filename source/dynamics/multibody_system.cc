@@ -188,6 +188,9 @@ namespace impactfe
       }
 
     free_rhs_operator.reinit(operators, scheme->free_rhs_coefficients());
+    massless_dofs.clear();
+    for (const auto &body : body_list)
+      massless_dofs.push_back(body->massless_dofs());
 
     for (unsigned int d = 0; d < dim; ++d)
       {
@@ -578,6 +581,15 @@ namespace impactfe
 
     // 5. Displacement (and acceleration) update.
     scheme->complete_step(current, next);
+    // A massless node has no inertia, so v^{i+1} of the step solve is only
+    // what the displacement update needs; (1 - theta)/theta of it would be
+    // carried into the next step as an alternating mode. Its velocity is the
+    // one that moves it: (u^{i+1} - u^i) / h.
+    for (unsigned int b = 0; b < massless_dofs.size(); ++b)
+      for (const types::global_dof_index i : massless_dofs[b])
+        next.velocity.block(b)(i) =
+          (next.displacement.block(b)(i) - current.displacement.block(b)(i)) /
+          scheme->time_step();
     next.time = report.time;
     swap(current, next); // no allocation (time_integrator.h)
     ++state_version;

@@ -145,6 +145,8 @@ namespace impactfe
                              body_list[c.body_a]->name() +
                              " is below the obstacle at t = 0 (gap " +
                              format_number(c.initial_gap) + " m)."));
+    if (parameters.discretization.mass_redistribution)
+      redistribute_mass();
     set_initial_state(multibody_system->state());
 
     create_output_directory(parameters.output.directory);
@@ -154,6 +156,35 @@ namespace impactfe
     recorder = std::make_unique<SceneRecorder<dim>>(*multibody_system,
                                                     parameters.output,
                                                     history_columns());
+  }
+
+
+
+  // The nodes of every contact candidate, on both sides, lose their mass to
+  // their neighbours (ElasticBody::redistribute_mass()). Newmark's a^0 would
+  // need M^{-1}, so only the theta-schemes accept it.
+  template <int dim>
+  void
+  ContactScene<dim>::redistribute_mass()
+  {
+    AssertThrow(parameters.time_stepping.scheme != Scheme::newmark,
+                ExcMessage("Discretization: 'Mass redistribution = true' "
+                           "needs a theta-scheme; Newmark's initial "
+                           "acceleration needs an invertible mass matrix."));
+    std::vector<std::vector<unsigned int>> massless(body_list.size());
+    for (const ContactCandidate &c : multibody_system->contacts().candidates())
+      {
+        massless[c.body_a].push_back(c.vertex_a);
+        if (!c.against_rigid_obstacle())
+          {
+            massless[c.body_b].push_back(c.vertex_b);
+            if (c.vertex_b2 != numbers::invalid_unsigned_int)
+              massless[c.body_b].push_back(c.vertex_b2);
+          }
+      }
+    for (unsigned int b = 0; b < body_list.size(); ++b)
+      if (!massless[b].empty())
+        body_list[b]->redistribute_mass(massless[b]);
   }
 
 

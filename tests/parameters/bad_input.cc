@@ -73,6 +73,10 @@ main()
   run_case("negative_time_step", with("Time stepping", "Time step = -1e-6"));
   run_case("zero_end_time", with("Time stepping", "End time = 0"));
   run_case("newmark_beta_zero", with("Time stepping", "Newmark beta = 0"));
+  run_case("newmark_mass_redistribution",
+           with("Time stepping", "Scheme = newmark") +
+             "subsection Discretization\n  set Mass redistribution = true\n"
+             "end\n");
   run_case("zero_modulus", with("Material", "Young's modulus = 0"));
   run_case("negative_density", with("Material", "Density = -7800"));
   run_case("negative_gap", with("Geometry", "Initial gap = -0.01"));

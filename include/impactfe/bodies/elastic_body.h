@@ -33,6 +33,9 @@ namespace impactfe
   {
     /// Row-sum lumped mass instead of the consistent Q1/P1 mass.
     bool lumped_mass = false;
+    /// Move the mass of the contact nodes to their neighbours (see
+    /// ElasticBody::redistribute_mass()).
+    bool mass_redistribution = false;
 
     static void
     declare_parameters(ParameterHandler &prm);
@@ -113,6 +116,25 @@ namespace impactfe
     const Vector<double> &
     external_force() const;
 
+    /**
+     * Mass redistribution (Khenous, Laborde, Renard, Eur. J. Mech. A 27,
+     * 2008): the vertices @p massless_vertices carry no mass. In each cell
+     * that holds one, the element mass of those vertices (their row sums)
+     * goes to the vertices of the cell joined to them by an edge and not
+     * massless themselves (to all of the cell's other vertices if none is
+     * joined), and the coupling of the other vertices to them goes to their
+     * own diagonal. The rest of the element mass is unchanged (consistent or
+     * lumped), so the total mass is kept; the first moments move by at most
+     * a cell. Throws if a cell has only massless vertices. Re-assembles M
+     * (and C, whose Rayleigh term uses M).
+     */
+    void
+    redistribute_mass(const std::vector<unsigned int> &massless_vertices);
+
+    /** The DoFs of the vertices that redistribute_mass() left massless. */
+    std::vector<types::global_dof_index>
+    massless_dofs() const;
+
     /** Total mass, from the mass matrix (a check on the assembly). */
     double
     total_mass() const;
@@ -155,6 +177,8 @@ namespace impactfe
     Tensor<1, dim>       body_force_density;
     /// DoF of (vertex, component) at index vertex * dim + component.
     std::vector<types::global_dof_index> vertex_dofs;
+    /// Per mesh vertex: no mass (redistribute_mass()). Empty if none.
+    std::vector<bool> massless_vertex;
 
     void
     assemble();

@@ -213,6 +213,8 @@ namespace impactfe
     void
     setup_system();
     void
+    redistribute_mass();
+    void
     output_results(const StepReport &report);
     void
     report_results();
