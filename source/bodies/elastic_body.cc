@@ -363,6 +363,17 @@ namespace impactfe
           body_force_vector(local_dofs[i]) += cell_load(i);
       }
 
+    // A constant body force rho g is M g for the consistent or lumped mass.
+    // With massless nodes it follows the mass, so that a massless node
+    // carries no load it has no inertia against and a free body still
+    // falls as a whole.
+    if (!massless_vertex.empty())
+      {
+        Vector<double> acceleration(dofs.n_dofs());
+        fill_uniform(acceleration, body_force_density / rho);
+        mass.vmult(body_force_vector, acceleration);
+      }
+
     // C = the law's viscous matrix + Rayleigh a M + b K.
     if (has_damping())
       {

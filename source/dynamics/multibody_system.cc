@@ -189,8 +189,15 @@ namespace impactfe
 
     free_rhs_operator.reinit(operators, scheme->free_rhs_coefficients());
     massless_dofs.clear();
+    massless_impulses.clear();
+    bool any_massless = false;
     for (const auto &body : body_list)
-      massless_dofs.push_back(body->massless_dofs());
+      {
+        massless_dofs.push_back(body->massless_dofs());
+        massless_impulses.emplace_back(massless_dofs.back().size(), 0.);
+        any_massless = any_massless || !massless_dofs.back().empty();
+      }
+    scheme->set_massless_contact_nodes(any_massless);
 
     for (unsigned int d = 0; d < dim; ++d)
       {
@@ -466,8 +473,14 @@ namespace impactfe
     report.time = current.time + h;
     CostClock clock(measure_costs);
 
-    // 1. Free velocity.
+    // 1. Free velocity. Massless nodes are balanced at t^{i+1}
+    // (TimeIntegrator::set_massless_contact_nodes()).
     scheme->free_rhs(free_rhs_operator, current, free_velocity);
+    const double carry = scheme->massless_impulse_carry();
+    for (unsigned int b = 0; b < massless_dofs.size(); ++b)
+      for (unsigned int k = 0; k < massless_dofs[b].size(); ++k)
+        free_velocity.block(b)(massless_dofs[b][k]) +=
+          carry * massless_impulses[b][k];
     solve_step_matrix(free_velocity);
 
     // 2. Local free velocities and the scheme's gap terms.
@@ -566,6 +579,10 @@ namespace impactfe
           all_stored = all_stored && stored_column_slot[j] >= 0;
         }
     contact_force_field.equ(force_factor, impulse_response);
+    for (unsigned int b = 0; b < massless_dofs.size(); ++b)
+      for (unsigned int k = 0; k < massless_dofs[b].size(); ++k)
+        massless_impulses[b][k] =
+          impulse_response.block(b)(massless_dofs[b][k]);
     if (all_stored && 2. * n_impulses * free_velocity.size() < solve_cost)
       {
         for (unsigned int j = 0; j < contact_set.n_columns(); ++j)
@@ -581,10 +598,10 @@ namespace impactfe
 
     // 5. Displacement (and acceleration) update.
     scheme->complete_step(current, next);
-    // A massless node has no inertia, so v^{i+1} of the step solve is only
-    // what the displacement update needs; (1 - theta)/theta of it would be
-    // carried into the next step as an alternating mode. Its velocity is the
-    // one that moves it: (u^{i+1} - u^i) / h.
+    // A massless node has no inertia: its v^{i+1} from the step solve is
+    // only what the displacement update needs, and would alternate by the
+    // factor -(1 - theta)/theta per step. Its velocity is the one that
+    // moves it: (u^{i+1} - u^i) / h.
     for (unsigned int b = 0; b < massless_dofs.size(); ++b)
       for (const types::global_dof_index i : massless_dofs[b])
         next.velocity.block(b)(i) =

@@ -161,16 +161,12 @@ namespace impactfe
 
 
   // The nodes of every contact candidate, on both sides, lose their mass to
-  // their neighbours (ElasticBody::redistribute_mass()). Newmark's a^0 would
-  // need M^{-1}, so only the theta-schemes accept it.
+  // their neighbours (ElasticBody::redistribute_mass()); the system then
+  // tells its scheme (TimeIntegrator::set_massless_contact_nodes()).
   template <int dim>
   void
   ContactScene<dim>::redistribute_mass()
   {
-    AssertThrow(parameters.time_stepping.scheme != Scheme::newmark,
-                ExcMessage("Discretization: 'Mass redistribution = true' "
-                           "needs a theta-scheme; Newmark's initial "
-                           "acceleration needs an invertible mass matrix."));
     std::vector<std::vector<unsigned int>> massless(body_list.size());
     for (const ContactCandidate &c : multibody_system->contacts().candidates())
       {

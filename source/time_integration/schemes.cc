@@ -140,13 +140,30 @@ namespace impactfe
   double
   TimeIntegrator::force_per_impulse() const
   {
-    return 1. / h;
+    return massless_contact_nodes ? 1. / (h * parameters.theta) : 1. / h;
   }
 
   double
   TimeIntegrator::contact_force_weight() const
   {
-    return 1.;
+    return massless_contact_nodes ? parameters.theta : 1.;
+  }
+
+  void
+  TimeIntegrator::set_massless_contact_nodes(const bool massless)
+  {
+    AssertThrow(!massless || parameters.scheme != Scheme::newmark,
+                ExcMessage("Discretization: 'Mass redistribution = true' "
+                           "needs a theta-scheme; Newmark's initial "
+                           "acceleration needs an invertible mass matrix."));
+    massless_contact_nodes = massless;
+  }
+
+  double
+  TimeIntegrator::massless_impulse_carry() const
+  {
+    return massless_contact_nodes ? (1. - parameters.theta) / parameters.theta :
+                                    0.;
   }
 
   bool

@@ -264,14 +264,16 @@ namespace impactfe
     // Work space of a step, kept to avoid allocation in the time loop.
     /// Per body: the DoFs without mass (ElasticBody::redistribute_mass()).
     std::vector<std::vector<types::global_dof_index>> massless_dofs;
-    BlockVector<double>                               free_velocity;
-    BlockVector<double>                               contact_force_field;
-    BlockVector<double>                               impulse_response;
-    std::vector<double>                               local_free_velocity;
-    std::vector<double>                               gap_terms;
-    std::vector<double>                               local_impulses;
-    std::vector<bool>                                 active;
-    std::vector<bool>                                 in_lcp;
+    /// Per body: (H P) of the last step at massless_dofs.
+    std::vector<std::vector<double>> massless_impulses;
+    BlockVector<double>              free_velocity;
+    BlockVector<double>              contact_force_field;
+    BlockVector<double>              impulse_response;
+    std::vector<double>              local_free_velocity;
+    std::vector<double>              gap_terms;
+    std::vector<double>              local_impulses;
+    std::vector<bool>                active;
+    std::vector<bool>                in_lcp;
     /// State of each candidate at the last LCP solve (warm start).
     std::vector<ContactState> last_contact_states;
     std::vector<unsigned int> lcp_candidates;

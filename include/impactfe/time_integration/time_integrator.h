@@ -177,9 +177,28 @@ namespace impactfe
     virtual bool
     needs_initial_acceleration() const;
 
+    /**
+     * The contact nodes carry no mass (mass redistribution). A
+     * theta-scheme then balances a massless node at t^{i+1} instead of at
+     * t^{i+theta}: same step matrix, and (1 - theta)/theta of the previous
+     * step's contact impulse added to its rows of F~
+     * (massless_impulse_carry()). Otherwise u at a free massless node would
+     * alternate about its equilibrium by the factor -(1 - theta)/theta per step
+     * (undamped at theta = 1/2). The contact force of a step is then P / (h
+     * theta), and the impulse that changes the momentum h (theta F^{i+1} + (1 -
+     * theta) F^i). Newmark refuses it (its a^0 needs M^{-1}).
+     */
+    void
+    set_massless_contact_nodes(const bool massless);
+
+    /** The factor of the previous impulse added at massless rows of F~. */
+    double
+    massless_impulse_carry() const;
+
   protected:
     const TimeSteppingParameters parameters;
     const double                 h;
+    bool                         massless_contact_nodes = false;
   };
 
   std::unique_ptr<TimeIntegrator>
