@@ -259,6 +259,7 @@ namespace impactfe
     contact_force_field = make_block_vector();
     impulse_response    = make_block_vector();
     local_impulses.assign(n_columns, 0.);
+    start_local_velocity.assign(n_columns, 0.);
     active.assign(contact_set.n_candidates(), false);
     // sized once, so that the time loop does not allocate (see
     // tests/dynamics/step_allocations)
@@ -486,6 +487,15 @@ namespace impactfe
     // 2. Local free velocities and the scheme's gap terms.
     contact_set.local_velocities(free_velocity, local_free_velocity);
     scheme->gap_term(contact_set, current, gap_terms);
+    // Massless nodes slide with their mean velocity over the step: Coulomb
+    // on V_T^{i+1} + c V_T^i (TimeIntegrator::slip_velocity_carry()).
+    if (const double c = scheme->slip_velocity_carry(); c != 0. && nd > 1)
+      {
+        contact_set.local_velocities(current.velocity, start_local_velocity);
+        for (unsigned int j = 0; j < local_free_velocity.size(); ++j)
+          if (j % nd != 0)
+            local_free_velocity[j] += c * start_local_velocity[j];
+      }
     clock.charge(costs.free_velocity);
 
     // 3. The LCP on the candidates that can touch: those whose free normal

@@ -160,6 +160,12 @@ namespace impactfe
   }
 
   double
+  TimeIntegrator::slip_velocity_carry() const
+  {
+    return 0.;
+  }
+
+  double
   TimeIntegrator::massless_impulse_carry() const
   {
     return massless_contact_nodes ? (1. - parameters.theta) / parameters.theta :
@@ -242,6 +248,14 @@ namespace impactfe
                                    new_state.velocity,
                                    h * (1. - theta),
                                    old_state.velocity);
+      }
+
+      double
+      slip_velocity_carry() const override
+      {
+        return massless_contact_nodes ?
+                 (1. - parameters.theta) / parameters.theta :
+                 0.;
       }
 
     protected:

@@ -270,10 +270,12 @@ namespace impactfe
     BlockVector<double>              contact_force_field;
     BlockVector<double>              impulse_response;
     std::vector<double>              local_free_velocity;
-    std::vector<double>              gap_terms;
-    std::vector<double>              local_impulses;
-    std::vector<bool>                active;
-    std::vector<bool>                in_lcp;
+    /// H^T v^i, for the slip of massless nodes.
+    std::vector<double> start_local_velocity;
+    std::vector<double> gap_terms;
+    std::vector<double> local_impulses;
+    std::vector<bool>   active;
+    std::vector<bool>   in_lcp;
     /// State of each candidate at the last LCP solve (warm start).
     std::vector<ContactState> last_contact_states;
     std::vector<unsigned int> lcp_candidates;

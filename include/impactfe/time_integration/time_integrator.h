@@ -195,6 +195,17 @@ namespace impactfe
     double
     massless_impulse_carry() const;
 
+    /**
+     * With massless contact nodes, the factor c of V_T^i in the slip
+     * velocity on which Coulomb's law is imposed, V_T^{i+1} + c V_T^i: the
+     * step's mean slip velocity (u^{i+1} - u^i)/h over theta, the velocity
+     * a massless node has (the theta-method's update u^{i+1} = u^i +
+     * h (theta v^{i+1} + (1 - theta) v^i): c = (1 - theta)/theta; theta-Euler
+     * moves u with v^{i+1} alone: c = 0). Without massless nodes, 0.
+     */
+    virtual double
+    slip_velocity_carry() const;
+
   protected:
     const TimeSteppingParameters parameters;
     const double                 h;
