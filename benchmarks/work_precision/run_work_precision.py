@@ -53,12 +53,19 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 # The schemes: (scheme entry, theta or None for Newmark, label).
+# A scheme entry "<scheme>+mr" runs <scheme> with `Mass redistribution =
+# true` (the contact nodes carry no mass, ElasticBody::redistribute_mass()).
 SCHEMES = [("theta", 0.5, "θ-method, θ = 0.5"),
            ("theta", 0.55, "θ-method, θ = 0.55"),
            ("theta-euler", 0.55, "θ-Euler, θ = 0.55"),
            ("modified-theta", 0.55, "modified θ, θ = 0.55"),
-           ("newmark", None, "Newmark, β = 1/4, γ = 1/2")]
-COLORS = ["tab:orange", "tab:red", "tab:blue", "tab:green", "tab:purple"]
+           ("newmark", None, "Newmark, β = 1/4, γ = 1/2"),
+           ("theta+mr", 0.55, "θ-method, θ = 0.55, mass redistribution"),
+           ("theta+mr", 0.51, "θ-method, θ = 0.51, mass redistribution"),
+           ("theta+mr", 0.5, "θ-method, θ = 0.5, mass redistribution"),
+           ("modified-theta", 0.5, "modified θ, θ = 0.5")]
+COLORS = ["tab:orange", "tab:red", "tab:blue", "tab:green", "tab:purple",
+          "magenta", "black", "darkgoldenrod", "lime"]
 PEER_COLORS = ["tab:brown", "tab:gray", "tab:olive", "tab:cyan", "tab:pink",
                "black", "gold", "navy"]
 
@@ -112,8 +119,17 @@ def row_label(row):
     return label if code == "impactfe" else f"{code}: {label}"
 
 
+def scheme_key(scheme, theta):
+    """"<scheme>:<theta>" as --schemes names a SCHEMES entry."""
+    return f"{scheme}:{'' if theta is None else theta}"
+
+
 def time_stepping_overrides(scheme, theta, h, end_time=None):
-    s = "subsection Time stepping\n"
+    s = ""
+    if scheme.endswith("+mr"):
+        scheme = scheme[:-len("+mr")]
+        s += "subsection Discretization\n  set Mass redistribution = true\nend\n"
+    s += "subsection Time stepping\n"
     s += f"  set Scheme = {scheme}\n"
     if theta is not None:
         s += f"  set Theta = {theta!r}\n"
@@ -293,13 +309,39 @@ def extrapolate(rows, target=TARGET_ERR_V):
     return best
 
 
+def selected_schemes(args):
+    """The SCHEMES entries that --schemes names (all without it)."""
+    if not args.schemes:
+        return SCHEMES
+    keys = args.schemes.split(",")
+    unknown = set(keys) - {scheme_key(s, t) for s, t, _ in SCHEMES}
+    if unknown:
+        sys.exit(f"--schemes: unknown {', '.join(sorted(unknown))}; known: "
+                 + ", ".join(scheme_key(s, t) for s, t, _ in SCHEMES))
+    return [e for e in SCHEMES if scheme_key(e[0], e[1]) in keys]
+
+
+def merged_with_kept(args, path, new_rows):
+    """With --schemes: the rows of <path> of the schemes not run now, then
+    the new rows; without it, the new rows."""
+    if not args.schemes or not os.path.exists(path):
+        return new_rows
+    run_now = {scheme_key(s, t) for s, t, _ in selected_schemes(args)}
+    # The references (level "") are run again with the new rows.
+    kept = [r for r in read_csv(path)
+            if r.get("code", "impactfe") != "impactfe"
+            or (r.get("level", "") != ""
+                and scheme_key(r["scheme"], row_theta(r)) not in run_now)]
+    return kept + new_rows
+
+
 def run_bars(args):
     if args.quick:
         cells_list, courants = [10, 20, 40, 80, 160], [0.9, 2.0]
     else:
         cells_list, courants = [10, 20, 40, 80, 160, 320, 640, 1280], [0.25, 0.5, 0.9, 2.0, 4.0]
     rows = []
-    for scheme, theta, _ in SCHEMES:
+    for scheme, theta, _ in selected_schemes(args):
         for level, cells in enumerate(cells_list):
             for courant in courants:
                 rows.append(run_bars_case(args, scheme, theta, cells, courant,
@@ -312,7 +354,7 @@ def extend_bars(args, rows):
     1e-2 on the grid, at the Courant number where the extrapolated cost is
     smallest, if that cost is <= --extend-budget: meshes doubled, the last
     one cut to 1.2 x the extrapolated need."""
-    for scheme, theta, label in SCHEMES:
+    for scheme, theta, label in selected_schemes(args):
         mine = [r for r in rows if r["scheme"] == scheme
                 and str(r["theta"]) == ("" if theta is None else str(theta))
                 and r["status"] == "ok"]
@@ -543,7 +585,7 @@ def run_scene(args, name):
              f"duration {duration:.6g}, norm {norm:.6g}; uncertainty (2h vs h) "
              f"{rows[1]['err_force']}")
 
-    for scheme, theta, _ in SCHEMES:
+    for scheme, theta, _ in selected_schemes(args):
         for level, mesh in enumerate(grid["meshes"]):
             dx = dx_of(mesh)
             for factor in grid["factors"]:
@@ -989,6 +1031,10 @@ def main():
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--only", default="1d,cylinder,plate")
     parser.add_argument("--plot-only", action="store_true")
+    parser.add_argument("--schemes", default="",
+                        help="run only these SCHEMES entries, as <scheme>:<theta> "
+                             "(e.g. theta+mr:0.55,modified-theta:0.5); the rows of "
+                             "the others in --out are kept")
     parser.add_argument("--extend-only", action="store_true",
                         help="1D: no grid runs, only the extension runs, added to the "
                              "CSV in --out (use with a larger --extend-budget)")
@@ -1023,11 +1069,13 @@ def main():
         if args.extend_only:
             write_csv(bars_csv, COLUMNS_1D, extend_bars(args, read_csv(bars_csv)))
         elif "1d" in only:
-            write_csv(bars_csv, COLUMNS_1D, run_bars(args))
+            write_csv(bars_csv, COLUMNS_1D,
+                      merged_with_kept(args, bars_csv, run_bars(args)))
         for name in ("cylinder", "plate"):
             if name in only and not args.extend_only:
-                write_csv(os.path.join(args.out, SCENES[name]["csv"]), COLUMNS_2D,
-                          run_scene(args, name))
+                csv_path = os.path.join(args.out, SCENES[name]["csv"])
+                write_csv(csv_path, COLUMNS_2D,
+                          merged_with_kept(args, csv_path, run_scene(args, name)))
     wall = time.time() - start
     run_info = (f"Figures drawn {datetime.date.today().isoformat()}"
                 + ("" if args.plot_only else
