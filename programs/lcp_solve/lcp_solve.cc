@@ -1,28 +1,39 @@
 // lcp-solve: solve LCP and frictional contact problem files (Siconos numerics
-// text formats, see doc/lcp.md) with impactfe's Lemke solver.
+// text formats and FCLib HDF5 files, see doc/lcp.md) with impactfe's Lemke
+// solver.
 //
 //   lcp-solve [--solution] [--warm] [--form klarbring|facets|auto] [--facets k]
-//   FILE...
+//             [--reference] [--write-fclib OUT] FILE...
+//
+// --reference prints, for contact problems, the exact-cone error of the
+// answer and, for FCLib files that carry a /solution, that solution's error
+// and its distance to ours. --write-fclib writes the (single) contact
+// problem, with our solution, as an FCLib file: a converter from the text
+// formats.
 //
 // One line per problem: "file n status pivots relative_error seconds"
 // (relative_error: Verification::relative_error, complementarity, residual
 // and sign conditions in one scale-invariant number)
 // (n is the size of the LCP actually solved; "-" when not solved), then with
 // --solution the solution z (LCP files) or the impulses P (contact files).
-// With --form auto (the default) a contact problem that the first form does
-// not solve is tried by the other routes of contact_routes.h; every route is
-// listed on stderr if none succeeds. Status "infeasible" means proven to have
-// no solution; "ray-termination" and the others mean Lemke's method did not
-// find one (and, for contact problems with --form auto, the problem is
+// With --form auto (the default) a contact problem is split into the groups
+// of contacts that W does not couple (solve_contact_problem_by_groups()), and
+// a group that the first form does not solve is tried by the other routes of
+// contact_routes.h; every route is listed on stderr if none succeeds. n is
+// then the total size of the groups' LCPs. Status "infeasible" means proven to
+// have no solution; "ray-termination" and the others mean Lemke's method did
+// not find one (and, for contact problems with --form auto, the problem is
 // feasible or that could not be decided).
 // Exit code: 0 if every problem was solved, 1 if one was not, 2 on a bad
 // command line or an unreadable/malformed file.
 #include <impactfe/lcp/contact_problem.h>
 #include <impactfe/lcp/contact_routes.h>
+#include <impactfe/lcp/fclib_io.h>
 #include <impactfe/lcp/lemke.h>
 #include <impactfe/lcp/problem_io.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -45,6 +56,11 @@ namespace
          "               open elsewhere' (2D friction: block pivoting, then Lemke)\n"
          "  --form F     LCP form for friction-contact files (default auto)\n"
          "  --facets k   facets of the friction cone in 3D (default 8)\n"
+         "  --reference  contact problems: print the exact-cone error of P, and for\n"
+         "               FCLib files with a /solution that solution's error and\n"
+         "               |P - r|/|r|\n"
+         "  --write-fclib OUT  write the (one) contact problem and P to the FCLib\n"
+         "               HDF5 file OUT\n"
          "Output per problem: file n status pivots relative_error seconds\n";
   }
 
@@ -61,7 +77,8 @@ namespace
 int
 main(int argc, char **argv)
 {
-  bool                     solution = false, warm = false;
+  bool                     solution = false, warm = false, reference = false;
+  std::string              fclib_output;
   ContactOptions           options;
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i)
@@ -71,6 +88,10 @@ main(int argc, char **argv)
         solution = true;
       else if (a == "--warm")
         warm = true;
+      else if (a == "--reference")
+        reference = true;
+      else if (a == "--write-fclib" && i + 1 < argc)
+        fclib_output = argv[++i];
       else if (a == "--help" || a == "-h")
         {
           usage(std::cout);
@@ -117,13 +138,33 @@ main(int argc, char **argv)
       usage(std::cerr);
       return 2;
     }
+  if (!fclib_output.empty() && files.size() != 1)
+    {
+      std::cerr << "lcp-solve: error: --write-fclib needs exactly one input "
+                   "file, "
+                << files.size() << " given\n";
+      return 2;
+    }
 
   int exit_code = 0;
   for (const std::string &file : files)
     {
       try
         {
-          const ProblemFile   f  = read_problem_file(file);
+          ProblemFile   f;
+          FclibSolution file_solution;
+          if (is_hdf5_file(file))
+            {
+              FclibProblem fclib = read_fclib_file(file);
+              f.type             = ProblemType::friction_contact;
+              f.contact          = std::move(fclib.contact);
+              file_solution      = std::move(fclib.solution);
+            }
+          else
+            f = read_problem_file(file);
+          if (!fclib_output.empty() && f.type != ProblemType::friction_contact)
+            throw std::runtime_error(
+              file + ": --write-fclib needs a friction-contact problem");
           const auto          t0 = std::chrono::steady_clock::now();
           Result              r;
           std::size_t         n = 0;
@@ -167,7 +208,7 @@ main(int argc, char **argv)
                   s = solve_contact_problem(p, options, guess);
                 }
               else if (options.form == FrictionForm::automatic)
-                s = solve_contact_problem_by_routes(p, options).solution;
+                s = solve_contact_problem_by_groups(p, options).solution;
               else
                 s = solve_contact_problem(p, options);
               n = s.lcp.z.size();
@@ -208,6 +249,50 @@ main(int argc, char **argv)
                 print_vector("z", r.z);
               else
                 print_vector("P", P);
+            }
+          if (reference && f.type == ProblemType::friction_contact)
+            {
+              std::printf("reference %s exact_cone_error ", file.c_str());
+              if (P.empty())
+                std::printf("-");
+              else
+                std::printf("%.3e", exact_cone_error(f.contact, P));
+              if (file_solution.r.size() == f.contact.W.n_rows())
+                {
+                  double d2 = 0., r2 = 0.;
+                  for (std::size_t k = 0; k < P.size(); ++k)
+                    {
+                      d2 += (P[k] - file_solution.r[k]) *
+                            (P[k] - file_solution.r[k]);
+                      r2 += file_solution.r[k] * file_solution.r[k];
+                    }
+                  std::printf(" file_solution_exact_cone_error %.3e",
+                              exact_cone_error(f.contact, file_solution.r));
+                  if (!P.empty() && r2 > 0.)
+                    std::printf(" relative_difference %.3e",
+                                std::sqrt(d2 / std::max(r2, 1e-300)));
+                }
+              std::printf("\n");
+            }
+          if (!fclib_output.empty())
+            {
+              FclibSolution s;
+              if (!P.empty())
+                {
+                  s.r = P;
+                  f.contact.W.vmult(s.u, P);
+                  for (std::size_t k = 0; k < s.u.size(); ++k)
+                    s.u[k] += f.contact.free_velocity[k];
+                  for (unsigned int c = 0; c < f.contact.n_contacts; ++c)
+                    s.u[c * f.contact.n_directions] += f.contact.gap_term[c];
+                }
+              FclibInfo info;
+              info.title       = file;
+              info.description = "written by impactfe lcp-solve";
+              write_fclib_local_file(fclib_output,
+                                     f.contact,
+                                     info,
+                                     P.empty() ? nullptr : &s);
             }
         }
       catch (const std::exception &e)

@@ -557,6 +557,62 @@ namespace impactfe
 
 
 
+    double
+    exact_cone_error(const ContactProblem &p, const std::vector<double> &P)
+    {
+      const unsigned int  d = p.n_directions;
+      const std::size_t   m = std::size_t(d) * p.n_contacts;
+      std::vector<double> q = p.free_velocity, u;
+      if (P.size() != m || q.size() != m)
+        throw std::invalid_argument("exact_cone_error: inconsistent sizes");
+      for (unsigned int c = 0; c < p.n_contacts; ++c)
+        q[c * d] += p.gap_term[c];
+      p.W.vmult(u, P);
+      double q2 = 0., P2 = 0., u2 = 0., e2 = 0.;
+      for (std::size_t k = 0; k < m; ++k)
+        {
+          u[k] += q[k];
+          q2 += q[k] * q[k];
+          P2 += P[k] * P[k];
+          u2 += u[k] * u[k];
+        }
+      for (unsigned int c = 0; c < p.n_contacts; ++c)
+        {
+          const double *Pc = &P[c * d], *uc = &u[c * d];
+          const double  mu = d > 1 ? p.mu[c] : 0.;
+          double        uT = 0.;
+          for (unsigned int j = 1; j < d; ++j)
+            uT += uc[j] * uc[j];
+          uT = std::sqrt(uT);
+          // x = P - u~, then its projection on the cone
+          double x[3] = {Pc[0] - (uc[0] + mu * uT), 0., 0.}, xT = 0.;
+          for (unsigned int j = 1; j < d; ++j)
+            {
+              x[j] = Pc[j] - uc[j];
+              xT += x[j] * x[j];
+            }
+          xT             = std::sqrt(xT);
+          double proj[3] = {0., 0., 0.};
+          if (xT <= mu * x[0]) // inside the cone
+            std::copy(x, x + d, proj);
+          else if (mu * xT <= -x[0]) // inside the polar cone
+            ;
+          else // onto the cone's surface
+            {
+              const double a = (mu * xT + x[0]) / (1. + mu * mu);
+              proj[0]        = a;
+              for (unsigned int j = 1; j < d; ++j)
+                proj[j] = xT > 0. ? mu * a * x[j] / xT : 0.;
+            }
+          for (unsigned int j = 0; j < d; ++j)
+            e2 += (Pc[j] - proj[j]) * (Pc[j] - proj[j]);
+        }
+      const double scale = std::sqrt(std::max({q2, P2, u2}));
+      return scale > 0. ? std::sqrt(e2) / scale : std::sqrt(e2);
+    }
+
+
+
     // @sect3{ContactSolver: the solves of a run, with storage kept}
     ContactSolver::ContactSolver()
       : workspace(std::make_unique<Workspace>())

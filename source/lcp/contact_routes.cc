@@ -209,6 +209,40 @@ namespace impactfe
       const internal::FlushSubnormalsScope
         flush_subnormals; // see floating_point_mode.h
       check_contact_problem(p);
+
+      // The LCP forms put W beside blocks of 1 and mu; a W far from unit
+      // size (rigid bodies of small mass give 1e-5, a stiff FE mesh 1e3)
+      // makes Lemke's pivot test and the feasibility test compare numbers of
+      // different scales: seen as false rays (z0 < 0) and a false
+      // "infeasible" on LMGC90's PerioBox problem. V = W P + q and V / s =
+      // (W / s) P + q / s have the same impulses, so the problem is solved
+      // with W scaled to max |W| = 1; only velocities (w, sigma) are scaled.
+      if (first_attempt == nullptr)
+        {
+          double scale = 0.;
+          for (std::size_t i = 0; i < p.W.n_rows(); ++i)
+            for (std::size_t j = 0; j < p.W.n_cols(); ++j)
+              scale = std::max(scale, std::abs(p.W(i, j)));
+          if (scale > 0. && (scale < 0.5 || scale > 2.))
+            {
+              ContactProblem scaled = p;
+              for (std::size_t i = 0; i < scaled.W.n_rows(); ++i)
+                for (std::size_t j = 0; j < scaled.W.n_cols(); ++j)
+                  scaled.W(i, j) /= scale;
+              for (double &v : scaled.free_velocity)
+                v /= scale;
+              for (double &b : scaled.gap_term)
+                b /= scale;
+              RoutedContactSolution r =
+                solve_contact_problem_by_routes(scaled, options);
+              std::ostringstream m;
+              m << "W and q scaled by 1/" << scale << ": "
+                << r.solution.message;
+              r.solution.message = m.str();
+              return r;
+            }
+        }
+
       RoutedContactSolution out;
       unsigned int          total_pivots = 0;
 
@@ -406,6 +440,143 @@ namespace impactfe
                                const ContactSolution &failed)
     {
       return solve_contact_problem_by_routes(p, options, &failed).solution;
+    }
+
+
+
+    std::vector<std::vector<unsigned int>>
+    independent_contact_groups(const ContactProblem &p)
+    {
+      const unsigned int        n = p.n_contacts, d = p.n_directions;
+      std::vector<unsigned int> parent(n);
+      std::iota(parent.begin(), parent.end(), 0u);
+      const auto root = [&](unsigned int a) {
+        while (parent[a] != a)
+          a = parent[a] = parent[parent[a]];
+        return a;
+      };
+      for (std::size_t i = 0; i < std::size_t(n) * d; ++i)
+        {
+          const double *row = p.W.row(i);
+          for (std::size_t j = 0; j < std::size_t(n) * d; ++j)
+            if (row[j] != 0.)
+              parent[root(i / d)] = root(j / d);
+        }
+      std::vector<std::vector<unsigned int>> groups;
+      std::vector<int>                       group_of_root(n, -1);
+      for (unsigned int c = 0; c < n; ++c)
+        {
+          const unsigned int r = root(c);
+          if (group_of_root[r] < 0)
+            {
+              group_of_root[r] = int(groups.size());
+              groups.emplace_back();
+            }
+          groups[group_of_root[r]].push_back(c);
+        }
+      return groups;
+    }
+
+
+
+    GroupedContactSolution
+    solve_contact_problem_by_groups(const ContactProblem &p,
+                                    const ContactOptions &options)
+    {
+      check_contact_problem(p);
+      const auto             groups = independent_contact_groups(p);
+      GroupedContactSolution out;
+      out.n_groups = static_cast<unsigned int>(groups.size());
+      for (const auto &g : groups)
+        out.largest_group =
+          std::max(out.largest_group, static_cast<unsigned int>(g.size()));
+      if (groups.size() <= 1)
+        {
+          out.solution = solve_contact_problem_by_routes(p, options).solution;
+          return out;
+        }
+
+      const unsigned int d = p.n_directions;
+      ContactSolution   &s = out.solution;
+      s.P.assign(std::size_t(d) * p.n_contacts, 0.);
+      s.states.assign(p.n_contacts, ContactState::open);
+      s.lcp.status                           = Status::solved;
+      s.lcp.verification.ok                  = true;
+      s.lcp.verification.relative_error      = 0.;
+      s.form                                 = FrictionForm::frictionless;
+      unsigned int   n_solved_by_first_route = 0;
+      ContactProblem sub;
+      sub.n_directions = d;
+      for (std::size_t k = 0; k < groups.size(); ++k)
+        {
+          const std::vector<unsigned int> &g = groups[k];
+          const std::size_t                m = std::size_t(d) * g.size();
+          sub.n_contacts = static_cast<unsigned int>(g.size());
+          sub.W.reinit(m, m);
+          sub.free_velocity.resize(m);
+          sub.gap_term.resize(g.size());
+          sub.mu.resize(g.size());
+          for (std::size_t a = 0; a < g.size(); ++a)
+            {
+              sub.gap_term[a] = p.gap_term[g[a]];
+              sub.mu[a]       = p.mu[g[a]];
+              for (unsigned int i = 0; i < d; ++i)
+                {
+                  sub.free_velocity[a * d + i] = p.free_velocity[g[a] * d + i];
+                  const double *row = p.W.row(std::size_t(g[a]) * d + i);
+                  for (std::size_t b = 0; b < g.size(); ++b)
+                    for (unsigned int j = 0; j < d; ++j)
+                      sub.W(a * d + i, b * d + j) = row[g[b] * d + j];
+                }
+            }
+          const RoutedContactSolution r =
+            solve_contact_problem_by_routes(sub, options);
+          s.lcp.pivots += r.solution.lcp.pivots;
+          if (r.solution.lcp.status != Status::solved)
+            {
+              std::ostringstream m;
+              m << "group " << k + 1 << " of " << groups.size() << " ("
+                << g.size() << " contacts, the first is contact " << g[0]
+                << "): " << r.solution.message;
+              s.lcp.status  = r.solution.lcp.status;
+              s.lcp.message = m.str();
+              s.message     = s.lcp.message;
+              s.P.clear();
+              s.states.clear();
+              s.lcp.z.clear();
+              s.lcp.verification.ok = false;
+              return out;
+            }
+          if (r.successful_route == 0)
+            ++n_solved_by_first_route;
+          if (r.solution.form != FrictionForm::frictionless)
+            {
+              s.form     = r.solution.form;
+              s.n_facets = std::max(s.n_facets, r.solution.n_facets);
+            }
+          s.lcp.verification.ok =
+            s.lcp.verification.ok && r.solution.lcp.verification.ok;
+          s.lcp.verification.relative_error =
+            std::max(s.lcp.verification.relative_error,
+                     r.solution.lcp.verification.relative_error);
+          s.lcp.z.insert(s.lcp.z.end(),
+                         r.solution.lcp.z.begin(),
+                         r.solution.lcp.z.end());
+          for (std::size_t a = 0; a < g.size(); ++a)
+            {
+              s.states[g[a]] = r.solution.states[a];
+              for (unsigned int i = 0; i < d; ++i)
+                s.P[g[a] * d + i] = r.solution.P[a * d + i];
+            }
+        }
+      std::ostringstream m;
+      m << groups.size() << " independent groups of contacts (largest "
+        << out.largest_group << " contacts) solved separately; "
+        << n_solved_by_first_route << " by their first route, "
+        << groups.size() - n_solved_by_first_route << " by a later one";
+      s.lcp.message = m.str();
+      s.message     = s.lcp.message;
+      return out;
     }
   } // namespace lcp
 } // namespace impactfe

@@ -1,3 +1,4 @@
+#include <impactfe/lcp/fclib_io.h>
 #include <impactfe/lcp/problem_io.h>
 
 #include <algorithm>
@@ -502,6 +503,13 @@ namespace impactfe
     ProblemFile
     read_problem_file(const std::string &filename)
     {
+      if (is_hdf5_file(filename))
+        {
+          ProblemFile file;
+          file.type    = ProblemType::friction_contact;
+          file.contact = read_fclib_file(filename).contact;
+          return file;
+        }
       std::ifstream in(filename);
       if (!in)
         throw std::runtime_error(filename +

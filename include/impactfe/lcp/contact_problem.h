@@ -211,6 +211,22 @@ namespace impactfe
                             const std::vector<double> &P,
                             double                     tolerance = 1e-8);
 
+    /**
+     * The exact-cone error of @p P, a standard measure of the friction
+     * contact literature (as used by FCLib-based comparisons): with
+     * u = V_free + W P (+ b_N on the normal rows) and, per contact,
+     * u~ = u + mu |u_T| e_N,
+     *   error = sqrt(sum_c |P_c - proj_K(P_c - u~_c)|^2)
+     *           / max(|q|, |P|, |u|),
+     * q = V_free (+ b_N), Euclidean norms, proj_K the projection on the
+     * circular cone |P_T| <= mu P_N. It is 0 exactly at a solution of the
+     * circular-cone problem; a polygonal-cone answer in 3D leaves the error
+     * of its facets.
+     */
+    double
+    exact_cone_error(const ContactProblem      &problem,
+                     const std::vector<double> &P);
+
 
 
     /**

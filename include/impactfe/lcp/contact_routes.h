@@ -70,6 +70,45 @@ namespace impactfe
       const ContactSolution *first_attempt = nullptr);
 
     /**
+     * The contacts in groups that W does not couple: contacts a and b are in
+     * one group if W has a nonzero entry between their rows, directly or
+     * through other contacts (the connected components of the contact
+     * graph; in a granular medium, the clusters of touching grains). Groups
+     * are listed by their smallest contact, each sorted.
+     */
+    std::vector<std::vector<unsigned int>>
+    independent_contact_groups(const ContactProblem &problem);
+
+    /// What solve_contact_problem_by_groups() returns.
+    struct GroupedContactSolution
+    {
+      /**
+       * P of the whole problem; lcp.status solved if every group was solved
+       * (otherwise the status of the first group that was not), lcp.pivots
+       * summed, lcp.verification.ok if every group's answer passed verify()
+       * and lcp.verification.relative_error their largest; lcp.z the groups'
+       * z one after the other (each in the variables of its own form), so
+       * its size is the total size of the LCPs solved.
+       */
+      ContactSolution solution;
+      unsigned int    n_groups = 0;
+      /// Contacts of the largest group.
+      unsigned int largest_group = 0;
+    };
+
+    /**
+     * The contact problem solved group by group (independent_contact_groups()):
+     * the groups are independent problems, so the impulses are those of the
+     * whole problem, and the cost is that of the groups' LCPs instead of one
+     * LCP of the size of all contacts. Each group is solved by
+     * solve_contact_problem_by_routes(). A problem of one group is solved by
+     * the routes directly.
+     */
+    GroupedContactSolution
+    solve_contact_problem_by_groups(const ContactProblem &problem,
+                                    const ContactOptions &options = {});
+
+    /**
      * For solve_contact_problem() with FrictionForm::automatic: @p failed is
      * its unsolved result (route 1, cold or warm); the other routes are
      * tried. Returns the routed solution, message "<failed message>; then

@@ -66,6 +66,7 @@ namespace impactfe
     read_problem(std::istream &in, const std::string &name);
 
     /// read_problem() on a file; an unreadable file is a std::runtime_error.
+    /// An HDF5 file is read as an FCLib problem (read_fclib_file()).
     ProblemFile
     read_problem_file(const std::string &filename);
 
