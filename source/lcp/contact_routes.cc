@@ -196,7 +196,33 @@ namespace impactfe
             }
           b[n + i] = q[i];
         }
-      return solve_lemke(A, b, options).status;
+      const Result r = solve_lemke(A, b, options);
+      if (r.status != Status::ray_termination)
+        return r.status;
+      // A ray proves infeasibility in exact arithmetic; in floating point
+      // its x part must be a Farkas certificate: x >= 0, M^T x <= 0,
+      // q^T x < 0, each to rounding. Otherwise nothing is proven.
+      const double        eps = std::numeric_limits<double>::epsilon();
+      std::vector<double> x(r.ray_z.begin() + n, r.ray_z.end());
+      double              x_max = 0., qx = 0., q_max = 0.;
+      for (std::size_t i = 0; i < n; ++i)
+        {
+          x_max = std::max(x_max, std::abs(x[i]));
+          q_max = std::max(q_max, std::abs(q[i]));
+          qx += q[i] * x[i];
+        }
+      const double tol = options.verification_tolerance_factor * eps *
+                         std::max<std::size_t>(n, 1);
+      bool certified = x_max > 0. && qx < -tol * q_max * x_max * double(n);
+      for (std::size_t i = 0; certified && i < n; ++i)
+        {
+          double s = 0.;
+          for (std::size_t j = 0; j < n; ++j)
+            s += M(j, i) * x[j];
+          certified = x[i] >= -tol * x_max &&
+                      s <= tol * M.max_abs() * x_max * double(n);
+        }
+      return certified ? Status::ray_termination : Status::numerical_failure;
     }
 
 
@@ -219,10 +245,7 @@ namespace impactfe
       // with W scaled to max |W| = 1; only velocities (w, sigma) are scaled.
       if (first_attempt == nullptr)
         {
-          double scale = 0.;
-          for (std::size_t i = 0; i < p.W.n_rows(); ++i)
-            for (std::size_t j = 0; j < p.W.n_cols(); ++j)
-              scale = std::max(scale, std::abs(p.W(i, j)));
+          const double scale = p.W.max_abs();
           if (scale > 0. && (scale < 0.5 || scale > 2.))
             {
               ContactProblem scaled = p;

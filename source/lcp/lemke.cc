@@ -377,6 +377,12 @@ namespace impactfe
                     }
                   result.driving_variable = entering;
                   fail(result, Status::ray_termination);
+                  result.ray_z.assign(n, 0.);
+                  if (entering >= n)
+                    result.ray_z[entering - n] = 1.;
+                  for (int p = 0; p < n; ++p)
+                    if (basic[p] >= n && basic[p] < 2 * n)
+                      result.ray_z[basic[p] - n] = -y[p];
                   internal::set_text(
                     result.message,
                     "ray termination after %u pivots: %s%d cannot enter (no "
@@ -800,6 +806,7 @@ namespace impactfe
           result.status = status;
           result.z.clear();
           result.w.clear();
+          result.ray_z.clear();
           result.verification = Verification();
           result.message.assign(message);
         }

@@ -124,8 +124,11 @@ namespace impactfe
      * linear program (size 2n, M_LP = [0 -M^T; M 0], q_LP = (0, q)): M_LP is
      * skew-symmetric, hence copositive-plus, so a ray proves infeasibility
      * (Cottle-Pang-Stone 1992, Thm 4.4.13); otherwise a feasible z is found.
-     * Returns the Lemke status on the LP (solved: feasible; ray_termination:
-     * infeasible; anything else: undecided).
+     * In floating point a ray is accepted as proof only if the x part of its
+     * direction is a Farkas certificate to rounding: x >= 0, M^T x <= 0,
+     * q^T x < 0. Returns the Lemke status on the LP (solved: feasible;
+     * ray_termination: infeasible, certified; numerical_failure for a ray
+     * whose certificate does not hold, and anything else: undecided).
      */
     Status
     lcp_feasibility(const DenseMatrix         &M,

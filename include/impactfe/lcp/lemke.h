@@ -157,6 +157,11 @@ namespace impactfe
       /// On ray termination: the variable that could not enter, encoded as
       /// i for w_i and n + i for z_i (0 <= i < n). -1 otherwise.
       int driving_variable = -1;
+      /// On ray termination: the z part of the ray's direction (the
+      /// driving variable 1, the basic variables -B^{-1} a), empty otherwise.
+      /// For a copositive-plus M it is the certificate z^h >= 0, M z^h >= 0,
+      /// q^T z^h < 0 of CPS Thm 4.4.13, to be checked in floating point.
+      std::vector<double> ray_z;
       /// verify() on the returned (z, w); ok == false when z, w are empty.
       Verification verification;
       /// Which start was used.
