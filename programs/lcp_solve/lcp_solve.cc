@@ -3,7 +3,7 @@
 // solver.
 //
 //   lcp-solve [--solution] [--warm] [--form klarbring|facets|auto] [--facets k]
-//             [--reference] [--write-fclib OUT] FILE...
+//             [--reference] [--verbose] [--write-fclib OUT] FILE...
 //
 // --reference prints, for contact problems, the exact-cone error of the
 // answer and, for FCLib files that carry a /solution, that solution's error
@@ -56,6 +56,7 @@ namespace
          "               open elsewhere' (2D friction: block pivoting, then Lemke)\n"
          "  --form F     LCP form for friction-contact files (default auto)\n"
          "  --facets k   facets of the friction cone in 3D (default 8)\n"
+         "  --verbose    print how each problem was solved (forms, routes, groups)\n"
          "  --reference  contact problems: print the exact-cone error of P, and for\n"
          "               FCLib files with a /solution that solution's error and\n"
          "               |P - r|/|r|\n"
@@ -77,7 +78,7 @@ namespace
 int
 main(int argc, char **argv)
 {
-  bool                     solution = false, warm = false, reference = false;
+  bool solution = false, warm = false, reference = false, verbose = false;
   std::string              fclib_output;
   ContactOptions           options;
   std::vector<std::string> files;
@@ -90,6 +91,8 @@ main(int argc, char **argv)
         warm = true;
       else if (a == "--reference")
         reference = true;
+      else if (a == "--verbose")
+        verbose = true;
       else if (a == "--write-fclib" && i + 1 < argc)
         fclib_output = argv[++i];
       else if (a == "--help" || a == "-h")
@@ -243,6 +246,8 @@ main(int argc, char **argv)
                            r.message.c_str());
               exit_code = std::max(exit_code, 1);
             }
+          if (verbose && r.status == Status::solved)
+            std::printf("how %s: %s\n", file.c_str(), r.message.c_str());
           if (solution && r.status == Status::solved)
             {
               if (f.type == ProblemType::lcp)

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <sstream>
 
@@ -219,8 +220,8 @@ namespace impactfe
           double s = 0.;
           for (std::size_t j = 0; j < n; ++j)
             s += M(j, i) * x[j];
-          certified = x[i] >= -tol * x_max &&
-                      s <= tol * M.max_abs() * x_max * double(n);
+          certified =
+            x[i] >= -tol * x_max && s <= tol * M.max_abs() * x_max * double(n);
         }
       return certified ? Status::ray_termination : Status::numerical_failure;
     }
@@ -467,38 +468,92 @@ namespace impactfe
 
 
 
+    namespace
+    {
+      /// The groups of the contacts @p contacts (sorted) of @p p that W
+      /// does not couple, counting only W's entries among them.
+      std::vector<std::vector<unsigned int>>
+      groups_among(const ContactProblem            &p,
+                   const std::vector<unsigned int> &contacts)
+      {
+        const unsigned int        d = p.n_directions;
+        const std::size_t         n = contacts.size();
+        std::vector<unsigned int> parent(n);
+        std::iota(parent.begin(), parent.end(), 0u);
+        const auto root = [&](unsigned int a) {
+          while (parent[a] != a)
+            a = parent[a] = parent[parent[a]];
+          return a;
+        };
+        for (std::size_t a = 0; a < n; ++a)
+          for (unsigned int i = 0; i < d; ++i)
+            {
+              const double *row = p.W.row(std::size_t(contacts[a]) * d + i);
+              for (std::size_t b = 0; b < n; ++b)
+                for (unsigned int j = 0; j < d; ++j)
+                  if (row[std::size_t(contacts[b]) * d + j] != 0.)
+                    parent[root(a)] = root(b);
+            }
+        std::vector<std::vector<unsigned int>> groups;
+        std::vector<int>                       group_of_root(n, -1);
+        for (std::size_t a = 0; a < n; ++a)
+          {
+            const unsigned int r = root(a);
+            if (group_of_root[r] < 0)
+              {
+                group_of_root[r] = int(groups.size());
+                groups.emplace_back();
+              }
+            groups[group_of_root[r]].push_back(contacts[a]);
+          }
+        return groups;
+      }
+    } // namespace
+
+
+
     std::vector<std::vector<unsigned int>>
     independent_contact_groups(const ContactProblem &p)
     {
-      const unsigned int        n = p.n_contacts, d = p.n_directions;
-      std::vector<unsigned int> parent(n);
-      std::iota(parent.begin(), parent.end(), 0u);
-      const auto root = [&](unsigned int a) {
-        while (parent[a] != a)
-          a = parent[a] = parent[parent[a]];
-        return a;
-      };
-      for (std::size_t i = 0; i < std::size_t(n) * d; ++i)
-        {
-          const double *row = p.W.row(i);
-          for (std::size_t j = 0; j < std::size_t(n) * d; ++j)
-            if (row[j] != 0.)
-              parent[root(i / d)] = root(j / d);
-        }
-      std::vector<std::vector<unsigned int>> groups;
-      std::vector<int>                       group_of_root(n, -1);
-      for (unsigned int c = 0; c < n; ++c)
-        {
-          const unsigned int r = root(c);
-          if (group_of_root[r] < 0)
-            {
-              group_of_root[r] = int(groups.size());
-              groups.emplace_back();
-            }
-          groups[group_of_root[r]].push_back(c);
-        }
-      return groups;
+      std::vector<unsigned int> all(p.n_contacts);
+      std::iota(all.begin(), all.end(), 0u);
+      return groups_among(p, all);
     }
+
+
+
+    namespace
+    {
+      /// The contacts @p contacts of @p p as a problem of their own.
+      void
+      restrict_to(const ContactProblem            &p,
+                  const std::vector<unsigned int> &contacts,
+                  ContactProblem                  &sub)
+      {
+        const unsigned int d = p.n_directions;
+        const std::size_t  m = std::size_t(d) * contacts.size();
+        sub.n_directions     = d;
+        sub.n_contacts       = static_cast<unsigned int>(contacts.size());
+        sub.W.reinit(m, m);
+        sub.free_velocity.resize(m);
+        sub.gap_term.resize(contacts.size());
+        sub.mu.resize(contacts.size());
+        for (std::size_t a = 0; a < contacts.size(); ++a)
+          {
+            sub.gap_term[a] = p.gap_term[contacts[a]];
+            sub.mu[a]       = p.mu[contacts[a]];
+            for (unsigned int i = 0; i < d; ++i)
+              {
+                sub.free_velocity[a * d + i] =
+                  p.free_velocity[contacts[a] * d + i];
+                const double *row = p.W.row(std::size_t(contacts[a]) * d + i);
+                for (std::size_t b = 0; b < contacts.size(); ++b)
+                  for (unsigned int j = 0; j < d; ++j)
+                    sub.W(a * d + i, b * d + j) = row[contacts[b] * d + j];
+              }
+          }
+      }
+    } // namespace
 
 
 
@@ -507,96 +562,159 @@ namespace impactfe
                                     const ContactOptions &options)
     {
       check_contact_problem(p);
-      const auto             groups = independent_contact_groups(p);
+      const unsigned int d = p.n_directions, n = p.n_contacts;
+      const double       tol = options.lemke.verification_tolerance_factor *
+                         std::numeric_limits<double>::epsilon() *
+                         std::max(n, 1u);
       GroupedContactSolution out;
-      out.n_groups = static_cast<unsigned int>(groups.size());
-      for (const auto &g : groups)
-        out.largest_group =
-          std::max(out.largest_group, static_cast<unsigned int>(g.size()));
-      if (groups.size() <= 1)
-        {
-          out.solution = solve_contact_problem_by_routes(p, options).solution;
-          return out;
-        }
+      ContactSolution       &s = out.solution;
 
-      const unsigned int d = p.n_directions;
-      ContactSolution   &s = out.solution;
-      s.P.assign(std::size_t(d) * p.n_contacts, 0.);
-      s.states.assign(p.n_contacts, ContactState::open);
-      s.lcp.status                           = Status::solved;
-      s.lcp.verification.ok                  = true;
-      s.lcp.verification.relative_error      = 0.;
-      s.form                                 = FrictionForm::frictionless;
-      unsigned int   n_solved_by_first_route = 0;
-      ContactProblem sub;
-      sub.n_directions = d;
-      for (std::size_t k = 0; k < groups.size(); ++k)
+      // In a group of more than large_group contacts only those that
+      // approach without impulse (V_free,N + b_N < 0) start as candidates;
+      // one that the impulses push in (V_N + b_N < 0 with P = 0) joins them
+      // and the candidates are solved again. Contacts left out have P = 0
+      // and V_N + b_N >= 0: open, which satisfies every condition, so the
+      // answer is the whole problem's. Smaller groups are solved whole, in
+      // one round (their LCPs are cheap; rounds would cost more).
+      constexpr std::size_t large_group = 500;
+      std::vector<char>     candidate(n, true);
+      for (const auto &g : independent_contact_groups(p))
+        if (g.size() > large_group)
+          for (const unsigned int c : g)
+            candidate[c] = p.free_velocity[c * d] + p.gap_term[c] < 0.;
+      // Groups already solved, by their contacts: a group whose contacts
+      // did not change between rounds keeps its answer.
+      struct SolvedGroup
+      {
+        ContactSolution solution;
+        bool            first_route = false;
+      };
+      std::map<std::vector<unsigned int>, SolvedGroup> solved;
+      std::vector<unsigned int>                        C;
+      ContactProblem                                   group;
+      std::vector<ContactState>                        guess, last_states;
+      unsigned int total_pivots = 0, n_first_route = 0;
+      for (;;)
         {
-          const std::vector<unsigned int> &g = groups[k];
-          const std::size_t                m = std::size_t(d) * g.size();
-          sub.n_contacts = static_cast<unsigned int>(g.size());
-          sub.W.reinit(m, m);
-          sub.free_velocity.resize(m);
-          sub.gap_term.resize(g.size());
-          sub.mu.resize(g.size());
-          for (std::size_t a = 0; a < g.size(); ++a)
+          ++out.candidate_rounds;
+          C.clear();
+          for (unsigned int c = 0; c < n; ++c)
+            if (candidate[c])
+              C.push_back(c);
+          s = ContactSolution();
+          s.P.assign(std::size_t(d) * n, 0.);
+          s.states.assign(n, ContactState::open);
+          s.lcp.status                      = Status::solved;
+          s.lcp.verification.ok             = true;
+          s.lcp.verification.relative_error = 0.;
+          s.form                            = FrictionForm::frictionless;
+          const auto groups                 = groups_among(p, C);
+          out.n_candidates  = static_cast<unsigned int>(C.size());
+          out.n_groups      = static_cast<unsigned int>(groups.size());
+          out.largest_group = 0;
+          n_first_route     = 0;
+          for (std::size_t k = 0; k < groups.size(); ++k)
             {
-              sub.gap_term[a] = p.gap_term[g[a]];
-              sub.mu[a]       = p.mu[g[a]];
-              for (unsigned int i = 0; i < d; ++i)
+              const std::vector<unsigned int> &g = groups[k];
+              out.largest_group                  = std::max(out.largest_group,
+                                           static_cast<unsigned int>(g.size()));
+              const std::vector<unsigned int> &contacts = g;
+              auto                             known    = solved.find(contacts);
+              if (known == solved.end())
                 {
-                  sub.free_velocity[a * d + i] = p.free_velocity[g[a] * d + i];
-                  const double *row = p.W.row(std::size_t(g[a]) * d + i);
-                  for (std::size_t b = 0; b < g.size(); ++b)
-                    for (unsigned int j = 0; j < d; ++j)
-                      sub.W(a * d + i, b * d + j) = row[g[b] * d + j];
+                  restrict_to(p, contacts, group);
+                  // first round: cold, by the routes; later rounds start
+                  // from the last round's states (new candidates, pushed
+                  // in: stick), and fall back on the routes
+                  RoutedContactSolution r;
+                  if (out.candidate_rounds == 1)
+                    r = solve_contact_problem_by_routes(group, options);
+                  else
+                    {
+                      guess.resize(contacts.size());
+                      for (std::size_t a = 0; a < contacts.size(); ++a)
+                        guess[a] =
+                          last_states[contacts[a]] == ContactState::open ?
+                            ContactState::stick :
+                            last_states[contacts[a]];
+                      r.solution = solve_contact_problem(group, options, guess);
+                      r.successful_route =
+                        r.solution.lcp.status == Status::solved ? 0 : -1;
+                    }
+                  total_pivots += r.solution.lcp.pivots;
+                  if (r.solution.lcp.status != Status::solved)
+                    {
+                      std::ostringstream m;
+                      m << "group " << k + 1 << " of " << groups.size() << " ("
+                        << g.size() << " contacts, the first is contact "
+                        << contacts[0] << "): " << r.solution.message;
+                      s.lcp.status  = r.solution.lcp.status;
+                      s.lcp.pivots  = total_pivots;
+                      s.lcp.message = m.str();
+                      s.message     = s.lcp.message;
+                      s.P.clear();
+                      s.states.clear();
+                      s.lcp.z.clear();
+                      s.lcp.verification.ok = false;
+                      return out;
+                    }
+                  known = solved
+                            .emplace(contacts,
+                                     SolvedGroup{std::move(r.solution),
+                                                 r.successful_route == 0})
+                            .first;
+                }
+              const ContactSolution &r = known->second.solution;
+              n_first_route += known->second.first_route;
+              if (r.form != FrictionForm::frictionless)
+                {
+                  s.form     = r.form;
+                  s.n_facets = std::max(s.n_facets, r.n_facets);
+                }
+              s.lcp.verification.ok =
+                s.lcp.verification.ok && r.lcp.verification.ok;
+              s.lcp.verification.relative_error =
+                std::max(s.lcp.verification.relative_error,
+                         r.lcp.verification.relative_error);
+              s.lcp.z.insert(s.lcp.z.end(), r.lcp.z.begin(), r.lcp.z.end());
+              for (std::size_t a = 0; a < contacts.size(); ++a)
+                {
+                  s.states[contacts[a]] = r.states[a];
+                  for (unsigned int i = 0; i < d; ++i)
+                    s.P[contacts[a] * d + i] = r.P[a * d + i];
                 }
             }
-          const RoutedContactSolution r =
-            solve_contact_problem_by_routes(sub, options);
-          s.lcp.pivots += r.solution.lcp.pivots;
-          if (r.solution.lcp.status != Status::solved)
-            {
-              std::ostringstream m;
-              m << "group " << k + 1 << " of " << groups.size() << " ("
-                << g.size() << " contacts, the first is contact " << g[0]
-                << "): " << r.solution.message;
-              s.lcp.status  = r.solution.lcp.status;
-              s.lcp.message = m.str();
-              s.message     = s.lcp.message;
-              s.P.clear();
-              s.states.clear();
-              s.lcp.z.clear();
-              s.lcp.verification.ok = false;
-              return out;
-            }
-          if (r.successful_route == 0)
-            ++n_solved_by_first_route;
-          if (r.solution.form != FrictionForm::frictionless)
-            {
-              s.form     = r.solution.form;
-              s.n_facets = std::max(s.n_facets, r.solution.n_facets);
-            }
-          s.lcp.verification.ok =
-            s.lcp.verification.ok && r.solution.lcp.verification.ok;
-          s.lcp.verification.relative_error =
-            std::max(s.lcp.verification.relative_error,
-                     r.solution.lcp.verification.relative_error);
-          s.lcp.z.insert(s.lcp.z.end(),
-                         r.solution.lcp.z.begin(),
-                         r.solution.lcp.z.end());
-          for (std::size_t a = 0; a < g.size(); ++a)
-            {
-              s.states[g[a]] = r.solution.states[a];
-              for (unsigned int i = 0; i < d; ++i)
-                s.P[g[a] * d + i] = r.solution.P[a * d + i];
-            }
+          s.lcp.pivots = total_pivots;
+          last_states  = s.states;
+
+          // the contacts left out must not penetrate: V_N = (W P)_N + q_N
+          // with P nonzero on the candidates' rows only
+          const double scale = linfty_norm(p.free_velocity) +
+                               linfty_norm(p.gap_term) +
+                               p.W.max_abs() * linfty_norm(s.P);
+          bool added = false;
+          for (unsigned int c = 0; c < n && C.size() < n; ++c)
+            if (!candidate[c])
+              {
+                const double *row = p.W.row(std::size_t(c) * d);
+                double        VN  = p.free_velocity[c * d] + p.gap_term[c];
+                for (const unsigned int b : C)
+                  for (unsigned int j = 0; j < d; ++j)
+                    VN += row[b * d + j] * s.P[b * d + j];
+                if (VN < -tol * scale)
+                  candidate[c] = added = true;
+              }
+          if (!added)
+            break;
         }
       std::ostringstream m;
-      m << groups.size() << " independent groups of contacts (largest "
-        << out.largest_group << " contacts) solved separately; "
-        << n_solved_by_first_route << " by their first route, "
-        << groups.size() - n_solved_by_first_route << " by a later one";
+      m << out.n_candidates << " of " << n
+        << " contacts could touch (candidates after " << out.candidate_rounds
+        << (out.candidate_rounds == 1 ? " round" : " rounds") << "), in "
+        << out.n_groups << " independent groups (largest " << out.largest_group
+        << " contacts) solved separately; " << n_first_route
+        << " by their first route, " << out.n_groups - n_first_route
+        << " by a later one";
       s.lcp.message = m.str();
       s.message     = s.lcp.message;
       return out;

@@ -73,16 +73,18 @@ namespace impactfe
         std::vector<double> value;
       };
 
-      class Reader
+      /// An open HDF5 file and the error messages that name it.
+      class OpenFile
       {
       public:
-        explicit Reader(const std::string &filename_)
+        OpenFile(const std::string &filename_,
+                 const hid_t        id,
+                 const char        *what_failed)
           : filename(filename_)
-          , file(H5Fopen(filename_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT),
-                 H5Fclose)
+          , file(id, H5Fclose)
         {
           if (!file.valid())
-            fail("cannot be opened as an HDF5 file");
+            fail(what_failed);
         }
 
         [[noreturn]] void
@@ -90,6 +92,20 @@ namespace impactfe
         {
           throw std::runtime_error(filename + ": " + what);
         }
+
+      protected:
+        std::string  filename;
+        const Handle file;
+      };
+
+      class Reader : public OpenFile
+      {
+      public:
+        explicit Reader(const std::string &filename)
+          : OpenFile(filename,
+                     H5Fopen(filename.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT),
+                     "cannot be opened as an HDF5 file")
+        {}
 
         /// True if every component of the absolute @p path exists.
         bool
@@ -262,10 +278,6 @@ namespace impactfe
             s.v = read_array<double>(path + "/v");
           return s;
         }
-
-      private:
-        std::string  filename;
-        const Handle file;
       };
 
 
@@ -414,26 +426,17 @@ namespace impactfe
       }
 
 
-      class Writer
+      class Writer : public OpenFile
       {
       public:
-        explicit Writer(const std::string &filename_)
-          : filename(filename_)
-          , file(H5Fcreate(filename_.c_str(),
-                           H5F_ACC_TRUNC,
-                           H5P_DEFAULT,
-                           H5P_DEFAULT),
-                 H5Fclose)
-        {
-          if (!file.valid())
-            fail("cannot be created");
-        }
-
-        [[noreturn]] void
-        fail(const std::string &what) const
-        {
-          throw std::runtime_error(filename + ": " + what);
-        }
+        explicit Writer(const std::string &filename)
+          : OpenFile(filename,
+                     H5Fcreate(filename.c_str(),
+                               H5F_ACC_TRUNC,
+                               H5P_DEFAULT,
+                               H5P_DEFAULT),
+                     "cannot be created")
+        {}
 
         void
         group(const std::string &path)
@@ -501,10 +504,6 @@ namespace impactfe
           if (H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
             fail("cannot be written");
         }
-
-      private:
-        std::string  filename;
-        const Handle file;
       };
     } // namespace
 

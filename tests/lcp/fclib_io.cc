@@ -8,7 +8,8 @@
 //  3. one clear error per kind of bad file;
 //  4. the exact-cone error on a hand-computed case;
 //  5. three independent problems interleaved in one: the groups are found,
-//     and solving them separately gives the whole problem's impulses;
+//     and solving them separately gives the whole problem's impulses; a
+//     600-contact chain solved by rounds of candidates gives them too;
 //  6. the same rank-deficient 3D problem with W and q scaled by 1e-8 .. 1e6:
 //     always solved, the same impulses (LMGC90's PerioBox file, W ~ 1e-5,
 //     ended in rays and a false "infeasible" before W was scaled).
@@ -545,6 +546,50 @@ main()
           "error < 1e-12");
     deallog << "  separated/sticking/sliding " << v.n_separated << '/'
             << v.n_sticking << '/' << v.n_sliding << std::endl;
+  }
+
+  // 5b. One group of 600 contacts (a chain, W block tridiagonal and
+  // diagonally dominant): only the approaching contacts and those their
+  // neighbours push in enter the LCPs, in rounds; the answer is the whole
+  // problem's, which is computed here as one LCP too.
+  {
+    const unsigned int n = 600;
+    ContactProblem     p;
+    p.n_directions = 2;
+    p.n_contacts   = n;
+    p.W.reinit(2 * n, 2 * n);
+    p.free_velocity.resize(2 * n);
+    p.gap_term.assign(n, 0.);
+    p.mu.assign(n, 0.3);
+    for (unsigned int c = 0; c < n; ++c)
+      {
+        p.W(2 * c, 2 * c)         = 3.;
+        p.W(2 * c + 1, 2 * c + 1) = 2.;
+        p.W(2 * c, 2 * c + 1) = p.W(2 * c + 1, 2 * c) = 0.2;
+        if (c + 1 < n)
+          {
+            const unsigned int a = 2 * c, b = 2 * (c + 1);
+            p.W(a, b) = p.W(b, a) = -0.6;
+            p.W(a + 1, b + 1) = p.W(b + 1, a + 1) = -0.4;
+            p.W(a, b + 1) = p.W(b + 1, a) = p.W(a + 1, b) = p.W(b, a + 1) = 0.1;
+          }
+        p.free_velocity[2 * c] =
+          rng.uniform() < 0.1 ? rng.uniform(-1., 0.) : rng.uniform(0., 0.3);
+        p.free_velocity[2 * c + 1] = rng.uniform(-0.5, 0.5);
+      }
+    const GroupedContactSolution s     = solve_contact_problem_by_groups(p);
+    const RoutedContactSolution  whole = solve_contact_problem_by_routes(p);
+    const ContactVerification    v = verify_contact_solution(p, s.solution.P);
+    check(s.solution.lcp.status == Status::solved && v.ok &&
+            s.candidate_rounds > 1 && s.n_candidates < n &&
+            exact_cone_error(p, s.solution.P) < 1e-12 &&
+            whole.solution.lcp.status == Status::solved &&
+            max_relative_difference(s.solution.P, whole.solution.P) < 1e-8,
+          "600-contact chain by candidate rounds: verified, exact-cone error "
+          "< 1e-12, the whole problem's P");
+    deallog << "  candidates " << s.n_candidates << " of " << n << " after "
+            << s.candidate_rounds << " rounds, " << s.n_groups << " groups"
+            << std::endl;
   }
 
   // 6. Scale: a rank-deficient 3D problem (12 contacts, 20 degrees of

@@ -91,18 +91,28 @@ namespace impactfe
        * its size is the total size of the LCPs solved.
        */
       ContactSolution solution;
-      unsigned int    n_groups = 0;
+      /// Contacts in the LCPs solved (the candidates of the last round).
+      unsigned int n_candidates = 0;
+      /// Rounds of candidates: 1 if no contact left out was pushed in.
+      unsigned int candidate_rounds = 0;
+      /// Groups of the candidates in the last round.
+      unsigned int n_groups = 0;
       /// Contacts of the largest group.
       unsigned int largest_group = 0;
     };
 
     /**
-     * The contact problem solved group by group (independent_contact_groups()):
-     * the groups are independent problems, so the impulses are those of the
-     * whole problem, and the cost is that of the groups' LCPs instead of one
-     * LCP of the size of all contacts. Each group is solved by
-     * solve_contact_problem_by_routes(). A problem of one group is solved by
-     * the routes directly.
+     * The contact problem reduced to the contacts that can touch and solved
+     * group by group. In groups of independent_contact_groups() with more
+     * than 500 contacts, candidates are the contacts that approach without
+     * impulse (V_free,N + b_N < 0); the others get P = 0, and a contact that
+     * the candidates' impulses push in (V_N + b_N < 0) becomes a candidate
+     * for another round, until none does. The candidates are split by
+     * independent_contact_groups(): the groups are independent problems,
+     * each solved by solve_contact_problem_by_routes(). The impulses are a
+     * solution of the whole problem (a contact left out is open with
+     * V_N + b_N >= 0, which satisfies Signorini and Coulomb), at the cost of
+     * the groups' LCPs instead of one LCP of the size of all contacts.
      */
     GroupedContactSolution
     solve_contact_problem_by_groups(const ContactProblem &problem,
