@@ -332,7 +332,7 @@ main()
             // disk, to be looked at with lcp-solve
             if (status == Status::solved || status == Status::infeasible)
               std::remove(file.c_str());
-            std::string                 why;
+            std::string why;
             if (status == Status::solved)
               {
                 if (check_solution(p, r.solution.P, r.solution.n_facets, why))
