@@ -458,13 +458,10 @@ namespace impactfe
           const hsize_t size = values.size();
           const Handle  space(H5Screate_simple(1, &size, nullptr), H5Sclose);
           const bool    integral = std::is_integral<T>::value;
-          const Handle  set(H5Dcreate2(file,
-                                      path.c_str(),
-                                      integral ? H5T_STD_I32LE : H5T_IEEE_F64LE,
-                                      space,
-                                      H5P_DEFAULT,
-                                      H5P_DEFAULT,
-                                      H5P_DEFAULT),
+          const Handle  set(create_dataset(path,
+                                          integral ? H5T_STD_I32LE :
+                                                      H5T_IEEE_F64LE,
+                                          space),
                            H5Dclose);
           if (!set.valid() ||
               (size > 0 &&
@@ -484,18 +481,25 @@ namespace impactfe
           H5Tset_size(type, text.size() + 1);
           H5Tset_strpad(type, H5T_STR_NULLTERM);
           const Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-          const Handle set(H5Dcreate2(file,
-                                      path.c_str(),
-                                      type,
-                                      space,
-                                      H5P_DEFAULT,
-                                      H5P_DEFAULT,
-                                      H5P_DEFAULT),
-                           H5Dclose);
+          const Handle set(create_dataset(path, type, space), H5Dclose);
           if (!set.valid() ||
               H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, text.c_str()) <
                 0)
             fail("cannot write the string " + path);
+        }
+
+        hid_t
+        create_dataset(const std::string &path,
+                       const hid_t        type,
+                       const hid_t        space)
+        {
+          return H5Dcreate2(file,
+                            path.c_str(),
+                            type,
+                            space,
+                            H5P_DEFAULT,
+                            H5P_DEFAULT,
+                            H5P_DEFAULT);
         }
 
         void
