@@ -578,7 +578,8 @@ namespace impactfe
       // one round (their LCPs are cheap; rounds would cost more).
       constexpr std::size_t large_group = 500;
       std::vector<char>     candidate(n, true);
-      for (const auto &g : independent_contact_groups(p))
+      const auto            all_groups = independent_contact_groups(p);
+      for (const auto &g : all_groups)
         if (g.size() > large_group)
           for (const unsigned int c : g)
             candidate[c] = p.free_velocity[c * d] + p.gap_term[c] < 0.;
@@ -608,11 +609,16 @@ namespace impactfe
           s.lcp.verification.ok             = true;
           s.lcp.verification.relative_error = 0.;
           s.form                            = FrictionForm::frictionless;
-          const auto groups                 = groups_among(p, C);
-          out.n_candidates  = static_cast<unsigned int>(C.size());
-          out.n_groups      = static_cast<unsigned int>(groups.size());
-          out.largest_group = 0;
-          n_first_route     = 0;
+          // with every contact a candidate the groups are the whole
+          // problem's, found above
+          std::vector<std::vector<unsigned int>> among;
+          if (C.size() < n)
+            among = groups_among(p, C);
+          const auto &groups = C.size() < n ? among : all_groups;
+          out.n_candidates   = static_cast<unsigned int>(C.size());
+          out.n_groups       = static_cast<unsigned int>(groups.size());
+          out.largest_group  = 0;
+          n_first_route      = 0;
           for (std::size_t k = 0; k < groups.size(); ++k)
             {
               const std::vector<unsigned int> &g = groups[k];
