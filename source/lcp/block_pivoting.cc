@@ -288,7 +288,8 @@ namespace impactfe
                         std::vector<double>       &w,
                         Verification              &verification,
                         unsigned int              &iterations,
-                        std::string               &why)
+                        std::string               &why,
+                        const unsigned int         max_iterations)
       {
         const unsigned int nc = p.n_contacts;
         const double       tolerance_factor =
@@ -300,8 +301,7 @@ namespace impactfe
         // the states tried so far, one block of n_c after the other
         std::vector<ContactState> &visited = ws.visited_states;
         visited.clear();
-        visited.reserve(static_cast<std::size_t>(nc) *
-                        options.max_block_pivoting_iterations);
+        visited.reserve(static_cast<std::size_t>(nc) * max_iterations);
         std::vector<unsigned int> &rows            = ws.rows;
         std::vector<unsigned int> &unknown_column  = ws.unknown_column;
         std::vector<unsigned int> &unknown_contact = ws.unknown_contact;
@@ -328,7 +328,7 @@ namespace impactfe
 
         for (;;)
           {
-            if (iterations >= options.max_block_pivoting_iterations)
+            if (iterations >= max_iterations)
               {
                 internal::set_text(why,
                                    "no verified point after %u block "
@@ -514,6 +514,37 @@ namespace impactfe
 
 
 
+      bool
+      polish_2d_impulses(const ContactProblem     &p,
+                         const ContactOptions     &options,
+                         ContactSolver::Workspace &ws,
+                         ContactSolution          &s)
+      {
+        if (p.n_directions != 2 || all_zero(p.mu) ||
+            s.lcp.status != Status::solved || s.states.size() != p.n_contacts)
+          return false;
+        ws.states.assign(s.states.begin(), s.states.end());
+        Verification verification;
+        unsigned int iterations = 0;
+        if (!block_pivoting_2d(p,
+                               options,
+                               ws,
+                               ws.states,
+                               ws.P,
+                               ws.velocity,
+                               ws.z,
+                               ws.w,
+                               verification,
+                               iterations,
+                               ws.why_not_block_pivoting,
+                               1))
+          return false;
+        s.P.swap(ws.P); // keeps both capacities: no allocation
+        return true;
+      }
+
+
+
       void
       guess_from_states(const ContactLCP                &lcp,
                         const std::vector<ContactState> &states,
@@ -612,7 +643,8 @@ namespace impactfe
                                 s.lcp.w,
                                 verification,
                                 iterations,
-                                why_not_block_pivoting))
+                                why_not_block_pivoting,
+                                options.max_block_pivoting_iterations))
             {
               s.form                      = FrictionForm::facets;
               s.n_facets                  = 2;

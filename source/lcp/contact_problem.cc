@@ -511,9 +511,13 @@ namespace impactfe
             impulses_from_lcp(p, ws.lcp, s.lcp.z, ws.tangential_residual, s.P);
             contact_states(p, s.P, 1e-8, ws.velocity, s.states);
           }
+        const bool polished = polish_2d_impulses(p, options, ws, s);
         s.message.append(ws.lcp.message);
         s.message.append("; ");
         s.message.append(s.lcp.message);
+        if (polished)
+          s.message.append("; impulses solved again at these contact states "
+                           "(one block pivoting solve, verified)");
         // automatic: never stop at the first failure (contact_routes.h)
         if (options.form == FrictionForm::automatic &&
             s.lcp.status != Status::solved)

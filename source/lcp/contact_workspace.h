@@ -148,6 +148,23 @@ namespace impactfe
                          ContactSolver::Workspace &ws,
                          ContactSolution          &s);
 
+      /**
+       * 2D friction: the impulses of Lemke's answer s.P solved again at its
+       * contact states s.states, by one solve of block_pivoting_2d()
+       * (block_pivoting.cc). Lemke's impulses satisfy the equations of their
+       * states only to the accuracy of the form's pivots (Klarbring's P_T
+       * goes through W_TT^{-1}: |P_T| = mu P_N to ~1e-8 relative when W has
+       * entries of very different sizes, as with massless contact nodes).
+       * The re-solved point has P_T = -+mu P_N exactly for sliding contacts
+       * and replaces s.P only if it passes the block pivoting's
+       * verification; s.lcp (z, w, pivots) stays Lemke's. True if replaced.
+       */
+      bool
+      polish_2d_impulses(const ContactProblem     &p,
+                         const ContactOptions     &options,
+                         ContactSolver::Workspace &ws,
+                         ContactSolution          &s);
+
       /// The form solve_contact_problem() uses for @p requested.
       FrictionForm
       resolved_form(const ContactProblem &p, FrictionForm requested);
