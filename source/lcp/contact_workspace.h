@@ -157,7 +157,10 @@ namespace impactfe
        * entries of very different sizes, as with massless contact nodes).
        * The re-solved point has P_T = -+mu P_N exactly for sliding contacts
        * and replaces s.P only if it passes the block pivoting's
-       * verification; s.lcp (z, w, pivots) stays Lemke's. True if replaced.
+       * verification; s.lcp (z, w, pivots) stays Lemke's. Done only when
+       * some contact misses |P_T| <= mu P_N, or a sliding one |P_T| = mu P_N,
+       * by more than 1e-12 max|P| (a solve costs about as much as Lemke's
+       * method on these sizes). True if replaced.
        */
       bool
       polish_2d_impulses(const ContactProblem     &p,
