@@ -22,10 +22,11 @@ namespace impactfe
       "Number of threads",
       "1",
       Patterns::Integer(0),
-      "Threads that deal.II's vector and matrix operations may use [-]; 0: "
-      "one per core. A contact time step is a chain of small operations "
-      "that threads do not shorten: with 2 threads the 1D bars' time loop "
-      "took 2.7 times the CPU time and no less wall time "
+      "Threads that deal.II's vector and matrix operations and the BLAS "
+      "(OpenBLAS) may use [-]; 0: one per core. A contact time step is a "
+      "chain of small operations that threads do not shorten: with 2 "
+      "threads the 1D bars' time loop took 2.7 times the CPU time and no "
+      "less wall time, and idle OpenBLAS workers doubled the plate's "
       "(doc/performance.md).");
   }
 
@@ -73,9 +74,7 @@ namespace impactfe
   ContactScene<dim>::run(const std::string &parameter_file)
   {
     read_parameters(parameter_file);
-    MultithreadInfo::set_thread_limit(parameters.n_threads == 0 ?
-                                        numbers::invalid_unsigned_int :
-                                        parameters.n_threads);
+    set_thread_limit(parameters.n_threads);
 
     CpuStopwatch setup_timer;
     setup_timer.start();

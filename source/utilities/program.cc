@@ -1,6 +1,9 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/multithread_info.h>
 
 #include <impactfe/utilities/program.h>
+
+#include <dlfcn.h>
 
 #include <charconv>
 #include <cmath>
@@ -106,6 +109,30 @@ namespace impactfe
       return now.tv_sec + 1e-9 * now.tv_nsec;
     }
   } // namespace
+
+  void
+  set_thread_limit(const unsigned int n_threads)
+  {
+    dealii::MultithreadInfo::set_thread_limit(
+      n_threads == 0 ? dealii::numbers::invalid_unsigned_int : n_threads);
+    if (n_threads == 0)
+      return;
+    using SetThreads = void (*)(int);
+    if (void *symbol = dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))
+      {
+        reinterpret_cast<SetThreads>(symbol)(static_cast<int>(n_threads));
+        // The workers started when the library was loaded spin for about
+        // 0.1 s before they sleep, during the set-up and the first steps.
+        // With one thread they are never used again: stop them (OpenBLAS
+        // starts them again if a later limit asks for threads).
+        using Shutdown = int (*)();
+        if (n_threads == 1)
+          if (void *stop = dlsym(RTLD_DEFAULT, "blas_thread_shutdown_"))
+            reinterpret_cast<Shutdown>(stop)();
+      }
+  }
+
+
 
   double
   thread_cpu_seconds()
