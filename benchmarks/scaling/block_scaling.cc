@@ -21,7 +21,15 @@
 //   free_per_step, lcp_per_step, update_per_step: means over the steps,
 //   max_active, max_lcp_size, peak_rss_mb,
 //   stored_columns_mb: what storing the vectors M~^{-1} H_j (as the code
-//             did before the columns were computed on demand) would take.
+//             did before the columns were computed on demand) would take,
+//   factor_entries: entries of the Cholesky factor L of M~,
+//   floor_rhs_seconds, floor_solve_seconds: the two kernels a step cannot
+//             avoid, timed alone on the same matrices (best of 5 batches):
+//             the free right-hand side F~ (FreeRhsOperator::apply) and one
+//             solve pair with M~ (SparseCholesky::solve). A contact step
+//             needs F~ and two solves (free velocity and the impulses'
+//             response, unless few impulses have stored columns): that is
+//             the floor its cost is compared with (issue 16).
 // Seconds are CPU seconds of the thread. Not a test: timings depend on the
 // machine. benchmarks/scaling/run_scaling.py runs the sweeps and plots them.
 //
@@ -35,6 +43,8 @@
 #include <impactfe/contact/contact_parameters.h>
 #include <impactfe/contact/contact_set.h>
 #include <impactfe/dynamics/multibody_system.h>
+#include <impactfe/dynamics/sparse_cholesky.h>
+#include <impactfe/time_integration/free_rhs_operator.h>
 #include <impactfe/utilities/program.h>
 
 #include <sys/resource.h>
@@ -55,6 +65,80 @@ namespace
     getrusage(RUSAGE_SELF, &usage);
     return usage.ru_maxrss / 1024.; // ru_maxrss is in kB on Linux
   }
+
+  /// Seconds per call of @p kernel: best of 5 batches of enough calls.
+  template <typename Kernel>
+  double
+  seconds_per_call(const Kernel &kernel)
+  {
+    unsigned int calls = 1;
+    for (;;) // find a batch of at least 0.02 s
+      {
+        const double start = thread_cpu_seconds();
+        for (unsigned int i = 0; i < calls; ++i)
+          kernel();
+        if (thread_cpu_seconds() - start >= 0.02 || calls >= (1u << 20))
+          break;
+        calls *= 2;
+      }
+    double best = 1e300;
+    for (unsigned int batch = 0; batch < 5; ++batch)
+      {
+        const double start = thread_cpu_seconds();
+        for (unsigned int i = 0; i < calls; ++i)
+          kernel();
+        best = std::min(best, (thread_cpu_seconds() - start) / calls);
+      }
+    return best;
+  }
+
+
+
+  /**
+   * The floor kernels of a step of @p system's scheme on @p body, timed
+   * alone: F~ and one solve pair with M~ = M + c_K K (no damping here).
+   */
+  void
+  time_floor_kernels(const MultibodySystem<2> &system,
+                     const ElasticBody<2>     &body,
+                     std::size_t              &factor_entries,
+                     double                   &rhs_seconds,
+                     double                   &solve_seconds)
+  {
+    const TimeIntegrator &scheme = system.integrator();
+    MechanicalOperators   operators;
+    operators.mass      = {&body.mass_matrix()};
+    operators.stiffness = {&body.stiffness_matrix()};
+    operators.damping   = {nullptr};
+    operators.external_force.reinit(
+      std::vector<types::global_dof_index>{body.n_dofs()});
+    operators.external_force.block(0) = body.external_force();
+    FreeRhsOperator rhs_operator;
+    rhs_operator.reinit(operators, scheme.free_rhs_coefficients());
+
+    SparseMatrix<double> step_matrix(body.mass_matrix().get_sparsity_pattern());
+    step_matrix.copy_from(body.mass_matrix());
+    step_matrix.add(scheme.stiffness_coefficient(), body.stiffness_matrix());
+    SparseCholesky cholesky;
+    cholesky.factorize(step_matrix, "M~");
+    factor_entries = cholesky.n_factor_entries();
+
+    BlockVector<double> x(operators.external_force), y(x), rhs(x);
+    for (unsigned int i = 0; i < x.size(); ++i)
+      {
+        x(i) = std::sin(1. + i);
+        y(i) = std::cos(1. + i);
+      }
+    rhs_seconds = seconds_per_call([&]() { rhs_operator.apply(x, y, rhs); });
+    Vector<double> v(x.block(0));
+    solve_seconds = seconds_per_call([&]() {
+      cholesky.solve(v);
+      v *= 1e-3; // keep the numbers in range over the repetitions
+      v(0) += 1.;
+    });
+  }
+
+
 
   void
   run(const unsigned int nx,
@@ -123,8 +207,15 @@ namespace
         max_lcp_size            = std::max(max_lcp_size, report.lcp_size);
       }
 
-    const CostBreakdown &costs     = system.cost_breakdown();
-    const unsigned int   n_columns = system.contacts().n_columns();
+    const CostBreakdown &costs          = system.cost_breakdown();
+    const unsigned int   n_columns      = system.contacts().n_columns();
+    std::size_t          factor_entries = 0;
+    double               rhs_seconds = 0., solve_seconds = 0.;
+    time_floor_kernels(
+      system, block, factor_entries, rhs_seconds, solve_seconds);
+    const double seconds_per_step =
+      (costs.free_velocity + costs.lcp + costs.update) / n_steps;
+    const double floor_per_step = rhs_seconds + 2. * solve_seconds;
     std::cout << nx << ',' << ny << ',' << block.n_dofs() << ','
               << system.contacts().n_candidates() << ',' << n_steps << ','
               << assembly_seconds << ',' << costs.factorization << ','
@@ -132,14 +223,17 @@ namespace
               << costs.free_velocity / n_steps << ',' << costs.lcp / n_steps
               << ',' << costs.update / n_steps << ',' << max_active << ','
               << max_lcp_size << ',' << peak_rss_megabytes() << ','
-              << 8. * n_columns * block.n_dofs() / (1024. * 1024.) << std::endl;
+              << 8. * n_columns * block.n_dofs() / (1024. * 1024.) << ','
+              << factor_entries << ',' << rhs_seconds << ',' << solve_seconds
+              << std::endl;
     // The machine-readable summary line (after the CSV row, which
     // run_scaling.py reads).
     std::cout << "RESULT dofs=" << block.n_dofs()
               << " contacts=" << system.contacts().n_candidates()
               << " max_active=" << max_active << " steps=" << n_steps
-              << " seconds_per_step="
-              << (costs.free_velocity + costs.lcp + costs.update) / n_steps
+              << " seconds_per_step=" << seconds_per_step
+              << " floor_seconds_per_step=" << floor_per_step
+              << " step_over_floor=" << seconds_per_step / floor_per_step
               << " delassus_seconds=" << costs.delassus << std::endl;
   }
 } // namespace
@@ -180,7 +274,8 @@ main(int argc, char **argv)
                      "factorization_seconds,delassus_seconds,"
                      "delassus_candidates,free_per_step,lcp_per_step,"
                      "update_per_step,max_active,max_lcp_size,peak_rss_mb,"
-                     "stored_columns_mb\n";
+                     "stored_columns_mb,factor_entries,floor_rhs_seconds,"
+                     "floor_solve_seconds\n";
       run(nx, ny, n_steps, top_candidates);
     }
   catch (std::exception &exc)
