@@ -1,11 +1,12 @@
 #!/usr/bin/python3
 """Work-precision benchmark: error against CPU seconds for the four time
-schemes (θ-method at θ = 0.5 and 0.55, θ-Euler, modified θ, Newmark) on the
-1D two-bar impact, the cylinder on a plane and the oblique plate.
+schemes (θ-method at θ = 0.5 and 0.55, θ-Euler, modified θ, Newmark, and
+the mass-redistribution variants) on the 1D two-bar impact, the two bars in
+2D, the cylinder on a plane and the oblique plate.
 
 usage (from anywhere; the script works from the repository top):
     /usr/bin/python3 benchmarks/work_precision/run_work_precision.py \
-        [--build build] [--out doc] [--quick] [--only 1d,cylinder,plate]
+        [--build build] [--out doc] [--quick] [--only 1d,bars2d,cylinder,plate]
         [--plot-only] [--repeats 3] [--extend-budget 120]
 
 --build DIR      executables DIR/bin/<program>; if DIR/lib exists it is put
@@ -424,7 +425,28 @@ def p_wave_speed(prm):
     return math.sqrt(E / (rho * (1 - nu * nu)))
 
 
+def bars_2d_area(prm):
+    return 2. * float(prm_value(prm, "Bar length")) * float(prm_value(prm, "Bar height"))
+
+
 SCENES = {
+    "bars2d": {
+        "program": "two_bars_2d", "prm": "parameter_files/two_bars_2d.prm",
+        "csv": "work_precision_two_bars_2d.csv",
+        "title": "Two bars in 2D (ν = 0.45, plane stress)",
+        "entries": ("Number of cells along", "Number of cells across"),
+        "cells": lambda m: 2 * m[0] * m[1],  # two bars
+        "area": bars_2d_area,
+        # Factor 1 is the paper's step on its 20 x 4 mesh: C = 1.42 with
+        # dx = sqrt(cell area) and the dilatational speed, 0.9 along the bar
+        # with the bar speed, as the 1D program's C = 0.9.
+        "full": {"meshes": [(10, 2), (20, 4), (40, 8), (80, 16), (120, 24)],
+                 "factors": [0.25, 0.5, 1, 2, 4],
+                 "reference": ((240, 48), 0.2226e-5 / 24.), "same_mesh_factor": 1. / 16.},
+        "quick": {"meshes": [(10, 2), (20, 4)], "factors": [1, 4],
+                  "reference": ((40, 8), 0.2226e-5 / 4.), "same_mesh_factor": 1. / 8.},
+        "extra": "",
+    },
     "cylinder": {
         "program": "cylinder_impact", "prm": "parameter_files/cylinder_impact.prm",
         "csv": "work_precision_cylinder.csv", "title": "Cylinder on a rigid plane",
@@ -1008,7 +1030,7 @@ def report(args, caption, run_info):
         print("\n== two_bars_1d ==\n" + text + "\n" + peer_note)
         parts.append(f"## 1D two bars\n\n![work-precision]({os.path.basename(png)})\n\n"
                      f"![convergence]({os.path.basename(png2)})\n\n{peer_note}\n\n{text}\n")
-    for name in ("cylinder", "plate"):
+    for name in ("bars2d", "cylinder", "plate"):
         path = os.path.join(args.out, SCENES[name]["csv"])
         if not os.path.exists(path):
             continue
@@ -1029,7 +1051,7 @@ def main():
     parser.add_argument("--runs", default=None,
                         help="folder for the run files (default results/work_precision)")
     parser.add_argument("--quick", action="store_true")
-    parser.add_argument("--only", default="1d,cylinder,plate")
+    parser.add_argument("--only", default="1d,bars2d,cylinder,plate")
     parser.add_argument("--plot-only", action="store_true")
     parser.add_argument("--schemes", default="",
                         help="run only these SCHEMES entries, as <scheme>:<theta> "
@@ -1071,7 +1093,7 @@ def main():
         elif "1d" in only:
             write_csv(bars_csv, COLUMNS_1D,
                       merged_with_kept(args, bars_csv, run_bars(args)))
-        for name in ("cylinder", "plate"):
+        for name in ("bars2d", "cylinder", "plate"):
             if name in only and not args.extend_only:
                 csv_path = os.path.join(args.out, SCENES[name]["csv"])
                 write_csv(csv_path, COLUMNS_2D,
