@@ -210,12 +210,14 @@ namespace impactfe
   ContactMonitor<dim>::record(const StepReport &report)
   {
     const TimeIntegrator &scheme   = system.integrator();
-    const double          h        = scheme.time_step();
+    const double          h        = report.time_step;
     const double          w        = scheme.contact_force_weight();
     const ContactSet     &contacts = system.contacts();
     const unsigned int    nd       = contacts.n_directions();
     const double          t        = system.state().time;
     ++run.n_steps;
+    if (report.n_substeps > 1)
+      ++run.free_flight_steps;
 
     // Impulse balance, body by body.
     for (unsigned int b = 0; b < system.bodies().size(); ++b)
@@ -511,6 +513,9 @@ namespace impactfe
         << " of " << reference << std::endl;
     out << "  Contact state changes (open/stick/slip): " << s.state_changes
         << " in " << s.n_steps << " steps" << std::endl;
+    if (s.free_flight_steps > 0)
+      out << "  Free-flight steps (k h, no contact possible): "
+          << s.free_flight_steps << " of the " << s.n_steps << std::endl;
     return check_contact_bounds(out, s, bounds, frictional);
   }
 

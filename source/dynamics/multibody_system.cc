@@ -143,6 +143,35 @@ namespace impactfe
 
 
 
+  template <int dim>
+  void
+  MultibodySystem<dim>::factorize_step_matrices(
+    const TimeIntegrator                               &level_scheme,
+    std::vector<std::unique_ptr<SparseMatrix<double>>> &matrices,
+    std::vector<std::unique_ptr<SparseCholesky>>       &solvers) const
+  {
+    matrices.clear();
+    solvers.clear();
+    for (const ElasticBody<dim> *body : body_list)
+      {
+        auto step_matrix =
+          std::make_unique<SparseMatrix<double>>(body->sparsity_pattern());
+        step_matrix->copy_from(body->mass_matrix());
+        step_matrix->add(level_scheme.stiffness_coefficient(),
+                         body->stiffness_matrix());
+        if (body->has_damping())
+          step_matrix->add(level_scheme.damping_coefficient(),
+                           body->damping_matrix());
+        auto solver = std::make_unique<SparseCholesky>();
+        solver->factorize(*step_matrix,
+                          "the step matrix of body '" + body->name() + "'");
+        matrices.push_back(std::move(step_matrix));
+        solvers.push_back(std::move(solver));
+      }
+  }
+
+
+
   // @sect3{Set-up: M~ and its factorisation}
   // M~ = M + c_C C + c_K K depends only on the scheme and h, so it is
   // factorised once per body. The Delassus operator is not built here: its
@@ -171,23 +200,26 @@ namespace impactfe
         operators.damping.push_back(
           body.has_damping() ? &body.damping_matrix() : nullptr);
         operators.external_force.block(b) = body.external_force();
-
-        auto step_matrix =
-          std::make_unique<SparseMatrix<double>>(body.sparsity_pattern());
-        step_matrix->copy_from(body.mass_matrix());
-        step_matrix->add(scheme->stiffness_coefficient(),
-                         body.stiffness_matrix());
-        if (body.has_damping())
-          step_matrix->add(scheme->damping_coefficient(),
-                           body.damping_matrix());
-        auto solver = std::make_unique<SparseCholesky>();
-        solver->factorize(*step_matrix,
-                          "the step matrix of body '" + body.name() + "'");
-        step_matrices.push_back(std::move(step_matrix));
-        step_solvers.push_back(std::move(solver));
       }
-
+    factorize_step_matrices(*scheme, step_matrices, step_solvers);
     free_rhs_operator.reinit(operators, scheme->free_rhs_coefficients());
+
+    // The free-flight level: the same scheme with k h.
+    coarse_scheme.reset();
+    coarse_step_matrices.clear();
+    coarse_step_solvers.clear();
+    if (time_stepping.free_flight_step_factor > 1)
+      {
+        TimeSteppingParameters coarse = time_stepping;
+        coarse.time_step *= time_stepping.free_flight_step_factor;
+        coarse_scheme = create_time_integrator(coarse);
+        factorize_step_matrices(*coarse_scheme,
+                                coarse_step_matrices,
+                                coarse_step_solvers);
+        coarse_free_rhs_operator.reinit(operators,
+                                        coarse_scheme->free_rhs_coefficients());
+      }
+    last_step_had_impulses = true; // the first step is made with h
     massless_dofs.clear();
     massless_impulses.clear();
     bool any_massless = false;
@@ -198,6 +230,8 @@ namespace impactfe
         any_massless = any_massless || !massless_dofs.back().empty();
       }
     scheme->set_massless_contact_nodes(any_massless);
+    if (coarse_scheme)
+      coarse_scheme->set_massless_contact_nodes(any_massless);
 
     for (unsigned int d = 0; d < dim; ++d)
       {
@@ -459,19 +493,98 @@ namespace impactfe
 
 
 
+  template <int dim>
+  void
+  MultibodySystem<dim>::complete_and_advance(const TimeIntegrator &level_scheme,
+                                             const double          time)
+  {
+    level_scheme.complete_step(current, next);
+    // A massless node has no inertia: its v^{i+1} from the step solve is
+    // only what the displacement update needs, and would alternate by the
+    // factor -(1 - theta)/theta per step. Its velocity is the one that
+    // moves it: (u^{i+1} - u^i) / h.
+    for (unsigned int b = 0; b < massless_dofs.size(); ++b)
+      for (const types::global_dof_index i : massless_dofs[b])
+        next.velocity.block(b)(i) =
+          (next.displacement.block(b)(i) - current.displacement.block(b)(i)) /
+          level_scheme.time_step();
+    next.time = time;
+    swap(current, next); // no allocation (time_integrator.h)
+    ++state_version;
+  }
+
+
+
+  // @sect3{A free-flight step}
+  // No contact acted in the last step. The step is tried with k h: if no
+  // candidate's free velocity closes its gap under the Signorini condition
+  // of k h (the test that puts candidates into the LCP, with an empty
+  // active set), no contact acts in it and it is kept. Otherwise nothing
+  // has changed and the caller makes the step with h.
+  template <int dim>
+  bool
+  MultibodySystem<dim>::try_free_flight_step(StepReport &report)
+  {
+    CostClock          clock(measure_costs);
+    const unsigned int nd = contact_set.n_directions();
+    const double       H  = coarse_scheme->time_step();
+
+    coarse_scheme->free_rhs(coarse_free_rhs_operator, current, free_velocity);
+    for (unsigned int b = 0; b < body_list.size(); ++b)
+      coarse_step_solvers[b]->solve(free_velocity.block(b));
+    contact_set.local_velocities(free_velocity, local_free_velocity);
+    coarse_scheme->gap_term(contact_set, current, gap_terms);
+    for (unsigned int c = 0; c < contact_set.n_candidates(); ++c)
+      if (local_free_velocity[c * nd] + gap_terms[c] < 0.)
+        {
+          clock.charge(costs.free_velocity);
+          return false;
+        }
+    clock.charge(costs.free_velocity);
+
+    const unsigned int k = time_stepping.free_flight_step_factor;
+    step_number += k;
+    report            = StepReport();
+    report.step       = step_number;
+    report.time       = current.time + H;
+    report.time_step  = H;
+    report.n_substeps = k;
+    std::fill(local_impulses.begin(), local_impulses.end(), 0.);
+    std::fill(active.begin(), active.end(), false);
+    contact_force_field = 0.;
+    for (auto &impulses : massless_impulses)
+      std::fill(impulses.begin(), impulses.end(), 0.);
+    next.velocity = free_velocity;
+    complete_and_advance(*coarse_scheme, report.time);
+    last_step_had_impulses = false;
+    clock.charge(costs.update);
+    return true;
+  }
+
+
+
   // @sect3{One time step}
   template <int dim>
   StepReport
-  MultibodySystem<dim>::do_time_step()
+  MultibodySystem<dim>::do_time_step(const unsigned int max_substeps)
   {
+    if (coarse_scheme && !last_step_had_impulses &&
+        max_substeps >= time_stepping.free_flight_step_factor)
+      {
+        StepReport report;
+        if (try_free_flight_step(report))
+          return report;
+      }
+
     ++step_number;
     const double       h            = scheme->time_step();
     const unsigned int nd           = contact_set.n_directions();
     const unsigned int n_candidates = contact_set.n_candidates();
 
     StepReport report;
-    report.step = step_number;
-    report.time = current.time + h;
+    report.step      = step_number;
+    report.time      = current.time + h;
+    report.time_step = h;
     CostClock clock(measure_costs);
 
     // 1. Free velocity. Massless nodes are balanced at t^{i+1}
@@ -607,19 +720,8 @@ namespace impactfe
       }
 
     // 5. Displacement (and acceleration) update.
-    scheme->complete_step(current, next);
-    // A massless node has no inertia: its v^{i+1} from the step solve is
-    // only what the displacement update needs, and would alternate by the
-    // factor -(1 - theta)/theta per step. Its velocity is the one that
-    // moves it: (u^{i+1} - u^i) / h.
-    for (unsigned int b = 0; b < massless_dofs.size(); ++b)
-      for (const types::global_dof_index i : massless_dofs[b])
-        next.velocity.block(b)(i) =
-          (next.displacement.block(b)(i) - current.displacement.block(b)(i)) /
-          scheme->time_step();
-    next.time = report.time;
-    swap(current, next); // no allocation (time_integrator.h)
-    ++state_version;
+    complete_and_advance(*scheme, report.time);
+    last_step_had_impulses = n_impulses > 0;
 
     // Report.
     Tensor<1, dim> tangential;

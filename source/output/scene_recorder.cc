@@ -37,7 +37,10 @@ namespace impactfe
     if (output.vtu_output && report.step % output.output_interval == 0)
       solution_writer.write(system, report.step);
     if (shape_writer)
-      shape_writer->write_if_due(system, system.integrator().time_step());
+      shape_writer->write_if_due(system,
+                                 report.step > 0 ?
+                                   report.time_step :
+                                   system.integrator().time_step());
   }
 
 
@@ -87,6 +90,8 @@ namespace impactfe
       .add("tangential_impulse", s.tangential_impulse)
       .add("energy_ratio", s.energy_ratio)
       .add("state_changes", double(s.state_changes))
+      .add("steps_taken", double(s.n_steps))
+      .add("free_flight_steps", double(s.free_flight_steps))
       .add("checks", checks);
   }
 

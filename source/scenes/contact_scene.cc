@@ -83,13 +83,17 @@ namespace impactfe
     setup_timer.stop();
     setup_cpu_seconds = setup_timer.seconds();
 
-    CpuStopwatch       loop_timer;
+    CpuStopwatch loop_timer;
+    // A free-flight step covers k steps of h (`Free-flight step factor`),
+    // and is tried only where k steps of h are left before the end time.
     const unsigned int n_steps = parameters.time_stepping.n_steps();
-    for (unsigned int step = 0; step < n_steps; ++step)
+    for (unsigned int step = 0; step < n_steps;)
       {
         loop_timer.start();
-        const StepReport report = multibody_system->do_time_step();
+        const StepReport report =
+          multibody_system->do_time_step(n_steps - step);
         loop_timer.stop();
+        step += report.n_substeps;
         output_results(report);
       }
     loop_cpu_seconds = loop_timer.seconds();
@@ -366,6 +370,9 @@ namespace impactfe
       text << " (theta = " << ts.theta << ")";
     text << ", h = " << ts.time_step << time_unit << ", "
          << run_summary().n_steps << " steps";
+    if (ts.free_flight_step_factor > 1)
+      text << " (" << run_summary().free_flight_steps << " of them "
+           << ts.free_flight_step_factor << " h long)";
     return text.str();
   }
 

@@ -49,15 +49,16 @@ namespace impactfe
 
 
   void
-  TwoBarsErrors::add(const double t,
-                     const double contact_velocity,
-                     const double normal_force)
+  TwoBarsErrors::add(const double       t,
+                     const double       contact_velocity,
+                     const double       normal_force,
+                     const unsigned int n_steps)
   {
-    sum_v +=
-      std::abs(contact_velocity - exact.contact_velocity(t)) / (0.5 * exact.v0);
-    sum_f +=
-      std::abs(normal_force - exact.normal_force(t)) / exact.contact_force;
-    ++n;
+    sum_v += n_steps * std::abs(contact_velocity - exact.contact_velocity(t)) /
+             (0.5 * exact.v0);
+    sum_f += n_steps * std::abs(normal_force - exact.normal_force(t)) /
+             exact.contact_force;
+    n += n_steps;
   }
 
 

@@ -187,7 +187,8 @@ namespace impactfe
   {
     errors->add(report.time,
                 this->system().state().velocity.block(0)(contact_dof_1),
-                report.normal_force);
+                report.normal_force,
+                report.n_substeps);
   }
 
 

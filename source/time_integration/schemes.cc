@@ -70,6 +70,16 @@ namespace impactfe
                       "1",
                       Patterns::Double(),
                       "End time T [s]. Must be > 0.");
+    prm.declare_entry(
+      "Free-flight step factor",
+      "1",
+      Patterns::Integer(1),
+      "k >= 1 [-]: a step in which no contact is active and no candidate "
+      "can touch is made k times longer (k h), with its own factorised "
+      "step matrix; it is kept only if its free velocities close no gap "
+      "(the Signorini condition of k h), otherwise the step is made with h. "
+      "Coarse steps end on the grid of h, so the end time and the output "
+      "times are those of h. 1: every step is h.");
     prm.leave_subsection();
   }
 
@@ -79,16 +89,17 @@ namespace impactfe
   TimeSteppingParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Time stepping");
-    const std::string name = prm.get("Scheme");
-    scheme                 = name == "theta"          ? Scheme::theta :
-                             name == "theta-euler"    ? Scheme::theta_euler :
-                             name == "modified-theta" ? Scheme::modified_theta :
-                                                        Scheme::newmark;
-    theta                  = prm.get_double("Theta");
-    newmark_beta           = prm.get_double("Newmark beta");
-    newmark_gamma          = prm.get_double("Newmark gamma");
-    time_step              = prm.get_double("Time step");
-    end_time               = prm.get_double("End time");
+    const std::string name  = prm.get("Scheme");
+    scheme                  = name == "theta"          ? Scheme::theta :
+                              name == "theta-euler"    ? Scheme::theta_euler :
+                              name == "modified-theta" ? Scheme::modified_theta :
+                                                         Scheme::newmark;
+    theta                   = prm.get_double("Theta");
+    newmark_beta            = prm.get_double("Newmark beta");
+    newmark_gamma           = prm.get_double("Newmark gamma");
+    time_step               = prm.get_double("Time step");
+    end_time                = prm.get_double("End time");
+    free_flight_step_factor = prm.get_integer("Free-flight step factor");
     prm.leave_subsection();
 
     AssertThrow(theta > 0. && theta <= 1.,

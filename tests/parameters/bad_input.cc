@@ -73,6 +73,8 @@ main()
   run_case("negative_time_step", with("Time stepping", "Time step = -1e-6"));
   run_case("zero_end_time", with("Time stepping", "End time = 0"));
   run_case("newmark_beta_zero", with("Time stepping", "Newmark beta = 0"));
+  run_case("free_flight_factor_zero",
+           with("Time stepping", "Free-flight step factor = 0"));
   run_case("newmark_mass_redistribution",
            with("Time stepping", "Scheme = newmark") +
              "subsection Discretization\n  set Mass redistribution = true\n"

@@ -56,6 +56,8 @@ namespace impactfe
     /// and the number of steps.
     unsigned long long state_changes = 0;
     unsigned int       n_steps       = 0;
+    /// Of these steps, those made with k h (`Free-flight step factor`).
+    unsigned int free_flight_steps = 0;
   };
 
 

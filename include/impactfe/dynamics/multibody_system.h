@@ -38,6 +38,10 @@ namespace impactfe
     unsigned int lcp_pivots = 0;
     /// How many times the candidate set had to grow within the step.
     unsigned int lcp_resolves = 0;
+    /// The step's length, and how many steps of the parameter file's h it
+    /// covers (k for a free-flight step, 1 otherwise).
+    double       time_step  = 0.;
+    unsigned int n_substeps = 1;
   };
 
 
@@ -156,9 +160,18 @@ namespace impactfe
     const MechanicalState &
     state() const;
 
-    /** Advance by one step. Throws ContactSolverFailure if the LCP fails. */
+    /**
+     * Advance by one step. Throws ContactSolverFailure if the LCP fails.
+     *
+     * With `Free-flight step factor` k > 1 and @p max_substeps >= k, a step
+     * after one without contact impulses is first tried with k h: if its
+     * free velocities close no gap (V_N + b_N >= 0 for every candidate, with
+     * the gap term of k h), no contact acts during it and it is kept
+     * (StepReport::n_substeps = k). Otherwise the same step is made with h:
+     * the state is not touched until a step is kept.
+     */
     StepReport
-    do_time_step();
+    do_time_step(const unsigned int max_substeps = 1);
 
     const TimeIntegrator &
     integrator() const;
@@ -226,6 +239,15 @@ namespace impactfe
     ContactSet                            contact_set;
     std::unique_ptr<TimeIntegrator>       scheme;
     std::string                           dump_directory = ".";
+    /// The scheme with k h, its F~ and factorised step matrices (only if
+    /// the free-flight step factor k > 1).
+    std::unique_ptr<TimeIntegrator>                    coarse_scheme;
+    FreeRhsOperator                                    coarse_free_rhs_operator;
+    std::vector<std::unique_ptr<SparseMatrix<double>>> coarse_step_matrices;
+    std::vector<std::unique_ptr<SparseCholesky>>       coarse_step_solvers;
+    /// Whether the last step applied contact impulses (a free-flight step
+    /// follows only a step without them).
+    bool last_step_had_impulses = true;
 
     MechanicalOperators operators;
     /// Counts the changes of the state; the energies are cached per state.
@@ -292,6 +314,21 @@ namespace impactfe
     make_block_vector() const;
     void
     solve_step_matrix(BlockVector<double> &rhs_and_solution) const;
+    /// M~ = M + c_C C + c_K K of @p level_scheme for every body, factorised.
+    void
+    factorize_step_matrices(
+      const TimeIntegrator                               &level_scheme,
+      std::vector<std::unique_ptr<SparseMatrix<double>>> &matrices,
+      std::vector<std::unique_ptr<SparseCholesky>>       &solvers) const;
+    /**
+     * The step with k h if no contact can act during it (see
+     * do_time_step()): true and @p report filled if it was kept.
+     */
+    bool
+    try_free_flight_step(StepReport &report);
+    /// v^{i+1} set in next.velocity: complete the step with @p level_scheme.
+    void
+    complete_and_advance(const TimeIntegrator &level_scheme, const double time);
     /**
      * Compute the W columns of the candidates in @p candidates that do not
      * have them yet, with blocks of right-hand sides.

@@ -56,11 +56,16 @@ namespace impactfe
   public:
     explicit TwoBarsErrors(const TwoBarsExactSolution &exact);
 
-    /** Account for the state at the end of a step. */
+    /**
+     * Account for the state at the end of a step that covers @p n_steps
+     * steps of the parameter file's h (a free-flight step: its end values
+     * count for each of them).
+     */
     void
-    add(const double t,
-        const double contact_velocity,
-        const double normal_force);
+    add(const double       t,
+        const double       contact_velocity,
+        const double       normal_force,
+        const unsigned int n_steps = 1);
 
     double
     err_v() const;

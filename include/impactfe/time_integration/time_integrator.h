@@ -42,6 +42,9 @@ namespace impactfe
     double newmark_gamma = 0.5;
     double time_step     = 1e-3;
     double end_time      = 1.;
+    /// Steps without contact are made this many times longer (see the
+    /// entry `Free-flight step factor` and MultibodySystem::do_time_step()).
+    unsigned int free_flight_step_factor = 1;
 
     static void
     declare_parameters(ParameterHandler &prm);
