@@ -7,7 +7,13 @@ error of each answer; optionally against Siconos' own 2D Lemke.
 usage (from the repository top):
     /usr/bin/python3 benchmarks/lcp/siconos_collection.py \
         [--build build] [--data DIR] [--extra FILE ...] [--facets 8] \
-        [--peer] [--out results/siconos_collection]
+        [--cone facets|exact] [--tolerance 1e-10] [--peer] \
+        [--out results/siconos_collection]
+
+--cone exact: lcp-solve --cone exact (the circular cone by facet LCPs
+re-aligned with the slip directions, doc/lcp.md "The exact cone"); the
+table adds the facet LCPs taken (largest over a file's groups) and whether
+the exact-cone error reached --tolerance.
 
 --data: the folder numerics/src/FrictionContact/test/data of a Siconos
 source tree. Without it the script downloads Debian's source package of
@@ -62,16 +68,17 @@ def fetch_debian_source(out):
     return folder
 
 
-def run_ours(binary, path, facets):
+def run_ours(binary, path, facets, cone="facets", tolerance=1e-10):
     """One lcp-solve run; returns a dict of what it printed."""
-    cmd = [binary, "--reference", "--facets", str(facets), path]
+    cmd = [binary, "--reference", "--facets", str(facets), "--cone", cone,
+           "--tolerance", str(tolerance), path]
     t0 = time.time()
     p = subprocess.run(cmd, capture_output=True, text=True)
     wall = time.time() - t0
     row = {"file": os.path.basename(path), "code": "impactfe",
            "wall_s": wall, "status": "not read", "n": "", "pivots": "",
            "relative_error": "", "solve_s": "", "exact_cone_error": "",
-           "message": ""}
+           "message": "", "cone_iterations": "", "converged": ""}
     lines = p.stdout.split("\n")
     for line in lines:
         f = line.split()
@@ -80,6 +87,9 @@ def run_ours(binary, path, facets):
                        relative_error=f[4], solve_s=float(f[5]))
         if len(f) >= 4 and f[0] == "reference" and f[2] == "exact_cone_error":
             row["exact_cone_error"] = f[3]
+        if len(f) == 6 and f[0] == "cone" and f[1] == path:
+            row["cone_iterations"] = f[3].split("=")[1]
+            row["converged"] = f[5].split("=")[1]
     if p.returncode == 2:
         row["message"] = p.stderr.strip().split("\n")[-1][:200]
     elif row["status"] != "solved":
@@ -169,6 +179,8 @@ def main():
     ap.add_argument("--data")
     ap.add_argument("--extra", nargs="*", default=[])
     ap.add_argument("--facets", type=int, default=8)
+    ap.add_argument("--cone", choices=["facets", "exact"], default="facets")
+    ap.add_argument("--tolerance", type=float, default=1e-10)
     ap.add_argument("--peer", action="store_true")
     ap.add_argument("--out",
                     default=os.path.join(TOP, "results", "siconos_collection"))
@@ -182,16 +194,18 @@ def main():
     os.makedirs(a.out, exist_ok=True)
 
     rows = []
-    print("%-42s %6s %-16s %7s %10s %10s %10s" %
-          ("file", "n", "status", "pivots", "rel.err", "solve s", "cone err"))
+    print("%-42s %6s %-16s %7s %10s %10s %10s %5s" %
+          ("file", "n", "status", "pivots", "rel.err", "solve s", "cone err",
+           "LCPs"))
     for path in files:
-        r = run_ours(binary, path, a.facets)
+        r = run_ours(binary, path, a.facets, a.cone, a.tolerance)
         rows.append(r)
-        print("%-42s %6s %-16s %7s %10s %10s %10s%s" % (
+        print("%-42s %6s %-16s %7s %10s %10s %10s %5s%s" % (
             r["file"][:42], r["n"], r["status"], r["pivots"],
             r["relative_error"],
             "%.3g" % r["solve_s"] if r["solve_s"] != "" else "",
             r["exact_cone_error"],
+            r["cone_iterations"] + ("" if r["converged"] != "no" else "!"),
             ("  " + r["message"][:60]) if r["status"] != "solved" else ""),
             flush=True)
         if a.peer and is_2d_csc(path):
@@ -218,7 +232,12 @@ def main():
                         open("/proc/cpuinfo").read()).group(1)
     except (OSError, AttributeError):
         pass
+    converged = [r for r in solved if r["converged"] == "yes"]
+    cone_errors = [float(r["exact_cone_error"]) for r in solved
+                   if r["exact_cone_error"] not in ("", "-")]
     summary = {"commit": commit, "cpu": cpu, "facets": a.facets,
+               "cone": a.cone, "tolerance": a.tolerance,
+               "converged": len(converged),
                "files": len(ours), "read": len(read), "solved": len(solved),
                "unsolved": [r["file"] for r in read if r["status"] != "solved"],
                "not_read": [r["file"] for r in ours if r["status"] == "not read"],
@@ -226,10 +245,11 @@ def main():
     with open(os.path.join(a.out, "summary.json"), "w") as f:
         json.dump(summary, f, indent=1)
     slowest = max((r["solve_s"] for r in solved), default=0.)
-    print("RESULT files=%d read=%d solved=%d unsolved=%d facets=%d "
-          "slowest_solve_seconds=%.3g" %
+    print("RESULT files=%d read=%d solved=%d unsolved=%d facets=%d cone=%s "
+          "converged=%d max_cone_error=%.3g slowest_solve_seconds=%.3g" %
           (len(ours), len(read), len(solved), len(read) - len(solved),
-           a.facets, slowest))
+           a.facets, a.cone, len(converged) if a.cone == "exact" else 0,
+           max(cone_errors, default=0.), slowest))
 
 
 if __name__ == "__main__":

@@ -3,7 +3,15 @@
 // solver.
 //
 //   lcp-solve [--solution] [--warm] [--form klarbring|facets|auto] [--facets k]
-//             [--reference] [--verbose] [--write-fclib OUT] FILE...
+//             [--cone facets|exact] [--tolerance e] [--reference] [--verbose]
+//             [--write-fclib OUT] FILE...
+//
+// --cone exact solves contact problems with the circular Coulomb cone
+// (ExactConeSolver, group by group: facet LCPs re-aligned with the slip
+// directions until the exact-cone error is <= --tolerance, default 1e-10)
+// and prints a line "cone FILE exact iterations=I cone_error=E converged=yes";
+// a problem whose iteration does not converge counts as not solved. The
+// default, --cone facets, is the polygonal cone of --facets k facets.
 //
 // --reference prints, for contact problems, the exact-cone error of the
 // answer and, for FCLib files that carry a /solution, that solution's error
@@ -28,6 +36,7 @@
 // command line or an unreadable/malformed file.
 #include <impactfe/lcp/contact_problem.h>
 #include <impactfe/lcp/contact_routes.h>
+#include <impactfe/lcp/exact_cone.h>
 #include <impactfe/lcp/fclib_io.h>
 #include <impactfe/lcp/lemke.h>
 #include <impactfe/lcp/problem_io.h>
@@ -56,6 +65,9 @@ namespace
          "               open elsewhere' (2D friction: block pivoting, then Lemke)\n"
          "  --form F     LCP form for friction-contact files (default auto)\n"
          "  --facets k   facets of the friction cone in 3D (default 8)\n"
+         "  --cone C     facets (default: the polygonal cone) or exact (the circular\n"
+         "               cone, by re-aligned facet LCPs; contact files)\n"
+         "  --tolerance e  exact-cone error to reach with --cone exact (default 1e-10)\n"
          "  --verbose    print how each problem was solved (forms, routes, groups)\n"
          "  --reference  contact problems: print the exact-cone error of P, and for\n"
          "               FCLib files with a /solution that solution's error and\n"
@@ -81,6 +93,8 @@ main(int argc, char **argv)
   bool solution = false, warm = false, reference = false, verbose = false;
   std::string              fclib_output;
   ContactOptions           options;
+  ConeModel                cone = ConeModel::facets;
+  ExactConeOptions         cone_options;
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i)
     {
@@ -113,6 +127,28 @@ main(int argc, char **argv)
             {
               std::cerr << "lcp-solve: error: unknown form '" << f
                         << "' (klarbring, facets or auto)\n";
+              return 2;
+            }
+        }
+      else if (a == "--cone" && i + 1 < argc)
+        {
+          try
+            {
+              cone = cone_model_from_string(argv[++i]);
+            }
+          catch (const std::invalid_argument &e)
+            {
+              std::cerr << "lcp-solve: error: --cone: " << e.what() << "\n";
+              return 2;
+            }
+        }
+      else if (a == "--tolerance" && i + 1 < argc)
+        {
+          char *end              = nullptr;
+          cone_options.tolerance = std::strtod(argv[++i], &end);
+          if (*end != '\0' || !(cone_options.tolerance > 0.))
+            {
+              std::cerr << "lcp-solve: error: --tolerance needs a number > 0\n";
               return 2;
             }
         }
@@ -198,9 +234,15 @@ main(int argc, char **argv)
             }
           else
             {
-              const ContactProblem &p = f.contact;
-              ContactSolution       s;
-              if (warm)
+              const ContactProblem    &p = f.contact;
+              ContactSolution          s;
+              GroupedExactConeSolution exact;
+              if (cone == ConeModel::exact)
+                {
+                  exact = solve_exact_cone_by_groups(p, options, cone_options);
+                  s     = exact.solution;
+                }
+              else if (warm)
                 {
                   std::vector<ContactState> guess(p.n_contacts,
                                                   ContactState::open);
@@ -220,6 +262,27 @@ main(int argc, char **argv)
               r         = s.lcp;
               r.message = s.message; // every route tried
               P         = s.P;
+              if (cone == ConeModel::exact && r.status == Status::solved)
+                {
+                  std::printf("cone %s exact iterations=%u cone_error=%.3e "
+                              "converged=%s\n",
+                              file.c_str(),
+                              exact.report.iterations,
+                              exact.report.cone_error,
+                              exact.report.converged ? "yes" : "no");
+                  if (!exact.report.converged)
+                    {
+                      std::fprintf(stderr,
+                                   "lcp-solve: %s: the exact cone was not "
+                                   "reached: cone error %.3e > tolerance "
+                                   "%.1e (%s)\n",
+                                   file.c_str(),
+                                   exact.report.cone_error,
+                                   cone_options.tolerance,
+                                   s.message.c_str());
+                      exit_code = std::max(exit_code, 1);
+                    }
+                }
             }
           const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)

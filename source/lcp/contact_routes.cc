@@ -522,38 +522,34 @@ namespace impactfe
 
 
 
-    namespace
+    void
+    restrict_contact_problem(const ContactProblem            &p,
+                             const std::vector<unsigned int> &contacts,
+                             ContactProblem                  &sub)
     {
-      /// The contacts @p contacts of @p p as a problem of their own.
-      void
-      restrict_to(const ContactProblem            &p,
-                  const std::vector<unsigned int> &contacts,
-                  ContactProblem                  &sub)
-      {
-        const unsigned int d = p.n_directions;
-        const std::size_t  m = std::size_t(d) * contacts.size();
-        sub.n_directions     = d;
-        sub.n_contacts       = static_cast<unsigned int>(contacts.size());
-        sub.W.reinit(m, m);
-        sub.free_velocity.resize(m);
-        sub.gap_term.resize(contacts.size());
-        sub.mu.resize(contacts.size());
-        for (std::size_t a = 0; a < contacts.size(); ++a)
-          {
-            sub.gap_term[a] = p.gap_term[contacts[a]];
-            sub.mu[a]       = p.mu[contacts[a]];
-            for (unsigned int i = 0; i < d; ++i)
-              {
-                sub.free_velocity[a * d + i] =
-                  p.free_velocity[contacts[a] * d + i];
-                const double *row = p.W.row(std::size_t(contacts[a]) * d + i);
-                for (std::size_t b = 0; b < contacts.size(); ++b)
-                  for (unsigned int j = 0; j < d; ++j)
-                    sub.W(a * d + i, b * d + j) = row[contacts[b] * d + j];
-              }
-          }
-      }
-    } // namespace
+      const unsigned int d = p.n_directions;
+      const std::size_t  m = std::size_t(d) * contacts.size();
+      sub.n_directions     = d;
+      sub.n_contacts       = static_cast<unsigned int>(contacts.size());
+      sub.W.reinit(m, m);
+      sub.free_velocity.resize(m);
+      sub.gap_term.resize(contacts.size());
+      sub.mu.resize(contacts.size());
+      for (std::size_t a = 0; a < contacts.size(); ++a)
+        {
+          sub.gap_term[a] = p.gap_term[contacts[a]];
+          sub.mu[a]       = p.mu[contacts[a]];
+          for (unsigned int i = 0; i < d; ++i)
+            {
+              sub.free_velocity[a * d + i] =
+                p.free_velocity[contacts[a] * d + i];
+              const double *row = p.W.row(std::size_t(contacts[a]) * d + i);
+              for (std::size_t b = 0; b < contacts.size(); ++b)
+                for (unsigned int j = 0; j < d; ++j)
+                  sub.W(a * d + i, b * d + j) = row[contacts[b] * d + j];
+            }
+        }
+    }
 
 
 
@@ -628,7 +624,7 @@ namespace impactfe
               auto                             known    = solved.find(contacts);
               if (known == solved.end())
                 {
-                  restrict_to(p, contacts, group);
+                  restrict_contact_problem(p, contacts, group);
                   // first round: cold, by the routes; later rounds start
                   // from the last round's states (new candidates, pushed
                   // in: stick), and fall back on the routes

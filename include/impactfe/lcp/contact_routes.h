@@ -79,6 +79,13 @@ namespace impactfe
     std::vector<std::vector<unsigned int>>
     independent_contact_groups(const ContactProblem &problem);
 
+    /// The contacts @p contacts of @p problem (in that order) as a problem of
+    /// their own, in @p sub.
+    void
+    restrict_contact_problem(const ContactProblem            &problem,
+                             const std::vector<unsigned int> &contacts,
+                             ContactProblem                  &sub);
+
     /// What solve_contact_problem_by_groups() returns.
     struct GroupedContactSolution
     {
