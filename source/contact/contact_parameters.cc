@@ -1,6 +1,10 @@
 #include <deal.II/base/exceptions.h>
 
 #include <impactfe/contact/contact_parameters.h>
+#include <impactfe/utilities/program.h>
+
+#include <cmath>
+#include <string>
 
 namespace impactfe
 {
@@ -21,6 +25,28 @@ namespace impactfe
                       "<Output directory>/lcp_step_<n>.dat in the Siconos "
                       "text format, for replay with lcp-solve. -1: none. "
                       "The LCP of a step that fails is always written.");
+    prm.declare_entry(
+      "Friction cone",
+      "exact",
+      Patterns::Selection("exact|facets"),
+      "3D friction only (in 2D the cone is exact): 'exact', the circular "
+      "Coulomb cone |P_T| <= mu P_N, reached by facet LCPs re-aligned with "
+      "the slip directions until the exact-cone error is below 'Exact cone "
+      "tolerance' (doc/lcp.md); 'facets', the polygonal cone of 'Number of "
+      "facets' facets inscribed in it (one LCP per step).");
+    prm.declare_entry("Number of facets",
+                      "8",
+                      Patterns::Integer(),
+                      "k [-], even and >= 4: facets of the polygonal cone in "
+                      "3D, for both cone models (the exact one re-aligns "
+                      "them).");
+    prm.declare_entry("Exact cone tolerance",
+                      "1e-10",
+                      Patterns::Double(),
+                      "Exact-cone error to reach per step with 'Friction "
+                      "cone = exact' [-], relative (doc/lcp.md). Must be > "
+                      "0. A step that does not reach it is counted and "
+                      "reported (summary.json: lcp.cone_not_converged).");
     prm.leave_subsection();
   }
 
@@ -30,8 +56,21 @@ namespace impactfe
   ContactSolverParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Contact solver");
-    warm_start = prm.get_bool("Warm start");
-    dump_step  = prm.get_integer("Dump LCP of step");
+    warm_start    = prm.get_bool("Warm start");
+    dump_step     = prm.get_integer("Dump LCP of step");
+    friction_cone = lcp::cone_model_from_string(prm.get("Friction cone"));
+    const int k   = prm.get_integer("Number of facets");
+    exact_cone_tolerance = prm.get_double("Exact cone tolerance");
     prm.leave_subsection();
+    AssertThrow(k >= 4 && k % 2 == 0,
+                ExcMessage("Contact solver: 'Number of facets' must be even "
+                           "and >= 4, got " +
+                           std::to_string(k) + "."));
+    n_facets = static_cast<unsigned int>(k);
+    AssertThrow(exact_cone_tolerance > 0. &&
+                  std::isfinite(exact_cone_tolerance),
+                ExcMessage("Contact solver: 'Exact cone tolerance' must be "
+                           "> 0, got " +
+                           format_number(exact_cone_tolerance) + "."));
   }
 } // namespace impactfe

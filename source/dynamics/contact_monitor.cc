@@ -218,6 +218,10 @@ namespace impactfe
     ++run.n_steps;
     if (report.n_substeps > 1)
       ++run.free_flight_steps;
+    run.exact_cone_solves        = system.exact_cone_statistics().solves;
+    run.exact_cone_not_converged = system.exact_cone_statistics().not_converged;
+    run.exact_cone_tolerance =
+      system.contact_solver_parameters().exact_cone_tolerance;
 
     // Impulse balance, body by body.
     for (unsigned int b = 0; b < system.bodies().size(); ++b)
@@ -265,6 +269,14 @@ namespace impactfe
                                                 largest_inverse_nodal_mass * impulse_scale});
     const double impulse_tolerance  = 1e-9 * impulse_scale;
     const double velocity_tolerance = 1e-8 * velocity_scale;
+    // A sliding node has |P_T| = mu P_N on the circular cone; on the
+    // polygonal one (3D, `Friction cone = facets`) only cos(pi/k) of it
+    // where it slides along an edge.
+    const ContactSolverParameters &solver = system.contact_solver_parameters();
+    const double                   sliding_share =
+      nd == 3 && solver.friction_cone == lcp::ConeModel::facets ?
+                          std::cos(std::acos(-1.) / solver.n_facets) :
+                          1.;
     for (unsigned int c = 0; c < contacts.n_candidates(); ++c)
       {
         const double mu  = contacts.candidate(c).friction_coefficient;
@@ -294,7 +306,7 @@ namespace impactfe
                                      ContactState::stick;
             if (nd > 1 && is_sliding(s) &&
                 (p_dot_v > impulse_tolerance * v_t ||
-                 p_t < mu * p_n - impulse_tolerance))
+                 p_t < sliding_share * mu * p_n - impulse_tolerance))
               ++run.wrong_slip_count;
           }
         if (contact_mode(s) != contact_mode(states[c]))
@@ -516,7 +528,20 @@ namespace impactfe
     if (s.free_flight_steps > 0)
       out << "  Free-flight steps (k h, no contact possible): "
           << s.free_flight_steps << " of the " << s.n_steps << std::endl;
-    return check_contact_bounds(out, s, bounds, frictional);
+    bool ok = true;
+    if (s.exact_cone_solves > 0)
+      {
+        out << "  Exact cone: " << s.exact_cone_solves << " contact problems, "
+            << s.exact_cone_not_converged << " of them above the tolerance "
+            << s.exact_cone_tolerance << " of the exact-cone error"
+            << std::endl;
+        ok = print_check(out,
+                         "problems above the exact-cone tolerance",
+                         s.exact_cone_not_converged,
+                         "<=",
+                         0.);
+      }
+    return check_contact_bounds(out, s, bounds, frictional) && ok;
   }
 
 

@@ -436,17 +436,46 @@ namespace impactfe
     // The solver keeps its storage (LCP matrix, Lemke basis, block
     // pivoting systems) from step to step: no allocation here once the
     // largest LCP of the run has been seen (tests/lcp/allocations).
-    const lcp::ContactOptions options;
-    if (solver_parameters.warm_start)
+    lcp::ContactOptions options;
+    options.n_facets = solver_parameters.n_facets;
+    state_guess.resize(solver_parameters.warm_start ? lcp_candidates.size() :
+                                                      0);
+    for (unsigned int a = 0; a < state_guess.size(); ++a)
+      state_guess[a] = last_contact_states[lcp_candidates[a]];
+    // 3D friction with the exact cone: each candidate's facets start where
+    // its last solve left them.
+    const bool exact_cone =
+      nd == 3 && solver_parameters.friction_cone == lcp::ConeModel::exact;
+    if (exact_cone)
       {
-        state_guess.resize(lcp_candidates.size());
+        facet_angles.resize(contact_set.n_candidates(), 0.);
+        facet_angle_guess.resize(lcp_candidates.size());
         for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
-          state_guess[a] = last_contact_states[lcp_candidates[a]];
+          facet_angle_guess[a] = facet_angles[lcp_candidates[a]];
       }
+    lcp::ExactConeOptions cone_options;
+    cone_options.tolerance = solver_parameters.exact_cone_tolerance;
     const lcp::ContactSolution &solution =
+      exact_cone ?
+        exact_cone_solver.solve(
+          problem, options, cone_options, facet_angle_guess, state_guess) :
       solver_parameters.warm_start ?
         contact_solver.solve(problem, options, state_guess) :
         contact_solver.solve(problem, options);
+    if (exact_cone && solution.lcp.status == lcp::Status::solved)
+      {
+        const lcp::ExactConeReport &cone = exact_cone_solver.report();
+        ++cone_statistics.solves;
+        cone_statistics.facet_lcps += cone.iterations;
+        cone_statistics.most_facet_lcps =
+          std::max(cone_statistics.most_facet_lcps, cone.iterations);
+        cone_statistics.largest_error =
+          std::max(cone_statistics.largest_error, cone.cone_error);
+        if (!cone.converged)
+          ++cone_statistics.not_converged;
+        for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
+          facet_angles[lcp_candidates[a]] = exact_cone_solver.facet_angles()[a];
+      }
     if (solution.lcp.status == lcp::Status::solved)
       {
         std::fill(last_contact_states.begin(),
@@ -886,6 +915,20 @@ namespace impactfe
   MultibodySystem<dim>::largest_lcp() const
   {
     return lcp_max_size;
+  }
+
+  template <int dim>
+  const typename MultibodySystem<dim>::ExactConeStatistics &
+  MultibodySystem<dim>::exact_cone_statistics() const
+  {
+    return cone_statistics;
+  }
+
+  template <int dim>
+  const ContactSolverParameters &
+  MultibodySystem<dim>::contact_solver_parameters() const
+  {
+    return solver_parameters;
   }
 
   template class MultibodySystem<1>;

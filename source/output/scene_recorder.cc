@@ -74,6 +74,13 @@ namespace impactfe
       // A failed LCP stops the run with its step named: a finished run
       // has none.
       .add("failures", 0.);
+    const auto &cone = system.exact_cone_statistics();
+    if (cone.solves > 0)
+      lcp.add("exact_cone_solves", double(cone.solves))
+        .add("exact_cone_facet_lcps", double(cone.facet_lcps))
+        .add("exact_cone_most_facet_lcps", double(cone.most_facet_lcps))
+        .add("exact_cone_largest_error", cone.largest_error)
+        .add("cone_not_converged", double(cone.not_converged));
     JsonObject checks;
     checks.add("impulse_balance_error", s.impulse_balance_error)
       .add("max_penetration", s.max_penetration)

@@ -221,10 +221,18 @@ namespace impactfe
     summary.write(parameters.output.directory + "/summary.json");
 
     if (parameters.output.print_performance)
-      out << "  CPU seconds: set-up " << setup_cpu_seconds << ", time loop "
-          << loop_cpu_seconds << "; LCP: " << multibody_system->total_pivots()
-          << " pivots in total, largest LCP " << multibody_system->largest_lcp()
-          << std::endl;
+      {
+        out << "  CPU seconds: set-up " << setup_cpu_seconds << ", time loop "
+            << loop_cpu_seconds << "; LCP: " << multibody_system->total_pivots()
+            << " pivots in total, largest LCP "
+            << multibody_system->largest_lcp();
+        const auto &cone = multibody_system->exact_cone_statistics();
+        if (cone.solves > 0)
+          out << "; exact cone: " << cone.facet_lcps << " facet LCPs for "
+              << cone.solves << " problems (at most " << cone.most_facet_lcps
+              << "), largest exact-cone error " << cone.largest_error;
+        out << std::endl;
+      }
     recorder->report_files(out,
                            plot_columns(),
                            title() + ", " + to_string(ts.scheme));

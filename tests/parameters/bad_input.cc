@@ -121,6 +121,24 @@ main()
            with("Obstacle", "Normal = 0, 1, 0"),
            plate);
 
+  // The 3D plate: the friction cone and the contact boundary.
+  const std::string plate_3d = OBLIQUE_PLATE_3D_EXECUTABLE;
+  run_case("odd_number_of_facets",
+           with("Contact solver", "Number of facets = 5"),
+           plate_3d);
+  run_case("two_facets_in_3d",
+           with("Contact solver", "Number of facets = 2"),
+           plate_3d);
+  run_case("unknown_friction_cone",
+           with("Contact solver", "Friction cone = round"),
+           plate_3d);
+  run_case("zero_exact_cone_tolerance",
+           with("Contact solver", "Exact cone tolerance = 0"),
+           plate_3d);
+  run_case("plate_3d_missing_contact_boundary",
+           with("Mesh", "Contact boundary id = 7"),
+           plate_3d);
+
   // block_on_plane: its geometry, loads, second body and final phase.
   const std::string block = BLOCK_ON_PLANE_EXECUTABLE;
   run_case("block_negative_height", with("Geometry", "Height = -0.05"), block);

@@ -3,6 +3,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <impactfe/lcp/exact_cone.h>
+
 #include <string>
 
 namespace impactfe
@@ -20,6 +22,11 @@ namespace impactfe
     /// Step whose LCP is written to the output directory (-1: none). A step
     /// whose LCP fails is always written.
     int dump_step = -1;
+    /// 3D friction: the circular cone (to exact_cone_tolerance) or the
+    /// polygonal one of n_facets facets.
+    lcp::ConeModel friction_cone        = lcp::ConeModel::exact;
+    unsigned int   n_facets             = 8;
+    double         exact_cone_tolerance = 1e-10;
 
     static void
     declare_parameters(ParameterHandler &prm);

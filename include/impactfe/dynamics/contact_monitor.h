@@ -58,6 +58,11 @@ namespace impactfe
     unsigned int       n_steps       = 0;
     /// Of these steps, those made with k h (`Free-flight step factor`).
     unsigned int free_flight_steps = 0;
+    /// 3D with `Friction cone = exact`: the contact problems solved, how
+    /// many missed the exact-cone tolerance, and that tolerance.
+    unsigned int exact_cone_solves        = 0;
+    unsigned int exact_cone_not_converged = 0;
+    double       exact_cone_tolerance     = 0.;
   };
 
 

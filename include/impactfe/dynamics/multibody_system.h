@@ -232,6 +232,23 @@ namespace impactfe
     unsigned int
     largest_lcp() const;
 
+    /// The exact-cone solves of the run (3D friction with `Friction cone =
+    /// exact`): how many, the facet LCPs they took, their largest
+    /// exact-cone error, and how many missed the tolerance.
+    struct ExactConeStatistics
+    {
+      unsigned int       solves          = 0;
+      unsigned long long facet_lcps      = 0;
+      unsigned int       most_facet_lcps = 0;
+      double             largest_error   = 0.;
+      unsigned int       not_converged   = 0;
+    };
+    const ExactConeStatistics &
+    exact_cone_statistics() const;
+    /// The `Contact solver` parameters the system was made with.
+    const ContactSolverParameters &
+    contact_solver_parameters() const;
+
   private:
     TimeSteppingParameters                time_stepping;
     ContactSolverParameters               solver_parameters;
@@ -305,7 +322,13 @@ namespace impactfe
     /// The LCP solver and its storage, reused from step to step.
     lcp::ContactSolver        contact_solver;
     std::vector<ContactState> state_guess;
-    unsigned int              last_lcp_size = 0;
+    /// The exact cone: its solver, the facet rotation of each candidate at
+    /// its last solve (the next step starts from it), and the statistics.
+    lcp::ExactConeSolver exact_cone_solver;
+    std::vector<double>  facet_angles;
+    std::vector<double>  facet_angle_guess;
+    ExactConeStatistics  cone_statistics;
+    unsigned int         last_lcp_size = 0;
 
     unsigned long long pivot_count  = 0;
     unsigned int       lcp_max_size = 0;
