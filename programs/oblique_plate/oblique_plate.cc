@@ -31,8 +31,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <impactfe/bodies/geometry.h>
 #include <impactfe/scenes/obstacle_impact_scene.h>
+#include <impactfe/scenes/round_sided_plate.h>
 #include <impactfe/utilities/program.h>
 
 namespace ObliquePlate
@@ -63,17 +63,17 @@ namespace ObliquePlate
     double
     out_of_plane_measure() const override
     {
-      return thickness;
+      return plate.thickness;
     }
     double
     length_scale() const override
     {
-      return width;
+      return plate.width;
     }
     Tensor<1, 2>
     initial_velocity() const override
     {
-      return velocity;
+      return Tensor<1, 2>({plate.horizontal_velocity, plate.vertical_velocity});
     }
     std::string
     title() const override
@@ -88,11 +88,9 @@ namespace ObliquePlate
     void
     report_motion(std::ostream &out, JsonObject &summary) const override;
 
-    // The data of the paper's Fig. 7 table.
-    double       width = 0.08, side_height = 0.04, radius = 0.101;
-    double       thickness = 0.01, initial_gap = 0.;
-    unsigned int nx = 10, ny = 8;
-    Tensor<1, 2> velocity;
+    // The data of the paper's Fig. 7 table (`Geometry`, `Initial
+    // conditions`).
+    RoundSidedPlate plate;
   };
 
 
@@ -103,51 +101,8 @@ namespace ObliquePlate
   void
   ObliquePlateProblem::declare_scene_parameters(ParameterHandler &prm)
   {
-    prm.enter_subsection("Geometry");
-    prm.declare_entry("Width",
-                      "0.08",
-                      Patterns::Double(),
-                      "Width of the plate [m]. Must be > 0.");
-    prm.declare_entry("Side height",
-                      "0.04",
-                      Patterns::Double(),
-                      "Height of the plate's vertical sides, above the ends "
-                      "of the round side [m]. Must be > 0.");
-    prm.declare_entry("Radius of the round side",
-                      "0.101",
-                      Patterns::Double(),
-                      "Radius of the arc that forms the lower side [m]. Must "
-                      "exceed half the width.");
-    prm.declare_entry("Thickness",
-                      "0.01",
-                      Patterns::Double(),
-                      "Out-of-plane thickness (plane stress) [m]. Must be > "
-                      "0.");
-    prm.declare_entry("Number of cells across",
-                      "10",
-                      Patterns::Integer(1),
-                      "Q1 cells along the width [-].");
-    prm.declare_entry("Number of cells up",
-                      "8",
-                      Patterns::Integer(1),
-                      "Q1 cells along the height [-].");
-    prm.declare_entry("Initial gap",
-                      "0",
-                      Patterns::Double(),
-                      "Height of the lowest point of the round side above "
-                      "the plane at t = 0 [m]. Must be >= 0.");
-    prm.leave_subsection();
-    prm.enter_subsection("Initial conditions");
-    prm.declare_entry("Horizontal velocity",
-                      "3",
-                      Patterns::Double(),
-                      "V_h, along x, at t = 0 [m/s].");
-    prm.declare_entry("Vertical velocity",
-                      "-5",
-                      Patterns::Double(),
-                      "V_v, along y, at t = 0 [m/s]. Must be < 0 for an "
-                      "impact.");
-    prm.leave_subsection();
+    RoundSidedPlate::declare_parameters(
+      prm, "Out-of-plane thickness (plane stress) [m]. Must be > 0.");
   }
 
 
@@ -155,34 +110,7 @@ namespace ObliquePlate
   void
   ObliquePlateProblem::parse_scene_parameters(ParameterHandler &prm)
   {
-    prm.enter_subsection("Geometry");
-    width       = prm.get_double("Width");
-    side_height = prm.get_double("Side height");
-    radius      = prm.get_double("Radius of the round side");
-    thickness   = prm.get_double("Thickness");
-    nx          = prm.get_integer("Number of cells across");
-    ny          = prm.get_integer("Number of cells up");
-    initial_gap = prm.get_double("Initial gap");
-    prm.leave_subsection();
-    AssertThrow(width > 0. && side_height > 0.,
-                ExcMessage("Geometry: 'Width' and 'Side height' must be > 0, "
-                           "got " +
-                           format_number(width) + " and " +
-                           format_number(side_height) + "."));
-    AssertThrow(2. * radius > width,
-                ExcMessage("Geometry: 'Radius of the round side' must exceed "
-                           "half the width, got " +
-                           format_number(radius) + "."));
-    require_positive(thickness, "Geometry", "Thickness");
-    require_non_negative(initial_gap, "Geometry", "Initial gap");
-    prm.enter_subsection("Initial conditions");
-    velocity[0] = prm.get_double("Horizontal velocity");
-    velocity[1] = prm.get_double("Vertical velocity");
-    prm.leave_subsection();
-    AssertThrow(velocity[1] < 0.,
-                ExcMessage("Initial conditions: 'Vertical velocity' must be < "
-                           "0 (towards the plane), got " +
-                           format_number(velocity[1]) + "."));
+    plate.parse_parameters(prm);
   }
 
 
@@ -195,8 +123,7 @@ namespace ObliquePlate
   void
   ObliquePlateProblem::make_built_in_mesh(Triangulation<2> &tria) const
   {
-    Geometry::plate_with_round_side(
-      tria, Point<2>(0., initial_gap), width, side_height, radius, nx, ny);
+    plate.make_mesh(tria);
   }
 
 
@@ -212,7 +139,8 @@ namespace ObliquePlate
     const ContactRunSummary &s     = run_summary();
     const double             m     = deformable_body().total_mass();
     const Tensor<1, 2>       p_end = system().momentum(0);
-    out << "  Mass " << m << " kg; mean velocity at t = 0: " << velocity
+    out << "  Mass " << m
+        << " kg; mean velocity at t = 0: " << initial_velocity()
         << " m/s, at the end: " << p_end / m << " m/s" << std::endl;
     out << "  Tangential / normal impulse = "
         << (s.normal_impulse > 0. ? s.tangential_impulse / s.normal_impulse :

@@ -41,8 +41,8 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
 
-#include <impactfe/bodies/geometry.h>
 #include <impactfe/scenes/obstacle_impact_scene.h>
+#include <impactfe/scenes/round_sided_plate.h>
 #include <impactfe/utilities/program.h>
 
 #include <cmath>
@@ -80,12 +80,13 @@ namespace ObliquePlate3D
     double
     length_scale() const override
     {
-      return width;
+      return plate.width;
     }
     Tensor<1, 3>
     initial_velocity() const override
     {
-      return to_scene_frame(Tensor<1, 3>({horizontal, vertical, 0.}));
+      return to_scene_frame(
+        Tensor<1, 3>({plate.horizontal_velocity, plate.vertical_velocity, 0.}));
     }
     std::string
     title() const override
@@ -107,58 +108,29 @@ namespace ObliquePlate3D
     Tensor<1, 3>
     to_plate_frame(const Tensor<1, 3> &v) const;
 
-    // The data of the paper's Fig. 7 table, as in the 2D program.
-    double       width = 0.08, side_height = 0.04, radius = 0.101;
-    double       thickness = 0.01, initial_gap = 0.;
-    unsigned int nx = 10, ny = 8, n_layers = 1;
-    double       horizontal = 3., vertical = -5., turn = 0.;
+    // The 2D program's plate and velocity, and the 3D entries.
+    RoundSidedPlate plate;
+    unsigned int    n_layers = 1;
+    double          turn     = 0.;
   };
 
 
 
   // @sect3{Parameters}
   //
-  // The 2D program's `Geometry` and `Initial conditions`, and two entries
-  // of 3D: the cells through the thickness and the turn of the scene.
+  // The 2D program's `Geometry` and `Initial conditions` (RoundSidedPlate),
+  // and two entries of 3D: the cells through the thickness and the turn of
+  // the scene.
   void
   ObliquePlate3DProblem::declare_scene_parameters(ParameterHandler &prm)
   {
+    RoundSidedPlate::declare_parameters(
+      prm, "Thickness of the plate, along z [m]. Must be > 0.");
     prm.enter_subsection("Geometry");
-    prm.declare_entry("Width",
-                      "0.08",
-                      Patterns::Double(),
-                      "Width of the plate [m]. Must be > 0.");
-    prm.declare_entry("Side height",
-                      "0.04",
-                      Patterns::Double(),
-                      "Height of the plate's vertical sides, above the ends "
-                      "of the round side [m]. Must be > 0.");
-    prm.declare_entry("Radius of the round side",
-                      "0.101",
-                      Patterns::Double(),
-                      "Radius of the arc that forms the lower side [m]. Must "
-                      "exceed half the width.");
-    prm.declare_entry("Thickness",
-                      "0.01",
-                      Patterns::Double(),
-                      "Thickness of the plate, along z [m]. Must be > 0.");
-    prm.declare_entry("Number of cells across",
-                      "10",
-                      Patterns::Integer(1),
-                      "Q1 cells along the width [-].");
-    prm.declare_entry("Number of cells up",
-                      "8",
-                      Patterns::Integer(1),
-                      "Q1 cells along the height [-].");
     prm.declare_entry("Number of layers",
                       "1",
                       Patterns::Integer(1),
                       "Q1 cells through the thickness [-].");
-    prm.declare_entry("Initial gap",
-                      "0",
-                      Patterns::Double(),
-                      "Height of the lowest point of the round side above "
-                      "the plane at t = 0 [m]. Must be >= 0.");
     prm.declare_entry("Turn about the normal",
                       "0",
                       Patterns::Double(),
@@ -167,18 +139,6 @@ namespace ObliquePlate3D
                       "contact frames are not: with the exact cone the "
                       "results, turned back, do not depend on phi.");
     prm.leave_subsection();
-    prm.enter_subsection("Initial conditions");
-    prm.declare_entry("Horizontal velocity",
-                      "3",
-                      Patterns::Double(),
-                      "V_h, along the plate's width (x before the turn), at "
-                      "t = 0 [m/s].");
-    prm.declare_entry("Vertical velocity",
-                      "-5",
-                      Patterns::Double(),
-                      "V_v, along y, at t = 0 [m/s]. Must be < 0 for an "
-                      "impact.");
-    prm.leave_subsection();
   }
 
 
@@ -186,36 +146,14 @@ namespace ObliquePlate3D
   void
   ObliquePlate3DProblem::parse_scene_parameters(ParameterHandler &prm)
   {
+    plate.parse_parameters(prm);
     prm.enter_subsection("Geometry");
-    width       = prm.get_double("Width");
-    side_height = prm.get_double("Side height");
-    radius      = prm.get_double("Radius of the round side");
-    thickness   = prm.get_double("Thickness");
-    nx          = prm.get_integer("Number of cells across");
-    ny          = prm.get_integer("Number of cells up");
-    n_layers    = prm.get_integer("Number of layers");
-    initial_gap = prm.get_double("Initial gap");
-    turn        = prm.get_double("Turn about the normal");
+    n_layers = prm.get_integer("Number of layers");
+    turn     = prm.get_double("Turn about the normal");
     prm.leave_subsection();
-    require_positive(width, "Geometry", "Width");
-    require_positive(side_height, "Geometry", "Side height");
-    AssertThrow(2. * radius > width,
-                ExcMessage("Geometry: 'Radius of the round side' must exceed "
-                           "half the width, got " +
-                           format_number(radius) + "."));
-    require_positive(thickness, "Geometry", "Thickness");
-    require_non_negative(initial_gap, "Geometry", "Initial gap");
     AssertThrow(std::isfinite(turn),
                 ExcMessage(
                   "Geometry: 'Turn about the normal' must be finite."));
-    prm.enter_subsection("Initial conditions");
-    horizontal = prm.get_double("Horizontal velocity");
-    vertical   = prm.get_double("Vertical velocity");
-    prm.leave_subsection();
-    AssertThrow(vertical < 0.,
-                ExcMessage("Initial conditions: 'Vertical velocity' must be < "
-                           "0 (towards the plane), got " +
-                           format_number(vertical) + "."));
   }
 
 
@@ -230,11 +168,13 @@ namespace ObliquePlate3D
   void
   ObliquePlate3DProblem::make_built_in_mesh(Triangulation<3> &tria) const
   {
-    Triangulation<2> plate;
-    Geometry::plate_with_round_side(
-      plate, Point<2>(0., initial_gap), width, side_height, radius, nx, ny);
-    GridGenerator::extrude_triangulation(plate, n_layers + 1, thickness, tria);
-    GridTools::shift(Tensor<1, 3>({0., 0., -0.5 * thickness}), tria);
+    Triangulation<2> section;
+    plate.make_mesh(section);
+    GridGenerator::extrude_triangulation(section,
+                                         n_layers + 1,
+                                         plate.thickness,
+                                         tria);
+    GridTools::shift(Tensor<1, 3>({0., 0., -0.5 * plate.thickness}), tria);
     if (turn != 0.)
       GridTools::rotate(Tensor<1, 3>({0., 1., 0.}), turn, tria);
   }
@@ -272,7 +212,8 @@ namespace ObliquePlate3D
                                        JsonObject   &summary) const
   {
     const double       m = deformable_body().total_mass();
-    const Tensor<1, 3> v0({horizontal, vertical, 0.});
+    const Tensor<1, 3> v0(
+      {plate.horizontal_velocity, plate.vertical_velocity, 0.});
     const Tensor<1, 3> v_end   = to_plate_frame(system().momentum(0) / m);
     const Tensor<1, 3> impulse = m * (v_end - v0);
     const auto         rounded = [](const double x) {
