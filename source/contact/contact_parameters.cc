@@ -43,10 +43,12 @@ namespace impactfe
     prm.declare_entry("Exact cone tolerance",
                       "1e-10",
                       Patterns::Double(),
-                      "Exact-cone error to reach per step with 'Friction "
-                      "cone = exact' [-], relative (doc/lcp.md). Must be > "
-                      "0. A step that does not reach it is counted and "
-                      "reported (summary.json: lcp.cone_not_converged).");
+                      "With 'Friction cone = exact': the residual of the "
+                      "circular cone to reach in every contact problem [-], "
+                      "relative to the largest impulse (doc/lcp.md, 'The "
+                      "exact cone'). Must be > 0. A problem that does not "
+                      "reach it is counted and reported (summary.json: "
+                      "lcp.cone_not_converged) and fails the run's check.");
     prm.leave_subsection();
   }
 

@@ -533,7 +533,7 @@ namespace impactfe
       {
         out << "  Exact cone: " << s.exact_cone_solves << " contact problems, "
             << s.exact_cone_not_converged << " of them above the tolerance "
-            << s.exact_cone_tolerance << " of the exact-cone error"
+            << s.exact_cone_tolerance << " of the circular cone's residual"
             << std::endl;
         ok = print_check(out,
                          "problems above the exact-cone tolerance",

@@ -469,8 +469,8 @@ namespace impactfe
         cone_statistics.facet_lcps += cone.iterations;
         cone_statistics.most_facet_lcps =
           std::max(cone_statistics.most_facet_lcps, cone.iterations);
-        cone_statistics.largest_error =
-          std::max(cone_statistics.largest_error, cone.cone_error);
+        cone_statistics.largest_residual =
+          std::max(cone_statistics.largest_residual, cone.residual);
         if (!cone.converged)
           ++cone_statistics.not_converged;
         for (unsigned int a = 0; a < lcp_candidates.size(); ++a)

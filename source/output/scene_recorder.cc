@@ -79,7 +79,7 @@ namespace impactfe
       lcp.add("exact_cone_solves", double(cone.solves))
         .add("exact_cone_facet_lcps", double(cone.facet_lcps))
         .add("exact_cone_most_facet_lcps", double(cone.most_facet_lcps))
-        .add("exact_cone_largest_error", cone.largest_error)
+        .add("exact_cone_largest_residual", cone.largest_residual)
         .add("cone_not_converged", double(cone.not_converged));
     JsonObject checks;
     checks.add("impulse_balance_error", s.impulse_balance_error)

@@ -230,7 +230,7 @@ namespace impactfe
         if (cone.solves > 0)
           out << "; exact cone: " << cone.facet_lcps << " facet LCPs for "
               << cone.solves << " problems (at most " << cone.most_facet_lcps
-              << "), largest exact-cone error " << cone.largest_error;
+              << "), largest residual " << cone.largest_residual;
         out << std::endl;
       }
     recorder->report_files(out,

@@ -234,14 +234,14 @@ namespace impactfe
 
     /// The exact-cone solves of the run (3D friction with `Friction cone =
     /// exact`): how many, the facet LCPs they took, their largest
-    /// exact-cone error, and how many missed the tolerance.
+    /// residual (ExactConeReport), and how many missed the tolerance.
     struct ExactConeStatistics
     {
-      unsigned int       solves          = 0;
-      unsigned long long facet_lcps      = 0;
-      unsigned int       most_facet_lcps = 0;
-      double             largest_error   = 0.;
-      unsigned int       not_converged   = 0;
+      unsigned int       solves           = 0;
+      unsigned long long facet_lcps       = 0;
+      unsigned int       most_facet_lcps  = 0;
+      double             largest_residual = 0.;
+      unsigned int       not_converged    = 0;
     };
     const ExactConeStatistics &
     exact_cone_statistics() const;

@@ -1,8 +1,9 @@
 // The circular (exact) Coulomb cone in 3D, reached through polygonal cones
 // whose facets are re-aligned with each contact's slip direction: every
 // iterate is a Lemke solution of a facet LCP, verified as every other one,
-// and the iteration stops when the exact-cone error (exact_cone_error()) is
-// below a tolerance. See doc/lcp.md, "The exact cone".
+// and the iteration stops when the circular cone's natural-map residual,
+// relative to the impulses, is below a tolerance. See doc/lcp.md, "The exact
+// cone".
 #ifndef impactfe_lcp_exact_cone_h
 #define impactfe_lcp_exact_cone_h
 
@@ -36,7 +37,14 @@ namespace impactfe
     /// Options of ExactConeSolver.
     struct ExactConeOptions
     {
-      /// Target of exact_cone_error() (relative, see there).
+      /**
+       * Target of the residual (ExactConeReport::residual): the natural-map
+       * residual |P_c - proj_K(P_c - u~_c / W_cc)| of the circular-cone
+       * problem, largest over the contacts, relative to the impulse scale
+       * s_P = max(|P|, (|V_free| + |b_N|)/|W|). It is a
+       * tolerance on the impulses; exact_cone_error(), which compares
+       * impulses with velocities, is reported beside it.
+       */
       double tolerance = 1e-10;
       /// Facet LCPs solved at the most.
       unsigned int max_iterations = 30;
@@ -48,9 +56,12 @@ namespace impactfe
       /// Facet LCPs solved (1 if the first answer already met the
       /// tolerance, or if the problem has no friction).
       unsigned int iterations = 0;
-      /// exact_cone_error() of the returned impulses.
+      /// exact_cone_error() of the returned impulses (the standard measure).
       double cone_error = 0.;
-      /// Whether cone_error <= tolerance.
+      /// The residual of ExactConeOptions::tolerance (impulse units).
+      double residual = 0.;
+      /// Whether residual <= tolerance (always, for a solved problem
+      /// without friction in 3D, whose LCP cone is exact).
       bool converged = false;
     };
 
@@ -78,7 +89,7 @@ namespace impactfe
      * answer, which warm-starts the next Lemke solve (the z_i > 0 of the
      * previous LCP).
      *
-     * The iteration stops when exact_cone_error() <= tolerance (converged),
+     * The iteration stops when the residual <= tolerance (converged),
      * when no facet moves any more, or after max_iterations. If a later
      * facet LCP fails, the last verified answer is returned, marked not
      * converged; if the first fails, its failure is returned.
@@ -130,7 +141,8 @@ namespace impactfe
       /// solved (otherwise the first failure), lcp.pivots summed.
       ContactSolution solution;
       /// iterations: the most any group took; cone_error: of the whole
-      /// problem; converged: every group converged.
+      /// problem; residual: the largest of the groups'; converged: every
+      /// group converged.
       ExactConeReport report;
       /// Facet LCPs solved over all groups.
       unsigned int total_iterations = 0;
