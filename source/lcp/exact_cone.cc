@@ -173,10 +173,12 @@ namespace impactfe
 
       /**
        * Newton's method on the circular-cone equations at the contact
-       * states of @p P: open P_c = 0; closed without friction V_N + b_N = 0,
-       * P_T = 0; sticking V_c + b_c = 0; sliding V_N + b_N = 0 and
-       * P_T + mu P_N V_T/|V_T| = 0. From an iterate of the facet iteration
-       * that has the right states it converges quadratically. Returns true
+       * states of @p P, a facet answer whose polygon has its edges at
+       * @p edge = cos(pi/k) of the circle's radius: open P_c = 0; closed
+       * without friction V_N + b_N = 0, P_T = 0; sticking V_c + b_c = 0;
+       * sliding V_N + b_N = 0 and P_T + mu P_N V_T/|V_T| = 0. From an iterate
+       * of the facet iteration that has the right states it converges
+       * quadratically. Returns true
        * and the new impulses in @p P only if the states hold at the answer
        * (P_N >= 0, open contacts separate, sticking ones inside the cone)
        * and its impulse_residual() is <= @p tolerance. Redundant contacts
@@ -186,6 +188,7 @@ namespace impactfe
       bool
       polish_on_circular_cone(const ContactProblem &p,
                               std::vector<double>  &P,
+                              const double          edge,
                               const double          tolerance)
       {
         const unsigned int  nc = p.n_contacts;
@@ -211,13 +214,21 @@ namespace impactfe
           stick,
           slide
         };
+        // A contact slides if it moves and its P_T is on the boundary of
+        // its polygon: inside it, complementarity holds V_T at 0 and what
+        // is left of V_T is round-off.
         std::vector<State> state(nc);
         for (unsigned int c = 0; c < nc; ++c)
-          state[c] = P[3 * c] <= 1e-9 * scale_P ? State::open :
-                     p.mu[c] <= 0.              ? State::closed :
-                     std::hypot(V[3 * c + 1], V[3 * c + 2]) <= 1e-9 * scale_V ?
-                                     State::stick :
-                                     State::slide;
+          {
+            const double *Pc = &P[3 * c], *Vc = &V[3 * c];
+            state[c] = Pc[0] <= 1e-9 * scale_P ? State::open :
+                       p.mu[c] <= 0.           ? State::closed :
+                       std::hypot(Vc[1], Vc[2]) > 1e-9 * scale_V &&
+                           std::hypot(Pc[1], Pc[2]) >=
+                             (1. - 1e-6) * edge * p.mu[c] * Pc[0] ?
+                                       State::slide :
+                                       State::stick;
+          }
 
         std::vector<double> x = P, F(m), step(m);
         DenseMatrix         J(m, m), JtJ(m, m);
@@ -239,10 +250,17 @@ namespace impactfe
                   continue;
                 const unsigned int velocity_rows =
                   state[c] == State::closed || state[c] == State::slide ? 1 : 3;
+                // Velocity rows times rho_c = 1/W_cc: every row of F is in
+                // impulse units, so that J^T J is not dominated by one kind.
+                const double w_cc =
+                  (p.W(r, r) + p.W(r + 1, r + 1) + p.W(r + 2, r + 2)) / 3.;
+                const double rho = w_cc > 0. ? 1. / w_cc : 1.;
                 for (unsigned int d = 0; d < velocity_rows; ++d)
                   {
-                    F[r + d] = V[r + d];
-                    std::copy(p.W.row(r + d), p.W.row(r + d) + m, J.row(r + d));
+                    F[r + d]    = rho * V[r + d];
+                    double *row = J.row(r + d);
+                    for (std::size_t j = 0; j < m; ++j)
+                      row[j] = rho * p.W(r + d, j);
                   }
                 if (state[c] == State::slide)
                   {
@@ -271,7 +289,7 @@ namespace impactfe
               }
             for (const double f : F)
               residual = std::max(residual, std::abs(f));
-            if (residual <= 1e-15 * std::max(scale_P, scale_V))
+            if (residual <= 1e-15 * scale_P)
               break;
             // The Levenberg-Marquardt step (J^T J + lambda I) dx = -J^T F:
             // with redundant contacts J is singular but the equations are
@@ -413,7 +431,8 @@ namespace impactfe
             }
           // Close to the circular cone: try Newton at these states.
           if (last_report.residual < 1e-3 &&
-              polish_on_circular_cone(p, solution.P, cone_options.tolerance))
+              polish_on_circular_cone(
+                p, solution.P, edge, cone_options.tolerance))
             {
               last_report.cone_error = exact_cone_error(p, solution.P);
               last_report.residual  = impulse_residual(p, solution.P, velocity);
@@ -442,10 +461,11 @@ namespace impactfe
               has_residual[c]            = false;
               if (p.mu[c] <= 0. || P[0] <= 1e-9 * scale_P)
                 continue;
+              // Inside its polygon it sticks (complementarity: its V_T is
+              // round-off), and is inside the circle too.
+              if (std::hypot(P[1], P[2]) < (1. - 1e-6) * edge * p.mu[c] * P[0])
+                continue;
               const bool sliding = std::hypot(V[1], V[2]) > 1e-9 * scale_V;
-              if (!sliding &&
-                  std::hypot(P[1], P[2]) < (1. - 1e-6) * edge * p.mu[c] * P[0])
-                continue; // sticks inside its polygon: inside the circle
               // The predictor of the projection onto the circular cone,
               // P_T - rho V_T with rho = 1/W_TT of the contact: for an
               // isolated contact with W_TT = w I, the direction of the
