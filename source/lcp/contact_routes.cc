@@ -228,6 +228,25 @@ namespace impactfe
 
 
 
+    double
+    scale_to_unit_delassus(const ContactProblem &p, ContactProblem &scaled)
+    {
+      const double scale = p.W.max_abs();
+      if (!(scale > 0.) || (scale >= 0.5 && scale <= 2.))
+        return 1.;
+      scaled = p;
+      for (std::size_t i = 0; i < scaled.W.n_rows(); ++i)
+        for (std::size_t j = 0; j < scaled.W.n_cols(); ++j)
+          scaled.W(i, j) /= scale;
+      for (double &v : scaled.free_velocity)
+        v /= scale;
+      for (double &b : scaled.gap_term)
+        b /= scale;
+      return scale;
+    }
+
+
+
     RoutedContactSolution
     solve_contact_problem_by_routes(const ContactProblem  &p,
                                     const ContactOptions  &options,
@@ -246,17 +265,10 @@ namespace impactfe
       // with W scaled to max |W| = 1; only velocities (w, sigma) are scaled.
       if (first_attempt == nullptr)
         {
-          const double scale = p.W.max_abs();
-          if (scale > 0. && (scale < 0.5 || scale > 2.))
+          ContactProblem scaled;
+          const double   scale = scale_to_unit_delassus(p, scaled);
+          if (scale != 1.)
             {
-              ContactProblem scaled = p;
-              for (std::size_t i = 0; i < scaled.W.n_rows(); ++i)
-                for (std::size_t j = 0; j < scaled.W.n_cols(); ++j)
-                  scaled.W(i, j) /= scale;
-              for (double &v : scaled.free_velocity)
-                v /= scale;
-              for (double &b : scaled.gap_term)
-                b /= scale;
               RoutedContactSolution r =
                 solve_contact_problem_by_routes(scaled, options);
               std::ostringstream m;

@@ -353,14 +353,19 @@ namespace impactfe
 
     // @sect3{The iteration}
     const ContactSolution &
-    ExactConeSolver::solve(const ContactProblem            &p,
+    ExactConeSolver::solve(const ContactProblem            &problem,
                            const ContactOptions            &options,
                            const ExactConeOptions          &cone_options,
                            const std::vector<double>       &initial_angles,
                            const std::vector<ContactState> &state_guess)
     {
-      const unsigned int nc = p.n_contacts;
-      last_report           = ExactConeReport();
+      // W of unit size (scale_to_unit_delassus()): the same impulses and
+      // residual, and no false rays from badly scaled W. The standard
+      // exact-cone error is reported for the problem as given.
+      const bool scaled        = scale_to_unit_delassus(problem, unit) != 1.;
+      const ContactProblem &p  = scaled ? unit : problem;
+      const unsigned int    nc = p.n_contacts;
+      last_report              = ExactConeReport();
       angles.assign(nc, 0.);
       if (!has_friction(p))
         {
@@ -372,7 +377,7 @@ namespace impactfe
           // one: a verified answer is the answer.
           if (solution.lcp.status == Status::solved)
             {
-              last_report.cone_error = exact_cone_error(p, solution.P);
+              last_report.cone_error = exact_cone_error(problem, solution.P);
               last_report.residual  = impulse_residual(p, solution.P, velocity);
               last_report.converged = true;
             }
@@ -422,7 +427,7 @@ namespace impactfe
           for (std::size_t i = 0; i < s.lcp.z.size(); ++i)
             guess[i] = s.lcp.z[i] > 0.;
           last_report.iterations = it;
-          last_report.cone_error = exact_cone_error(p, solution.P);
+          last_report.cone_error = exact_cone_error(problem, solution.P);
           last_report.residual   = impulse_residual(p, solution.P, velocity);
           if (last_report.residual <= cone_options.tolerance)
             {
@@ -434,7 +439,7 @@ namespace impactfe
               polish_on_circular_cone(
                 p, solution.P, edge, cone_options.tolerance))
             {
-              last_report.cone_error = exact_cone_error(p, solution.P);
+              last_report.cone_error = exact_cone_error(problem, solution.P);
               last_report.residual  = impulse_residual(p, solution.P, velocity);
               last_report.converged = true;
               polished              = true;

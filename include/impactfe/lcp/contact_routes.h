@@ -56,6 +56,18 @@ namespace impactfe
     };
 
     /**
+     * The LCP forms put W beside blocks of 1 and mu: a W far from unit size
+     * makes Lemke's pivot tests compare numbers of different scales (false
+     * rays). V / s = (W / s) P + V_free / s has the same impulses, so
+     * @p scaled gets W, V_free and b_N divided by s = max |W|, and s is
+     * returned; if max |W| is in [0.5, 2] (or W is zero) nothing is done and
+     * 1 is returned.
+     */
+    double
+    scale_to_unit_delassus(const ContactProblem &problem,
+                           ContactProblem       &scaled);
+
+    /**
      * Routes 1 to 5 above (route 1 is @p first_attempt if given), then (if all failed) the feasibility test. On
      * success solution.lcp.status == solved and solution.P the impulses; if
      * the facet form was proven infeasible, solution.lcp.status ==

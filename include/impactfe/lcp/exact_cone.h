@@ -120,7 +120,9 @@ namespace impactfe
       facet_angles() const;
 
     private:
-      ContactSolver       facet_solver;
+      ContactSolver facet_solver;
+      /// The problem with W of unit size, and in the turned frames.
+      ContactProblem      unit;
       ContactProblem      rotated;
       ContactSolution     solution;
       ExactConeReport     last_report;
