@@ -7,7 +7,7 @@ error of each answer; optionally against Siconos' own 2D Lemke.
 usage (from the repository top):
     /usr/bin/python3 benchmarks/lcp/siconos_collection.py \
         [--build build] [--data DIR] [--extra FILE ...] [--facets 8] \
-        [--cone facets|exact] [--tolerance 1e-10] [--peer] \
+        [--cone facets|exact] [--tolerance 1e-10] [--timeout S] [--peer] \
         [--out results/siconos_collection]
 
 --cone exact: lcp-solve --cone exact (the circular cone by facet LCPs
@@ -68,12 +68,21 @@ def fetch_debian_source(out):
     return folder
 
 
-def run_ours(binary, path, facets, cone="facets", tolerance=1e-10):
+def run_ours(binary, path, facets, cone="facets", tolerance=1e-10,
+             timeout=None):
     """One lcp-solve run; returns a dict of what it printed."""
     cmd = [binary, "--reference", "--facets", str(facets), "--cone", cone,
            "--tolerance", str(tolerance), path]
     t0 = time.time()
-    p = subprocess.run(cmd, capture_output=True, text=True)
+    try:
+        p = subprocess.run(cmd, capture_output=True, text=True,
+                           timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return {"file": os.path.basename(path), "code": "impactfe",
+                "wall_s": time.time() - t0, "status": "timeout", "n": "",
+                "pivots": "", "relative_error": "", "solve_s": "",
+                "exact_cone_error": "", "cone_iterations": "",
+                "converged": "", "message": f"stopped after {timeout} s"}
     wall = time.time() - t0
     row = {"file": os.path.basename(path), "code": "impactfe",
            "wall_s": wall, "status": "not read", "n": "", "pivots": "",
@@ -181,6 +190,9 @@ def main():
     ap.add_argument("--facets", type=int, default=8)
     ap.add_argument("--cone", choices=["facets", "exact"], default="facets")
     ap.add_argument("--tolerance", type=float, default=1e-10)
+    ap.add_argument("--timeout", type=float, default=None,
+                    help="seconds one lcp-solve run may take (status "
+                         "'timeout' after that)")
     ap.add_argument("--peer", action="store_true")
     ap.add_argument("--out",
                     default=os.path.join(TOP, "results", "siconos_collection"))
@@ -198,7 +210,7 @@ def main():
           ("file", "n", "status", "pivots", "rel.err", "solve s", "cone err",
            "LCPs"))
     for path in files:
-        r = run_ours(binary, path, a.facets, a.cone, a.tolerance)
+        r = run_ours(binary, path, a.facets, a.cone, a.tolerance, a.timeout)
         rows.append(r)
         print("%-42s %6s %-16s %7s %10s %10s %10s %5s%s" % (
             r["file"][:42], r["n"], r["status"], r["pivots"],
