@@ -427,7 +427,6 @@ namespace impactfe
           for (std::size_t i = 0; i < s.lcp.z.size(); ++i)
             guess[i] = s.lcp.z[i] > 0.;
           last_report.iterations = it;
-          last_report.cone_error = exact_cone_error(problem, solution.P);
           last_report.residual   = impulse_residual(p, solution.P, velocity);
           if (last_report.residual <= cone_options.tolerance)
             {
@@ -439,7 +438,6 @@ namespace impactfe
               polish_on_circular_cone(
                 p, solution.P, edge, cone_options.tolerance))
             {
-              last_report.cone_error = exact_cone_error(problem, solution.P);
               last_report.residual  = impulse_residual(p, solution.P, velocity);
               last_report.converged = true;
               polished              = true;
@@ -512,7 +510,9 @@ namespace impactfe
               break;
             }
         }
-      solution.lcp.pivots = total_pivots;
+      // The standard measure, once, for the answer returned.
+      last_report.cone_error = exact_cone_error(problem, solution.P);
+      solution.lcp.pivots    = total_pivots;
       char text[200];
       std::snprintf(
         text,
