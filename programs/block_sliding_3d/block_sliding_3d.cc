@@ -109,17 +109,14 @@ namespace BlockSliding3D
     {
       return Tensor<1, 3>({std::cos(phi), 0., std::sin(phi)});
     }
-    /// The block's momentum over its mass, or its mean displacement.
-    Tensor<1, 3>
-    mean_of(const Vector<double> &field) const;
 
     double          length = 0.1, height = 0.01, width = 0.1;
     unsigned int    nx = 4, ny = 1, nz = 4;
     double          speed = 1., phi = 0., gravity = 9.81;
     StabilityBounds bounds;
 
-    std::array<Vector<double>, 3>         mass_weights;
-    double                                mass = 0.;
+    /// The block's momentum over its mass, or its mean displacement.
+    MassWeightedMean<3>                   block_mean;
     std::unique_ptr<RigidBlockTracker<3>> tracker;
     double                                largest_turn = 0.;
   };
@@ -229,22 +226,13 @@ namespace BlockSliding3D
 
   // @sect3{What a step measures}
   //
-  // The mean velocity is M v . e_d / m for the three axes (M e_d computed
-  // once); it follows the rigid-block tracker, and its angle with s while
-  // the block slides.
+  // The mean velocity (MassWeightedMean: M e_d . v / m for the three axes)
+  // feeds the rigid-block tracker, and its angle with s while the block
+  // slides is followed.
   void
   BlockSliding3DProblem::prepare_run()
   {
-    mass = deformable_body().total_mass();
-    for (unsigned int d = 0; d < 3; ++d)
-      {
-        Vector<double> unit;
-        Tensor<1, 3>   e;
-        e[d] = 1.;
-        deformable_body().fill_uniform(unit, e);
-        mass_weights[d].reinit(unit.size());
-        deformable_body().mass_matrix().vmult(mass_weights[d], unit);
-      }
+    block_mean.reinit(deformable_body());
     tracker = std::make_unique<RigidBlockTracker<3>>(
       Tensor<1, 3>({0., 1., 0.}),
       direction(),
@@ -254,20 +242,10 @@ namespace BlockSliding3D
 
 
 
-  Tensor<1, 3>
-  BlockSliding3DProblem::mean_of(const Vector<double> &field) const
-  {
-    return Tensor<1, 3>({(mass_weights[0] * field) / mass,
-                         (mass_weights[1] * field) / mass,
-                         (mass_weights[2] * field) / mass});
-  }
-
-
-
   void
   BlockSliding3DProblem::measure_step(const StepReport &)
   {
-    const Tensor<1, 3> v        = mean_of(system().state().velocity.block(0));
+    const Tensor<1, 3> v = block_mean(system().state().velocity.block(0));
     bool               on_plane = false;
     for (const bool a : system().active_set())
       on_plane |= a;
@@ -288,8 +266,8 @@ namespace BlockSliding3D
   BlockSliding3DProblem::report_motion(std::ostream &out,
                                        JsonObject   &summary) const
   {
-    const Tensor<1, 3> v = mean_of(system().state().velocity.block(0));
-    out << "  Mass " << mass << " kg; launched at " << speed
+    const Tensor<1, 3> v = block_mean(system().state().velocity.block(0));
+    out << "  Mass " << block_mean.mass() << " kg; launched at " << speed
         << " m/s in the direction phi = " << phi << " rad" << std::endl
         << "  Largest angle between the mean sliding velocity and the "
            "launch direction: "
@@ -312,13 +290,13 @@ namespace BlockSliding3D
                              gravity,
                              friction_coefficient(),
                              parameters.time_stepping.end_time);
-    const Tensor<1, 3> u = mean_of(system().state().displacement.block(0));
+    const Tensor<1, 3> u = block_mean(system().state().displacement.block(0));
     JsonObject         sliding;
     const bool         ok =
       tracker->report_sliding(out,
                               rigid,
                               u * direction(),
-                              mean_of(system().state().velocity.block(0)) *
+                              block_mean(system().state().velocity.block(0)) *
                                 direction(),
                               parameters.time_stepping.end_time,
                               bounds,

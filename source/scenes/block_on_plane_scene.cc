@@ -225,16 +225,8 @@ namespace impactfe
   void
   BlockOnPlaneScene::prepare_run()
   {
-    mass_1 = body(0).total_mass();
-    for (unsigned int d = 0; d < 2; ++d)
-      {
-        Vector<double> unit;
-        Tensor<1, 2>   e;
-        e[d] = 1.;
-        body(0).fill_uniform(unit, e);
-        mass_weights[d].reinit(unit.size());
-        body(0).mass_matrix().vmult(mass_weights[d], unit);
-      }
+    block_mean.reinit(body(0));
+    mass_1     = block_mean.mass();
     total_mass = 0.;
     for (unsigned int b = 0; b < n_bodies(); ++b)
       total_mass += body(b).total_mass();
@@ -261,8 +253,7 @@ namespace impactfe
   BlockOnPlaneScene::mean_velocity() const
   {
     const Vector<double> &v = system().state().velocity.block(0);
-    return Tensor<1, 2>(
-      {(mass_weights[0] * v) / mass_1, (mass_weights[1] * v) / mass_1});
+    return block_mean(v);
   }
 
   // Mean over the upper side's nodes of -u.n.
@@ -328,7 +319,6 @@ namespace impactfe
   BlockOnPlaneScene::mean_displacement() const
   {
     const Vector<double> &u = system().state().displacement.block(0);
-    return Tensor<1, 2>(
-      {(mass_weights[0] * u) / mass_1, (mass_weights[1] * u) / mass_1});
+    return block_mean(u);
   }
 } // namespace impactfe

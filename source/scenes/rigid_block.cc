@@ -296,6 +296,47 @@ namespace impactfe
 
 
 
+  template <int dim>
+  void
+  MassWeightedMean<dim>::reinit(const ElasticBody<dim> &body)
+  {
+    total_mass = body.total_mass();
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        Vector<double> unit;
+        Tensor<1, dim> e;
+        e[d] = 1.;
+        body.fill_uniform(unit, e);
+        weights[d].reinit(unit.size());
+        body.mass_matrix().vmult(weights[d], unit);
+      }
+  }
+
+
+
+  template <int dim>
+  Tensor<1, dim>
+  MassWeightedMean<dim>::operator()(const Vector<double> &field) const
+  {
+    Tensor<1, dim> mean;
+    for (unsigned int d = 0; d < dim; ++d)
+      mean[d] = (weights[d] * field) / total_mass;
+    return mean;
+  }
+
+
+
+  template <int dim>
+  double
+  MassWeightedMean<dim>::mass() const
+  {
+    return total_mass;
+  }
+
+
+
+  template class MassWeightedMean<2>;
+  template class MassWeightedMean<3>;
   template class RigidBlockTracker<2>;
   template class RigidBlockTracker<3>;
 } // namespace impactfe

@@ -96,7 +96,7 @@ namespace impactfe
     unsigned int              n_plane_candidates = 0;
     std::vector<unsigned int> top_vertices;
     // M e_x and M e_y of block 1, for its mean velocity and displacement.
-    std::array<Vector<double>, 2>         mass_weights;
+    MassWeightedMean<2>                   block_mean;
     double                                mass_1 = 0., total_mass = 0.;
     std::unique_ptr<RigidBlockTracker<2>> tracker;
   };

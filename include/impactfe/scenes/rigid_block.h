@@ -6,9 +6,11 @@
 
 #include <deal.II/grid/tria.h>
 
+#include <impactfe/bodies/elastic_body.h>
 #include <impactfe/dynamics/stability_monitor.h>
 #include <impactfe/output/output.h>
 
+#include <array>
 #include <ostream>
 
 namespace impactfe
@@ -72,6 +74,33 @@ namespace impactfe
     velocity(const double t) const;
 
     double v0 = 0., deceleration = 0., stick_time = -1., distance = 0.;
+  };
+
+
+
+  /**
+   * The mass-weighted mean of a nodal vector field of one body, (M e_d .
+   * field) / m for each axis d: the mean velocity (momentum over mass) of a
+   * velocity field, the displacement of the centre of mass of a
+   * displacement field. M e_d is computed once, in reinit().
+   */
+  template <int dim>
+  class MassWeightedMean
+  {
+  public:
+    void
+    reinit(const ElasticBody<dim> &body);
+
+    Tensor<1, dim>
+    operator()(const Vector<double> &field) const;
+
+    /// The body's total mass m.
+    double
+    mass() const;
+
+  private:
+    std::array<Vector<double>, dim> weights;
+    double                          total_mass = 0.;
   };
 
 
