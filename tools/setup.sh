@@ -6,7 +6,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages="libdeal.ii-dev numdiff cmake g++ make python3-matplotlib"
+# libopenblas0-pthread: CHOLMOD's supernodal factorisation and multi-column
+# solves spend their time in BLAS (dgemm, dsyrk, dtrsm). Debian's default
+# libblas.so.3 is the reference BLAS; the OpenBLAS package replaces it
+# through update-alternatives (a 3D ball of 88k unknowns: factorisation
+# 71 s -> 8 s, doc/performance.md).
+packages="libdeal.ii-dev numdiff cmake g++ make python3-matplotlib libopenblas0-pthread"
 missing=""
 for p in $packages; do
   dpkg -s "$p" > /dev/null 2>&1 || missing="$missing $p"
