@@ -5,7 +5,11 @@
 
 #include <impactfe/bodies/geometry.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
 #include <vector>
 
 namespace impactfe
@@ -142,6 +146,184 @@ namespace impactfe
                           lowest_point[1] + y_b + p[1] * (top - y_b));
         },
         triangulation);
+    }
+
+
+    // @sect3{The graded ball}
+    // In units of the radius, a point is (alpha, s): its polar angle from
+    // the pole direction -z and its depth s = 1 - |p|. On the sphere the
+    // polar angle is mapped by G with G(0) = 0, G(pi) = pi and the cell size
+    // ratio G' = gamma (the pole cell factor) up to alpha_1 = beta / gamma,
+    // so that a cap of half-angle beta (the fine zone) has cells gamma times
+    // the uniform mesh's; G' then rises linearly to a constant c > 1 at
+    // alpha_2 = (alpha_1 + pi) / 2 and keeps it to pi, c being what makes
+    // G(pi) = pi: the cells away from the contact are larger than the
+    // uniform mesh's by c. Depth follows the local size ratio near the
+    // surface, s' = s (1 - w(s) (1 - G'(alpha))), and the angle blends to
+    // the identity with depth, alpha' = alpha + w(s) (G(alpha) - alpha), w
+    // falling smoothly from 1 at the surface to 0 at half the radius, so
+    // that the map is the identity near the centre, keeps the sphere, and
+    // scales (alpha, s) uniformly about the pole (cells keep their shape).
+    namespace
+    {
+      double
+      smooth_step(const double x)
+      {
+        const double y = std::min(1., std::max(0., x));
+        return y * y * (3. - 2. * y);
+      }
+
+
+
+      struct PolarGrading
+      {
+        PolarGrading(const double gamma, const double fine_angle)
+          : gamma(gamma)
+          , alpha_1(fine_angle / gamma)
+          , alpha_2(0.5 * (fine_angle / gamma + numbers::PI))
+        {
+          // gamma alpha_1 + (gamma + c)/2 (alpha_2 - alpha_1) + c (pi -
+          // alpha_2) = pi.
+          const double ramp = alpha_2 - alpha_1;
+          c = (numbers::PI - gamma * alpha_1 - 0.5 * gamma * ramp) /
+              (0.5 * ramp + numbers::PI - alpha_2);
+        }
+
+        /// G'(alpha).
+        double
+        size_ratio(const double alpha) const
+        {
+          if (alpha <= alpha_1)
+            return gamma;
+          if (alpha <= alpha_2)
+            return gamma +
+                   (c - gamma) * (alpha - alpha_1) / (alpha_2 - alpha_1);
+          return c;
+        }
+
+        /// G(alpha).
+        double
+        operator()(const double alpha) const
+        {
+          if (alpha <= alpha_1)
+            return gamma * alpha;
+          const double ramp = std::min(alpha, alpha_2) - alpha_1;
+          double       g    = gamma * alpha_1 + gamma * ramp +
+                     0.5 * (c - gamma) * ramp * ramp / (alpha_2 - alpha_1);
+          if (alpha > alpha_2)
+            g += c * (alpha - alpha_2);
+          return g;
+        }
+
+        double gamma, alpha_1, alpha_2, c;
+      };
+    } // namespace
+
+
+
+    Point<3>
+    ball_grading_map(const Point<3> &p,
+                     const double    pole_cell_factor,
+                     const double    fine_angle)
+    {
+      const double r = p.norm();
+      if (r == 0.)
+        return p;
+      const PolarGrading grading(pole_cell_factor, fine_angle);
+      const double       rho       = std::hypot(p[0], p[1]);
+      const double       alpha     = std::atan2(rho, -p[2]);
+      const double       depth     = 1. - r;
+      const double       w         = 1. - smooth_step(depth / 0.5);
+      const double       new_alpha = alpha + w * (grading(alpha) - alpha);
+      const double       new_r =
+        1. - depth * (1. - w * (1. - grading.size_ratio(alpha)));
+      const double cx    = rho > 0. ? p[0] / rho : 1.,
+                   cy    = rho > 0. ? p[1] / rho : 0.;
+      const double sin_a = std::sin(new_alpha);
+      return Point<3>(new_r * sin_a * cx,
+                      new_r * sin_a * cy,
+                      -new_r * std::cos(new_alpha));
+    }
+
+
+
+    void
+    graded_ball(Triangulation<3>  &triangulation,
+                const Point<3>    &center,
+                const double       radius,
+                const unsigned int n_refinements,
+                const double       pole_cell_factor,
+                const double       fine_angle)
+    {
+      AssertThrow(radius > 0.,
+                  ExcMessage("Geometry: the ball's radius must be > 0."));
+      AssertThrow(pole_cell_factor > 0. && pole_cell_factor <= 1.,
+                  ExcMessage("Geometry: the pole cell factor must be in (0, "
+                             "1], got " +
+                             std::to_string(pole_cell_factor) + "."));
+      AssertThrow(fine_angle > 0. &&
+                    fine_angle / pole_cell_factor < 0.9 * numbers::PI,
+                  ExcMessage("Geometry: the fine zone's angle over the pole "
+                             "cell factor must be in (0, 0.9 pi): the fine "
+                             "zone would take the whole sphere; got " +
+                             std::to_string(fine_angle) + " rad / " +
+                             std::to_string(pole_cell_factor) + "."));
+      // The unit ball, refined on its sphere (deal.II's manifolds), then
+      // flat: the graded vertices define Q1 cells.
+      GridGenerator::hyper_ball(triangulation, Point<3>(), 1.);
+      triangulation.refine_global(n_refinements);
+      triangulation.set_all_manifold_ids(numbers::flat_manifold_id);
+      triangulation.reset_all_manifolds();
+      GridTools::transform(
+        [&](const Point<3> &p) {
+          return Point<3>(center + radius * ball_grading_map(p,
+                                                             pole_cell_factor,
+                                                             fine_angle));
+        },
+        triangulation);
+      for (const auto &cell : triangulation.active_cell_iterators())
+        {
+          if (min_corner_jacobian(cell) <= 0.)
+            {
+              std::ostringstream where;
+              where << std::setprecision(3) << cell->center();
+              AssertThrow(false,
+                          ExcMessage("Geometry: the graded ball has an "
+                                     "inverted cell near (" +
+                                     where.str() +
+                                     "); use a larger pole cell factor or a "
+                                     "smaller fine zone angle."));
+            }
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary())
+              face->set_boundary_id(face->center()[2] < center[2] ? 1 : 0);
+        }
+    }
+
+
+
+    // The trilinear map's Jacobian determinant at the 8 corners of a hex:
+    // at corner (i, j, k) it is the triple product of the three edges that
+    // leave it, each oriented along its reference axis.
+    double
+    min_corner_jacobian(const Triangulation<3>::cell_iterator &cell)
+    {
+      double smallest = std::numeric_limits<double>::max();
+      for (unsigned int v = 0; v < 8; ++v)
+        {
+          Tensor<2, 3> edges;
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              const unsigned int neighbor = v ^ (1u << d);
+              const double       sign     = (v & (1u << d)) ? -1. : 1.;
+              const Tensor<1, 3> e =
+                sign * (cell->vertex(neighbor) - cell->vertex(v));
+              for (unsigned int c = 0; c < 3; ++c)
+                edges[c][d] = e[c];
+            }
+          smallest = std::min(smallest, determinant(edges));
+        }
+      return smallest;
     }
   } // namespace Geometry
 } // namespace impactfe

@@ -165,5 +165,18 @@ main()
                 "Type = ball\n  set Normal = 0, 0\n  set Center "
                 "= 0, -1"),
            block);
+
+  // hertz_impact: the graded ball's data.
+  const std::string hertz = HERTZ_IMPACT_EXECUTABLE;
+  run_case("hertz_zero_pole_cell_factor",
+           with("Geometry", "Pole cell factor = 0"),
+           hertz);
+  run_case("hertz_fine_zone_over_the_sphere",
+           with("Geometry", "Pole cell factor = 0.05"),
+           hertz);
+  run_case("hertz_inverted_graded_cell",
+           with("Geometry",
+                "Number of refinements = 3\n  set Pole cell factor = 0.2"),
+           hertz);
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
 }

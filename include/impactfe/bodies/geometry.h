@@ -10,7 +10,7 @@ namespace impactfe
   using namespace dealii;
 
   /**
-   * Built-in 2D meshes of the paper's scenes. Boundary ids are documented
+   * Built-in meshes of the scenes. Boundary ids are documented
    * per function; the candidates for contact are on one of them.
    */
   namespace Geometry
@@ -51,6 +51,49 @@ namespace impactfe
                           const double       radius,
                           const unsigned int nx,
                           const unsigned int ny);
+
+    /**
+     * A Q1 mesh of the ball of @p radius centred at @p center, graded
+     * towards its lowest point (the "south pole", direction -z): deal.II's
+     * 7-cell ball refined @p n_refinements times on its sphere, then every
+     * vertex moved by a smooth map of the ball onto itself: in the cap of
+     * polar angle @p fine_angle [rad] around the pole the cells are
+     * smaller than the uniform mesh's by @p pole_cell_factor, in every
+     * direction (tangentially and in depth); beyond it they grow linearly
+     * to a size c > 1 times the uniform mesh's, c being what the cell count
+     * leaves. Boundary vertices stay on the sphere; the map is the identity
+     * near the centre. The mesh has 7 * 8^n_refinements cells and no
+     * hanging nodes, which is what a Hertz contact needs: cells much
+     * smaller than the contact radius over the contact zone.
+     * fine_angle / pole_cell_factor must be below 0.9 pi.
+     *
+     * Boundary ids: 1 on the lower half of the sphere (z < center z), 0 on
+     * the upper half.
+     */
+    void
+    graded_ball(Triangulation<3>  &triangulation,
+                const Point<3>    &center,
+                const double       radius,
+                const unsigned int n_refinements,
+                const double       pole_cell_factor,
+                const double       fine_angle);
+
+    /**
+     * The map of graded_ball() on one point, relative to the centre and in
+     * units of the radius (|p| <= 1): exposed so that tests can check that
+     * it is one-to-one and keeps the sphere.
+     */
+    Point<3>
+    ball_grading_map(const Point<3> &p,
+                     const double    pole_cell_factor,
+                     const double    fine_angle);
+
+    /**
+     * The smallest Jacobian determinant of a hexahedron's trilinear map at
+     * its 8 corners [m^3]: <= 0 means the cell is inverted or degenerate.
+     */
+    double
+    min_corner_jacobian(const Triangulation<3>::cell_iterator &cell);
   } // namespace Geometry
 } // namespace impactfe
 
