@@ -40,11 +40,8 @@
 // refinement is benchmarks/hertz_impact/run_hertz_study.py's
 // (doc/hertz_impact.md).
 //
-// The rest is the library's ObstacleImpactScene<3>: the subsections
-// `Mesh`, `Obstacle`, `Material`, `Discretization`, `Time stepping`,
-// `Contact solver`, `Output` and `Verification`, the candidates (the
-// nodes of the lower half of the sphere, of which each step's LCP keeps
-// those that can touch), the time loop and the common checks.
+// The rest (candidates on the lower half of the sphere, the time loop, the
+// common checks, the files) is the library's ObstacleImpactScene<3>.
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -125,6 +122,9 @@ namespace HertzImpactProgram
     /// Downward displacement of the centre of mass since the touch [m].
     double
     approach() const;
+    /// From the touch to the end of the last step with a contact force [s].
+    double
+    measured_duration() const;
     HertzImpact
     hertz() const;
 
@@ -275,6 +275,15 @@ namespace HertzImpactProgram
 
 
 
+  double
+  HertzImpactProblem::measured_duration() const
+  {
+    const double last = run_summary().last_contact;
+    return last >= 0. ? last - initial_gap / impact_velocity : 0.;
+  }
+
+
+
   std::vector<double>
   HertzImpactProblem::history_values(const StepReport &)
   {
@@ -314,10 +323,8 @@ namespace HertzImpactProgram
                                     JsonObject   &summary) const
   {
     const HertzImpact        reference = hertz();
-    const double             t_touch   = initial_gap / impact_velocity;
     const ContactRunSummary &run       = run_summary();
-    const double             duration =
-      run.last_contact >= 0. ? run.last_contact - t_touch : 0.;
+    const double             duration  = measured_duration();
     const double sphere_mass = 4. / 3. * numbers::PI * std::pow(radius, 3) *
                                deformable_body().material().density;
     const double wave_speed =
@@ -363,9 +370,7 @@ namespace HertzImpactProgram
   {
     const HertzImpact        reference = hertz();
     const ContactRunSummary &run       = run_summary();
-    const double             duration  = run.last_contact >= 0. ?
-                                           run.last_contact - initial_gap / impact_velocity :
-                                           0.;
+    const double             duration  = measured_duration();
     bool                     ok =
       print_check(out,
                   "Hertz peak force error",
