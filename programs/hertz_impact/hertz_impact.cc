@@ -19,13 +19,10 @@
 // less than sqrt(E/rho)): then nearly all the kinetic energy goes into the
 // local deformation near the contact and comes back.
 //
-// The finite-element ball resolves what the theory assumes away (the
-// waves, the finite a/R) and what it needs: the pressure over a contact
-// disc of radius a_max, here about 0.08 R. A uniform Q1 mesh fine enough
-// for that would have millions of cells; the built-in mesh
-// (Geometry::graded_ball) is deal.II's ball refined n times and then
-// graded smoothly towards its lowest point, so that the cells there are
-// smaller by `Pole cell factor`, without hanging nodes.
+// The ball must resolve a contact disc of radius a_max, about 0.08 R here:
+// the built-in mesh (Geometry::graded_ball) is deal.II's ball refined n
+// times and graded towards its lowest point, where the cells are smaller
+// by `Pole cell factor`, without hanging nodes.
 //
 // The program reports the three Hertz figures beside the measured ones:
 // - the peak of the total contact force;
