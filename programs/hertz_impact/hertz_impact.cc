@@ -235,8 +235,7 @@ namespace HertzImpactProgram
 
   // @sect3{The mesh}
   //
-  // The graded ball, its lowest point at height g0 above the plane z = 0;
-  // boundary id 1 (the candidates) on its lower half.
+  // The graded ball, its lowest point at height g0 above the plane z = 0.
   void
   HertzImpactProblem::make_built_in_mesh(Triangulation<3> &tria) const
   {
@@ -252,9 +251,7 @@ namespace HertzImpactProgram
 
   // @sect3{Measurements}
   //
-  // The approach is the centre of mass's drop beyond the initial gap:
-  // before the touch it is negative (the ball flies), after it the
-  // indentation of Hertz's theory.
+  // The approach: the centre of mass's drop beyond the initial gap.
   void
   HertzImpactProblem::prepare_run()
   {
