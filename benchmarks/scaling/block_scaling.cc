@@ -33,7 +33,14 @@
 // Seconds are CPU seconds of the thread. Not a test: timings depend on the
 // machine. benchmarks/scaling/run_scaling.py runs the sweeps and plots them.
 //
-//   block_scaling --nx NX --ny NY [--steps S] [--top-candidates] [--header]
+// --method chooses the contact solver (`Contact solver/Method`): Lemke's
+// method on the dense W, the matrix-free active set method, or automatic
+// (the default: active set from 300 candidates on). The RESULT line gives
+// its statistics and, to compare methods, the last step's normal force and
+// the final kinetic energy to 15 digits.
+//
+//   block_scaling --nx NX --ny NY [--steps S] [--top-candidates]
+//                 [--method lemke|active-set|automatic] [--header]
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
@@ -51,6 +58,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <iomanip>
 #include <iostream>
 #include <string>
 
@@ -144,7 +152,8 @@ namespace
   run(const unsigned int nx,
       const unsigned int ny,
       const unsigned int n_steps,
-      const bool         top_candidates)
+      const bool         top_candidates,
+      const std::string &method)
   {
     const double width     = 1.;         // [m]
     const double cell_size = width / nx; // [m]
@@ -178,6 +187,10 @@ namespace
     time_stepping.end_time  = n_steps * time_stepping.time_step;
     ContactSolverParameters solver_parameters;
     solver_parameters.warm_start = true;
+    solver_parameters.method =
+      method == "lemke"      ? ContactSolverParameters::Method::lemke :
+      method == "active-set" ? ContactSolverParameters::Method::active_set :
+                               ContactSolverParameters::Method::automatic;
 
     MultibodySystem<2> system(time_stepping, solver_parameters, 2);
     system.add_body(block);
@@ -200,11 +213,12 @@ namespace
     system.setup();
 
     unsigned int max_active = 0, max_lcp_size = 0;
+    StepReport   report;
     for (unsigned int step = 0; step < n_steps; ++step)
       {
-        const StepReport report = system.do_time_step();
-        max_active              = std::max(max_active, report.active_contacts);
-        max_lcp_size            = std::max(max_lcp_size, report.lcp_size);
+        report       = system.do_time_step();
+        max_active   = std::max(max_active, report.active_contacts);
+        max_lcp_size = std::max(max_lcp_size, report.lcp_size);
       }
 
     const CostBreakdown &costs          = system.cost_breakdown();
@@ -234,7 +248,19 @@ namespace
               << " seconds_per_step=" << seconds_per_step
               << " floor_seconds_per_step=" << floor_per_step
               << " step_over_floor=" << seconds_per_step / floor_per_step
-              << " delassus_seconds=" << costs.delassus << std::endl;
+              << " delassus_seconds=" << costs.delassus;
+    const auto &active_set = system.active_set_statistics();
+    std::cout << " ranks=1 method=" << method
+              << " active_set_solves=" << active_set.solves
+              << " active_set_iterations=" << active_set.iterations
+              << " gmres_iterations=" << active_set.linear_iterations
+              << " fallbacks=" << active_set.fallbacks;
+    if (active_set.solves > active_set.fallbacks)
+      std::cout << " lcp_relative_error=" << active_set.largest_violation;
+    std::cout << std::setprecision(15)
+              << " last_normal_force=" << report.normal_force
+              << " last_kinetic_energy=" << system.kinetic_energy()
+              << std::setprecision(6) << std::endl;
   }
 } // namespace
 
@@ -247,6 +273,7 @@ main(int argc, char **argv)
     {
       unsigned int nx = 0, ny = 0, n_steps = 10;
       bool         top_candidates = false, header = false;
+      std::string  method = "automatic";
       for (int i = 1; i < argc; ++i)
         {
           const std::string a = argv[i];
@@ -258,15 +285,21 @@ main(int argc, char **argv)
             n_steps = std::atoi(argv[++i]);
           else if (a == "--top-candidates")
             top_candidates = true;
+          else if (a == "--method" && i + 1 < argc)
+            method = argv[++i];
           else if (a == "--header")
             header = true;
           else
             nx = 0;
         }
-      if (nx < 1 || ny < 1 || n_steps < 1)
+      if (nx < 1 || ny < 1 || n_steps < 1 ||
+          (method != "lemke" && method != "active-set" &&
+           method != "automatic"))
         {
-          std::cerr << "usage: block_scaling --nx NX --ny NY [--steps S] "
-                       "[--top-candidates] [--header]   (NX, NY, S >= 1)\n";
+          std::cerr
+            << "usage: block_scaling --nx NX --ny NY [--steps S] "
+               "[--top-candidates] [--method lemke|active-set|automatic] "
+               "[--header]   (NX, NY, S >= 1)\n";
           return 1;
         }
       if (header)
@@ -276,7 +309,7 @@ main(int argc, char **argv)
                      "update_per_step,max_active,max_lcp_size,peak_rss_mb,"
                      "stored_columns_mb,factor_entries,floor_rhs_seconds,"
                      "floor_solve_seconds\n";
-      run(nx, ny, n_steps, top_candidates);
+      run(nx, ny, n_steps, top_candidates, method);
     }
   catch (std::exception &exc)
     {

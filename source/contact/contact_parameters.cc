@@ -12,6 +12,32 @@ namespace impactfe
   ContactSolverParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Contact solver");
+    prm.declare_entry(
+      "Method",
+      "automatic",
+      Patterns::Selection("lemke|active set|automatic"),
+      "How each step's contact problem is solved. 'lemke': Lemke's method "
+      "on the dense Delassus matrix W (its columns cost one solve each, "
+      "the pivoting O(n^3)). 'active set': a primal-dual active set "
+      "(semismooth Newton) method whose linear systems are solved by "
+      "GMRES with products W x = H^T M~^{-1} H x (one solve pair each), "
+      "so W is never formed; frictionless and 2D problems (3D friction "
+      "always uses Lemke's method); its answer passes the same "
+      "verification, and when it does not converge the step falls back to "
+      "Lemke's method and says so (doc/lcp.md, 'Large contact sets'). "
+      "'automatic': the active set method when at least 'Active set "
+      "threshold' candidates can touch in a step, Lemke's method below.");
+    prm.declare_entry("Active set threshold",
+                      "300",
+                      Patterns::Integer(1),
+                      "With 'Method = automatic': the number of contact "
+                      "candidates in a step's problem from which the active "
+                      "set method is used [-].");
+    prm.declare_entry("Active set iterations",
+                      "50",
+                      Patterns::Integer(1),
+                      "Active set (Newton) iterations of one contact solve "
+                      "before it falls back to Lemke's method [-].");
     prm.declare_entry("Warm start",
                       "true",
                       Patterns::Bool(),
@@ -58,8 +84,14 @@ namespace impactfe
   ContactSolverParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Contact solver");
-    warm_start    = prm.get_bool("Warm start");
-    dump_step     = prm.get_integer("Dump LCP of step");
+    const std::string method_name = prm.get("Method");
+    method                        = method_name == "lemke" ? Method::lemke :
+                                    method_name == "active set" ? Method::active_set :
+                                                                  Method::automatic;
+    active_set_threshold          = prm.get_integer("Active set threshold");
+    active_set_iterations         = prm.get_integer("Active set iterations");
+    warm_start                    = prm.get_bool("Warm start");
+    dump_step                     = prm.get_integer("Dump LCP of step");
     friction_cone = lcp::cone_model_from_string(prm.get("Friction cone"));
     const int k   = prm.get_integer("Number of facets");
     exact_cone_tolerance = prm.get_double("Exact cone tolerance");

@@ -458,6 +458,60 @@ namespace impactfe
 
 
 
+  void
+  ContactSet::inverse_delassus_diagonal(
+    const std::vector<const SparseMatrix<double> *> &A,
+    const std::vector<unsigned int>                 &candidates,
+    std::vector<double>                             &c) const
+  {
+    const unsigned int nd = directions;
+    c.resize(candidates.size() * nd);
+    for (unsigned int i = 0; i < c.size(); ++i)
+      {
+        const unsigned int cand = candidates[i / nd];
+        const auto        &H    = columns[cand * nd + i % nd];
+        double             sum  = 0.;
+        if (candidate_list[cand].against_rigid_obstacle())
+          {
+            for (const Entry &e : H)
+              for (const Entry &f : H)
+                if (e.block == f.block)
+                  sum += e.coefficient * A[e.block]->el(e.dof, f.dof) *
+                         f.coefficient;
+          }
+        else
+          {
+            double inverse = 0.;
+            for (const Entry &e : H)
+              inverse +=
+                e.coefficient * e.coefficient / A[e.block]->diag_element(e.dof);
+            sum = inverse > 0. ? 1. / inverse : 0.;
+          }
+        c[i] = sum;
+      }
+  }
+
+
+
+  std::vector<std::vector<types::global_dof_index>>
+  ContactSet::obstacle_contact_dofs(const unsigned int n_blocks) const
+  {
+    std::vector<std::vector<types::global_dof_index>> dofs(n_blocks);
+    for (unsigned int c = 0; c < candidate_list.size(); ++c)
+      if (candidate_list[c].against_rigid_obstacle())
+        for (unsigned int k = 0; k < directions; ++k)
+          for (const Entry &e : columns[c * directions + k])
+            dofs[e.block].push_back(e.dof);
+    for (auto &block : dofs)
+      {
+        std::sort(block.begin(), block.end());
+        block.erase(std::unique(block.begin(), block.end()), block.end());
+      }
+    return dofs;
+  }
+
+
+
 #define IMPACTFE_INSTANTIATE(dim)                              \
   template unsigned int ContactSet::add_node_to_plane<dim>(    \
     const std::vector<const ElasticBody<dim> *> &,             \

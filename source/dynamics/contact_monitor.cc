@@ -222,6 +222,9 @@ namespace impactfe
     run.exact_cone_not_converged = system.exact_cone_statistics().not_converged;
     run.exact_cone_tolerance =
       system.contact_solver_parameters().exact_cone_tolerance;
+    run.active_set_solves     = system.active_set_statistics().solves;
+    run.active_set_iterations = system.active_set_statistics().iterations;
+    run.active_set_fallbacks  = system.active_set_statistics().fallbacks;
 
     // Impulse balance, body by body.
     for (unsigned int b = 0; b < system.bodies().size(); ++b)
@@ -528,6 +531,12 @@ namespace impactfe
     if (s.free_flight_steps > 0)
       out << "  Free-flight steps (k h, no contact possible): "
           << s.free_flight_steps << " of the " << s.n_steps << std::endl;
+    if (s.active_set_solves > 0)
+      out << "  Active set method: " << s.active_set_solves
+          << " contact problems, "
+          << s.active_set_solves - s.active_set_fallbacks
+          << " solved and verified, " << s.active_set_fallbacks
+          << " fell back to Lemke's method" << std::endl;
     bool ok = true;
     if (s.exact_cone_solves > 0)
       {

@@ -49,7 +49,16 @@ namespace impactfe
     , solver_parameters(solver_parameters)
     , contact_set(contact_directions)
     , scheme(create_time_integrator(time_stepping))
-  {}
+  {
+    AssertThrow(!(contact_directions > 2 &&
+                  solver_parameters.method ==
+                    ContactSolverParameters::Method::active_set),
+                ExcMessage(
+                  "Contact solver: 'Method = active set' solves frictionless "
+                  "and 2D contact problems; this scene is 3D with friction. "
+                  "Use 'lemke' or 'automatic' (which uses Lemke's method "
+                  "for 3D friction)."));
+  }
 
 
 
@@ -253,7 +262,7 @@ namespace impactfe
 
     contact_set.build_operator(body_list);
     const unsigned int n_columns = contact_set.n_columns();
-    delassus.reinit(n_columns, n_columns);
+    delassus.reinit(0, 0); // allocated when a first column is computed
     delassus_ready.assign(contact_set.n_candidates(), false);
     column_work              = make_block_vector();
     const std::size_t n_dofs = column_work.size();
@@ -292,6 +301,14 @@ namespace impactfe
     free_velocity       = make_block_vector();
     contact_force_field = make_block_vector();
     impulse_response    = make_block_vector();
+    impulse_velocity    = make_block_vector();
+    step_matrix_list.clear();
+    for (const auto &matrix : step_matrices)
+      step_matrix_list.push_back(matrix.get());
+    interior_solvers.clear();
+    interior_matrices.clear();
+    active_set_stats = ActiveSetStatistics();
+    last_impulses.assign(n_columns, 0.);
     local_impulses.assign(n_columns, 0.);
     start_local_velocity.assign(n_columns, 0.);
     active.assign(contact_set.n_candidates(), false);
@@ -333,6 +350,8 @@ namespace impactfe
         }
     if (columns.empty())
       return;
+    if (delassus.n_rows() != contact_set.n_columns())
+      delassus.reinit(contact_set.n_columns(), contact_set.n_columns());
 
     const std::size_t  n_dofs     = column_work.size();
     const unsigned int block_size = std::max<std::size_t>(
@@ -492,6 +511,210 @@ namespace impactfe
         for (unsigned int k = 0; k < nd; ++k)
           local_impulses[lcp_candidates[a] * nd + k] = solution.P[a * nd + k];
     return solution.lcp;
+  }
+
+
+
+  // @sect3{Large contact sets: the active set method}
+  // W is never formed: a product W x is H^T M~^{-1} (H x), one solve pair
+  // with the factorisation of M~. The solver (lcp/active_set.h) needs a few
+  // tens of products per active set iteration, preconditioned by the
+  // contact nodes' block of M~ (ContactSet::approximate_inverse_delassus()),
+  // instead of the n_c solves and the O(n_c^3) pivots of Lemke's method on
+  // the dense W. The last product is with the answer, so M~^{-1} H P is
+  // the velocity correction and the check of the excluded candidates.
+  template <int dim>
+  bool
+  MultibodySystem<dim>::use_active_set(const unsigned int n) const
+  {
+    using Method = ContactSolverParameters::Method;
+    return contact_set.n_directions() <= 2 &&
+           (solver_parameters.method == Method::active_set ||
+            (solver_parameters.method == Method::automatic &&
+             n >= solver_parameters.active_set_threshold));
+  }
+
+
+
+  template <int dim>
+  bool
+  MultibodySystem<dim>::solve_contact_active_set(StepReport &report)
+  {
+    const unsigned int nd = contact_set.n_directions();
+    const unsigned int n  = lcp_candidates.size();
+    if (interior_solvers.empty())
+      setup_schur_preconditioner();
+    contact_set.inverse_delassus_diagonal(step_matrix_list,
+                                          lcp_candidates,
+                                          lcp_penalty);
+    lcp_free_velocity.resize(n * nd);
+    lcp_impulse_guess.resize(n * nd);
+    lcp_gap_terms.resize(n);
+    lcp_mu.resize(n);
+    state_guess.resize(n);
+    for (unsigned int a = 0; a < n; ++a)
+      {
+        const unsigned int c = lcp_candidates[a];
+        lcp_gap_terms[a]     = gap_terms[c];
+        lcp_mu[a]            = contact_set.candidate(c).friction_coefficient;
+        state_guess[a] =
+          last_contact_states.size() == contact_set.n_candidates() ?
+            last_contact_states[c] :
+            ContactState::open;
+        for (unsigned int k = 0; k < nd; ++k)
+          {
+            lcp_free_velocity[a * nd + k] = local_free_velocity[c * nd + k];
+            lcp_impulse_guess[a * nd + k] = last_impulses[c * nd + k];
+          }
+      }
+    const lcp::DelassusProduct product = [&](const std::vector<double> &x,
+                                             std::vector<double>       &y) {
+      impulse_velocity = 0.;
+      for (unsigned int j = 0; j < n * nd; ++j)
+        if (x[j] != 0.)
+          contact_set.add_column(lcp_candidates[j / nd] * nd + j % nd,
+                                 x[j],
+                                 impulse_velocity);
+      solve_step_matrix(impulse_velocity);
+      y.resize(n * nd);
+      for (unsigned int j = 0; j < n * nd; ++j)
+        y[j] = contact_set.column_dot(lcp_candidates[j / nd] * nd + j % nd,
+                                      impulse_velocity);
+    };
+    // S_CC y = M~_CC y - M~_CI M~_II^{-1} M~_IC y for y = H x on C; rows of
+    // candidates between two bodies get c_j x_j.
+    const lcp::DelassusProduct preconditioner =
+      [&](const std::vector<double> &x, std::vector<double> &y) {
+        const unsigned int n_bodies = body_list.size();
+        schur_nodal                 = 0.;
+        for (unsigned int j = 0; j < n * nd; ++j)
+          if (x[j] != 0. && contact_set.candidate(lcp_candidates[j / nd])
+                              .against_rigid_obstacle())
+            contact_set.add_column(lcp_candidates[j / nd] * nd + j % nd,
+                                   x[j],
+                                   schur_nodal);
+        for (unsigned int b = 0; b < n_bodies; ++b)
+          {
+            step_matrices[b]->vmult(schur_product.block(b),
+                                    schur_nodal.block(b));
+            schur_interior.block(b) = schur_product.block(b);
+            for (const auto d : schur_contact_dofs[b])
+              schur_interior.block(b)(d) = 0.;
+            interior_solvers[b]->solve(schur_interior.block(b));
+            step_matrices[b]->vmult(schur_nodal.block(b),
+                                    schur_interior.block(b));
+            schur_product.block(b) -= schur_nodal.block(b);
+          }
+        y.resize(n * nd);
+        for (unsigned int j = 0; j < n * nd; ++j)
+          y[j] = contact_set.candidate(lcp_candidates[j / nd])
+                     .against_rigid_obstacle() ?
+                   contact_set.column_dot(lcp_candidates[j / nd] * nd + j % nd,
+                                          schur_product) :
+                   lcp_penalty[j] * x[j];
+      };
+    lcp::ActiveSetOptions options;
+    options.max_iterations = solver_parameters.active_set_iterations;
+    const lcp::ActiveSetReport &result = active_set_solver.solve(
+      product,
+      preconditioner,
+      lcp_penalty,
+      nd,
+      lcp_free_velocity,
+      lcp_gap_terms,
+      lcp_mu,
+      solver_parameters.warm_start ? state_guess : std::vector<ContactState>(),
+      solver_parameters.warm_start ? lcp_impulse_guess : std::vector<double>(),
+      options);
+    ActiveSetStatistics &stats = active_set_stats;
+    ++stats.solves;
+    stats.iterations += result.iterations;
+    stats.most_iterations = std::max(stats.most_iterations, result.iterations);
+    stats.linear_iterations += result.linear_iterations;
+    stats.operator_applications += result.operator_applications;
+    report.active_set_iterations += result.iterations;
+    if (!result.converged)
+      {
+        ++stats.fallbacks;
+        stats.last_fallback_reason = result.message;
+        report.active_set_fallback = true;
+        return false;
+      }
+    stats.largest_violation =
+      std::max({stats.largest_violation,
+                result.verification.max_signorini_violation,
+                result.verification.max_cone_violation,
+                result.verification.max_sliding_violation});
+
+    const std::vector<double> &P = active_set_solver.impulses();
+    std::fill(local_impulses.begin(), local_impulses.end(), 0.);
+    std::fill(last_contact_states.begin(),
+              last_contact_states.end(),
+              ContactState::open);
+    bool any_impulse = false;
+    for (unsigned int a = 0; a < n; ++a)
+      {
+        last_contact_states[lcp_candidates[a]] = active_set_solver.states()[a];
+        for (unsigned int k = 0; k < nd; ++k)
+          {
+            local_impulses[lcp_candidates[a] * nd + k] = P[a * nd + k];
+            any_impulse = any_impulse || P[a * nd + k] != 0.;
+          }
+      }
+    if (!any_impulse) // the solver made no product with P = 0
+      impulse_velocity = 0.;
+    impulse_velocity_ready = true;
+    return true;
+  }
+
+
+
+  // The factorisation behind the preconditioner: M~ with the rows and
+  // columns of the contact DoFs C replaced by those of the identity, so
+  // that a solve with a right-hand side that is zero on C gives
+  // M~_II^{-1} on the other DoFs and zero on C. Made once, at the first
+  // active set solve (as costly as the factorisation of M~).
+  template <int dim>
+  void
+  MultibodySystem<dim>::setup_schur_preconditioner()
+  {
+    const unsigned int n_bodies = body_list.size();
+    schur_contact_dofs          = contact_set.obstacle_contact_dofs(n_bodies);
+    schur_nodal                 = make_block_vector();
+    schur_product               = make_block_vector();
+    schur_interior              = make_block_vector();
+    interior_matrices.clear();
+    interior_solvers.clear();
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        auto matrix = std::make_unique<SparseMatrix<double>>(
+          body_list[b]->sparsity_pattern());
+        matrix->copy_from(*step_matrices[b]);
+        for (const auto d : schur_contact_dofs[b])
+          for (auto it = matrix->begin(d); it != matrix->end(d); ++it)
+            if (it->column() != d)
+              {
+                matrix->set(it->column(), d, 0.);
+                it->value() = 0.;
+              }
+            else
+              it->value() = 1.;
+        auto solver = std::make_unique<SparseCholesky>();
+        solver->factorize(*matrix,
+                          "the interior step matrix of body '" +
+                            body_list[b]->name() + "'");
+        interior_matrices.push_back(std::move(matrix));
+        interior_solvers.push_back(std::move(solver));
+      }
+  }
+
+
+
+  template <int dim>
+  const typename MultibodySystem<dim>::ActiveSetStatistics &
+  MultibodySystem<dim>::active_set_statistics() const
+  {
+    return active_set_stats;
   }
 
 
@@ -665,6 +888,36 @@ namespace impactfe
         if (lcp_candidates.empty())
           break;
 
+        // The active set method (large sets): no W, its answer verified;
+        // Lemke's method otherwise, and when it does not converge.
+        impulse_velocity_ready = false;
+        if (use_active_set(lcp_candidates.size()) &&
+            solve_contact_active_set(report))
+          {
+            report.lcp_size = lcp_candidates.size() * nd;
+            if (solver_parameters.dump_step == static_cast<int>(step_number))
+              {
+                ensure_delassus_columns(lcp_candidates);
+                build_contact_problem(problem);
+                dump_lcp(dump_directory + "/lcp_step_" +
+                         std::to_string(step_number) + ".dat");
+              }
+            bool grown = false;
+            for (unsigned int c = 0; c < n_candidates; ++c)
+              if (!in_lcp[c] &&
+                  local_free_velocity[c * nd] + gap_terms[c] +
+                      contact_set.column_dot(c * nd, impulse_velocity) <
+                    -tolerance)
+                {
+                  in_lcp[c] = true;
+                  grown     = true;
+                }
+            if (!grown)
+              break;
+            ++report.lcp_resolves;
+            continue;
+          }
+
         clock.charge(costs.lcp);
         ensure_delassus_columns(lcp_candidates);
         clock.charge(costs.delassus);
@@ -684,6 +937,10 @@ namespace impactfe
                     << lcp_candidates.size()
                     << " contact candidates) was not solved: "
                     << lcp::to_string(result.status) << ". " << result.message
+                    << (report.active_set_fallback ?
+                          " (The active set method had not converged: " +
+                            active_set_stats.last_fallback_reason + ".)" :
+                          std::string())
                     << " The LCP was written to " << name.str()
                     << " (replay: lcp-solve " << name.str() << ").";
             throw ContactSolverFailure(message.str());
@@ -735,7 +992,9 @@ namespace impactfe
       for (unsigned int k = 0; k < massless_dofs[b].size(); ++k)
         massless_impulses[b][k] =
           impulse_response.block(b)(massless_dofs[b][k]);
-    if (all_stored && 2. * n_impulses * free_velocity.size() < solve_cost)
+    if (impulse_velocity_ready)
+      next.velocity += impulse_velocity;
+    else if (all_stored && 2. * n_impulses * free_velocity.size() < solve_cost)
       {
         for (unsigned int j = 0; j < contact_set.n_columns(); ++j)
           if (local_impulses[j] != 0.)
@@ -766,6 +1025,7 @@ namespace impactfe
                              contact_set.candidate(c).frame[k][d];
       }
     report.tangential_force = tangential.norm();
+    last_impulses           = local_impulses;
     clock.charge(costs.update);
     return report;
   }

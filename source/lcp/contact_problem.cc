@@ -429,73 +429,10 @@ namespace impactfe
           throw std::invalid_argument(
             "verify_contact_solution: P has the wrong size");
         p.W.vmult(V, P);
-        double pmax = 0., vfree = 0., bmax = 0.;
         for (std::size_t i = 0; i < P.size(); ++i)
-          {
-            V[i] += p.free_velocity[i];
-            pmax  = std::max(pmax, std::abs(P[i]));
-            vfree = std::max(vfree, std::abs(p.free_velocity[i]));
-          }
-        for (const double b : p.gap_term)
-          bmax = std::max(bmax, std::abs(b));
-        const double normW = p.W.linfty_norm();
-        const double sV    = vfree + bmax + normW * pmax;
-        // impulse scale: ||P||, or the impulse that the free velocities call
-        // for when P is (nearly) zero
-        const double sP =
-          std::max(pmax, normW > 0. ? (vfree + bmax) / normW : 0.);
-        auto rel = [](const double v, const double s) {
-          return s > 0. ? v / s : (v > 0. ? v * 1e300 : 0.);
-        };
-
-        ContactVerification r;
-        for (unsigned int c = 0; c < nc; ++c)
-          {
-            const double PN = P[c * dim];
-            const double wN = V[c * dim] + p.gap_term[c];
-            r.max_signorini_violation =
-              std::max({r.max_signorini_violation,
-                        rel(-PN, sP),
-                        rel(-wN, sV),
-                        rel(std::abs(PN * wN), sP * sV)});
-            if (dim == 1)
-              {
-                if (PN <= tol * sP)
-                  ++r.n_separated;
-                else
-                  ++r.n_sticking;
-                continue;
-              }
-            double PT2 = 0., VT2 = 0.;
-            for (unsigned int a = 1; a < dim; ++a)
-              {
-                PT2 += P[c * dim + a] * P[c * dim + a];
-                VT2 += V[c * dim + a] * V[c * dim + a];
-              }
-            const double PT = std::sqrt(PT2), VT = std::sqrt(VT2);
-            r.max_cone_violation =
-              std::max(r.max_cone_violation, rel(PT - p.mu[c] * PN, sP));
-            if (PN <= tol * sP)
-              ++r.n_separated;
-            else if (VT <= tol * sV)
-              ++r.n_sticking;
-            else
-              {
-                ++r.n_sliding;
-                double dev2 = 0.;
-                for (unsigned int a = 1; a < dim; ++a)
-                  {
-                    const double e =
-                      P[c * dim + a] + p.mu[c] * PN * V[c * dim + a] / VT;
-                    dev2 += e * e;
-                  }
-                r.max_sliding_violation =
-                  std::max(r.max_sliding_violation, rel(std::sqrt(dev2), sP));
-              }
-          }
-        r.ok = r.max_signorini_violation <= tol &&
-               r.max_cone_violation <= tol && r.max_sliding_violation <= tol;
-        return r;
+          V[i] += p.free_velocity[i];
+        return verify_contact_velocities(
+          dim, p.free_velocity, p.gap_term, p.mu, P, V, p.W.linfty_norm(), tol);
       }
 
 
@@ -557,6 +494,91 @@ namespace impactfe
     {
       std::vector<double> V;
       return internal::verify_contact_solution(p, P, tol, V);
+    }
+
+
+
+    ContactVerification
+    verify_contact_velocities(const unsigned int         dim,
+                              const std::vector<double> &free_velocity,
+                              const std::vector<double> &gap_term,
+                              const std::vector<double> &mu,
+                              const std::vector<double> &P,
+                              const std::vector<double> &V,
+                              const double               norm_W,
+                              const double               tol)
+    {
+      const std::size_t nc = gap_term.size();
+      if (P.size() != nc * dim || V.size() != nc * dim ||
+          free_velocity.size() != nc * dim || (dim > 1 && mu.size() != nc))
+        throw std::invalid_argument(
+          "verify_contact_velocities: inconsistent sizes");
+      double pmax = 0., vfree = 0., bmax = 0.;
+      for (std::size_t i = 0; i < P.size(); ++i)
+        {
+          pmax  = std::max(pmax, std::abs(P[i]));
+          vfree = std::max(vfree, std::abs(free_velocity[i]));
+        }
+      for (const double b : gap_term)
+        bmax = std::max(bmax, std::abs(b));
+      const double normW = norm_W;
+      const double sV    = vfree + bmax + normW * pmax;
+      // impulse scale: ||P||, or the impulse that the free velocities call
+      // for when P is (nearly) zero
+      const double sP =
+        std::max(pmax, normW > 0. ? (vfree + bmax) / normW : 0.);
+      auto rel = [](const double v, const double s) {
+        return s > 0. ? v / s : (v > 0. ? v * 1e300 : 0.);
+      };
+
+      ContactVerification r;
+      for (unsigned int c = 0; c < nc; ++c)
+        {
+          const double PN = P[c * dim];
+          const double wN = V[c * dim] + gap_term[c];
+          r.max_signorini_violation =
+            std::max({r.max_signorini_violation,
+                      rel(-PN, sP),
+                      rel(-wN, sV),
+                      rel(std::abs(PN * wN), sP * sV)});
+          if (dim == 1)
+            {
+              if (PN <= tol * sP)
+                ++r.n_separated;
+              else
+                ++r.n_sticking;
+              continue;
+            }
+          double PT2 = 0., VT2 = 0.;
+          for (unsigned int a = 1; a < dim; ++a)
+            {
+              PT2 += P[c * dim + a] * P[c * dim + a];
+              VT2 += V[c * dim + a] * V[c * dim + a];
+            }
+          const double PT = std::sqrt(PT2), VT = std::sqrt(VT2);
+          r.max_cone_violation =
+            std::max(r.max_cone_violation, rel(PT - mu[c] * PN, sP));
+          if (PN <= tol * sP)
+            ++r.n_separated;
+          else if (VT <= tol * sV)
+            ++r.n_sticking;
+          else
+            {
+              ++r.n_sliding;
+              double dev2 = 0.;
+              for (unsigned int a = 1; a < dim; ++a)
+                {
+                  const double e =
+                    P[c * dim + a] + mu[c] * PN * V[c * dim + a] / VT;
+                  dev2 += e * e;
+                }
+              r.max_sliding_violation =
+                std::max(r.max_sliding_violation, rel(std::sqrt(dev2), sP));
+            }
+        }
+      r.ok = r.max_signorini_violation <= tol && r.max_cone_violation <= tol &&
+             r.max_sliding_violation <= tol;
+      return r;
     }
 
 

@@ -81,6 +81,16 @@ namespace impactfe
         .add("exact_cone_most_facet_lcps", double(cone.most_facet_lcps))
         .add("exact_cone_largest_residual", cone.largest_residual)
         .add("cone_not_converged", double(cone.not_converged));
+    const auto &active_set = system.active_set_statistics();
+    if (active_set.solves > 0)
+      lcp.add("active_set_solves", double(active_set.solves))
+        .add("active_set_iterations", double(active_set.iterations))
+        .add("active_set_most_iterations", double(active_set.most_iterations))
+        .add("active_set_gmres_iterations",
+             double(active_set.linear_iterations))
+        .add("active_set_products", double(active_set.operator_applications))
+        .add("active_set_largest_violation", active_set.largest_violation)
+        .add("active_set_fallbacks", double(active_set.fallbacks));
     JsonObject checks;
     checks.add("impulse_balance_error", s.impulse_balance_error)
       .add("max_penetration", s.max_penetration)

@@ -17,6 +17,20 @@ namespace impactfe
    */
   struct ContactSolverParameters
   {
+    /// How each step's contact problem is solved: Lemke's method on the
+    /// dense Delassus matrix, the matrix-free active set method
+    /// (lcp/active_set.h, frictionless and 2D problems; Lemke is the
+    /// fallback), or the active set method from active_set_threshold
+    /// candidates on.
+    enum class Method
+    {
+      lemke,
+      active_set,
+      automatic
+    };
+    Method       method                = Method::automatic;
+    unsigned int active_set_threshold  = 300;
+    unsigned int active_set_iterations = 50;
     /// Start Lemke from the previous step's active set.
     bool warm_start = true;
     /// Step whose LCP is written to the output directory (-1: none). A step

@@ -6,6 +6,7 @@
 #include <deal.II/base/types.h>
 
 #include <deal.II/lac/block_vector.h>
+#include <deal.II/lac/sparse_matrix.h>
 
 #include <impactfe/bodies/elastic_body.h>
 #include <impactfe/contact/rigid_obstacle.h>
@@ -175,6 +176,28 @@ namespace impactfe
     add_column(const unsigned int   column,
                const double         alpha,
                BlockVector<double> &f) const;
+
+    /**
+     * c_j ~ 1 / W_jj for the columns of the candidates @p candidates
+     * (ordered as their local unknowns, per candidate [N, T...]), W = H^T
+     * A^{-1} H with A block diagonal, one @p block_matrices entry per body
+     * (A = M~ in the time loop): H_j^T A H_j for a candidate against a rigid
+     * obstacle (exact for a lumped, mass-dominated A), 1 / (H_j^T
+     * diag(A)^{-1} H_j) for one between two bodies (the pair's reduced
+     * mass). The active set method's complementarity constants.
+     */
+    void
+    inverse_delassus_diagonal(
+      const std::vector<const SparseMatrix<double> *> &block_matrices,
+      const std::vector<unsigned int>                 &candidates,
+      std::vector<double>                             &c) const;
+    /**
+     * Per body (block), the DoFs in the columns of the candidates against
+     * rigid obstacles, sorted: the contact DoFs C of the Schur complement
+     * preconditioner of the active set method (MultibodySystem).
+     */
+    std::vector<std::vector<types::global_dof_index>>
+    obstacle_contact_dofs(const unsigned int n_blocks) const;
 
   private:
     struct Entry

@@ -63,6 +63,11 @@ namespace impactfe
     unsigned int exact_cone_solves        = 0;
     unsigned int exact_cone_not_converged = 0;
     double       exact_cone_tolerance     = 0.;
+    /// Contact problems solved by the active set method, its iterations,
+    /// and the solves that fell back to Lemke's method.
+    unsigned int       active_set_solves     = 0;
+    unsigned long long active_set_iterations = 0;
+    unsigned int       active_set_fallbacks  = 0;
   };
 
 

@@ -9,6 +9,7 @@
 #include <impactfe/contact/contact_parameters.h>
 #include <impactfe/contact/contact_set.h>
 #include <impactfe/dynamics/sparse_cholesky.h>
+#include <impactfe/lcp/active_set.h>
 #include <impactfe/lcp/contact_problem.h>
 #include <impactfe/lcp/dense_matrix.h>
 #include <impactfe/lcp/lemke.h>
@@ -42,6 +43,10 @@ namespace impactfe
     /// covers (k for a free-flight step, 1 otherwise).
     double       time_step  = 0.;
     unsigned int n_substeps = 1;
+    /// Active set iterations of the step's contact solves (0 if Lemke's
+    /// method solved them), and whether one fell back to Lemke's method.
+    unsigned int active_set_iterations = 0;
+    bool         active_set_fallback   = false;
   };
 
 
@@ -245,6 +250,24 @@ namespace impactfe
     };
     const ExactConeStatistics &
     exact_cone_statistics() const;
+
+    /// The active set solves of the run (`Method = active set` or
+    /// `automatic`): how many, their iterations, GMRES iterations and
+    /// products with W (one solve pair each), the largest verification
+    /// violation, and the fallbacks to Lemke's method with the last reason.
+    struct ActiveSetStatistics
+    {
+      unsigned int       solves                = 0;
+      unsigned long long iterations            = 0;
+      unsigned int       most_iterations       = 0;
+      unsigned long long linear_iterations     = 0;
+      unsigned long long operator_applications = 0;
+      double             largest_violation     = 0.;
+      unsigned int       fallbacks             = 0;
+      std::string        last_fallback_reason;
+    };
+    const ActiveSetStatistics &
+    active_set_statistics() const;
     /// The `Contact solver` parameters the system was made with.
     const ContactSolverParameters &
     contact_solver_parameters() const;
@@ -329,6 +352,40 @@ namespace impactfe
     std::vector<double>  facet_angle_guess;
     ExactConeStatistics  cone_statistics;
     unsigned int         last_lcp_size = 0;
+    /// The active set method: its solver; its preconditioner, the Schur
+    /// complement of M~ on the contact DoFs C of the rigid-obstacle
+    /// candidates (the inverse of W on all of them), applied with a
+    /// factorisation of M~ with the rows and columns of C made identity
+    /// (setup_schur_preconditioner(), at the first use) and its work
+    /// vectors; the step matrices as a list; M~^{-1} H P of its last product
+    /// (the velocity correction, valid if impulse_velocity_ready); the
+    /// previous step's impulses (its warm start); the problem data on the
+    /// candidates.
+    lcp::ActiveSetSolver                               active_set_solver;
+    std::vector<std::vector<types::global_dof_index>>  schur_contact_dofs;
+    std::vector<std::unique_ptr<SparseMatrix<double>>> interior_matrices;
+    std::vector<std::unique_ptr<SparseCholesky>>       interior_solvers;
+    BlockVector<double> schur_nodal, schur_product, schur_interior;
+    std::vector<const SparseMatrix<double> *> step_matrix_list;
+    BlockVector<double>                       impulse_velocity;
+    bool                                      impulse_velocity_ready = false;
+    std::vector<double>                       last_impulses;
+    std::vector<double> lcp_free_velocity, lcp_gap_terms, lcp_mu,
+      lcp_impulse_guess, lcp_penalty;
+    void
+                        setup_schur_preconditioner();
+    ActiveSetStatistics active_set_stats;
+    /// Whether the step's problem on @p n candidates goes to the active set
+    /// method.
+    bool
+    use_active_set(const unsigned int n) const;
+    /**
+     * Solve the problem on lcp_candidates by the active set method; fills
+     * local_impulses, impulse_velocity and the contact states. False (and
+     * counted as a fallback) if it did not converge.
+     */
+    bool
+    solve_contact_active_set(StepReport &report);
 
     unsigned long long pivot_count  = 0;
     unsigned int       lcp_max_size = 0;

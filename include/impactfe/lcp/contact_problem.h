@@ -212,6 +212,24 @@ namespace impactfe
                             double                     tolerance = 1e-8);
 
     /**
+     * The checks of verify_contact_solution() for impulses @p P and
+     * velocities @p V = q + W P computed elsewhere (without forming W), with
+     * @p norm_W in place of ||W||_inf in the scales. The matrix-free caller
+     * (the active set solver) passes ||W P||_inf / ||P||_inf, a lower bound
+     * of ||W||_inf: the velocity scale s_V is then smaller and the velocity
+     * checks stricter; the impulse scale is ||P||_inf unless P is nearly 0.
+     */
+    ContactVerification
+    verify_contact_velocities(const unsigned int         n_directions,
+                              const std::vector<double> &free_velocity,
+                              const std::vector<double> &gap_term,
+                              const std::vector<double> &mu,
+                              const std::vector<double> &P,
+                              const std::vector<double> &V,
+                              const double               norm_W,
+                              const double               tolerance = 1e-8);
+
+    /**
      * The exact-cone error of @p P, a standard measure of the friction
      * contact literature (as used by FCLib-based comparisons): with
      * u = V_free + W P (+ b_N on the normal rows) and, per contact,

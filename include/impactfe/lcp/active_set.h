@@ -1,0 +1,138 @@
+// A primal-dual active set (semismooth Newton) solver for the contact
+// problem of a step, on W given only as a product: for contact sets too large
+// for a dense Delassus matrix and Lemke's O(n^3) pivoting (issue 14,
+// doc/lcp.md "Large contact sets").
+#ifndef impactfe_lcp_active_set_h
+#define impactfe_lcp_active_set_h
+
+#include <impactfe/lcp/contact_problem.h>
+#include <impactfe/lcp/contact_state.h>
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace impactfe
+{
+  namespace lcp
+  {
+    /// y = W x on the local unknowns (per contact [N, T...]); W is never
+    /// formed (in the time loop: one solve pair with M~ per product).
+    using DelassusProduct =
+      std::function<void(const std::vector<double> &x, std::vector<double> &y)>;
+
+    /// Options of ActiveSetSolver::solve().
+    struct ActiveSetOptions
+    {
+      /// Active-set (Newton) iterations before giving up.
+      unsigned int max_iterations = 50;
+      /// Relative residual of each linear solve (GMRES).
+      double linear_tolerance = 1e-12;
+      /// GMRES iterations per linear solve, and its restart length.
+      unsigned int max_linear_iterations = 2000;
+      unsigned int restart               = 120;
+      /// Verification tolerance (verify_contact_velocities()).
+      double tolerance = 1e-8;
+    };
+
+    /// What a solve did.
+    struct ActiveSetReport
+    {
+      /// The contact states settled and (P, V) passed the verification.
+      bool                converged             = false;
+      unsigned int        iterations            = 0;
+      unsigned int        linear_iterations     = 0;
+      unsigned int        operator_applications = 0;
+      ContactVerification verification;
+      /// Why it did not converge (empty if it did).
+      std::string message;
+    };
+
+    /**
+     * Frictionless (n_directions = 1) and 2D Coulomb (n_directions = 2)
+     * contact problems V = q + W P, w_N = V_N + b_N (the conventions of
+     * ContactProblem), solved by a primal-dual active set method, the
+     * semismooth Newton method of the complementarity functions
+     *   P_N = max(0, P_N - c_N w_N),
+     *   P_T = proj_[-mu zeta, mu zeta](P_T - c_T V_T), zeta = P_N - c_N w_N
+     * (Hueber, Stadler and Wohlmuth, SIAM J. Sci. Comput. 30 (2008)).
+     * Given the states (open, stick, slip+-), one linear system fixes P:
+     * P = 0 on open contacts, w_N = 0 on closed ones, V_T = 0 on sticking
+     * ones and P_T = -+mu P_N on sliding ones; it is solved by GMRES on
+     * products with W, right-preconditioned by @p preconditioner (an
+     * approximation of W^{-1}, applied to vectors that are zero outside the
+     * unknowns and restricted to them). The states are then updated from
+     * (P, V) with c = @p penalty (per row, ~ 1 / W_jj), until they settle.
+     * A state changes only if its condition is violated by more than
+     * 1e-10 of the scale, so rounding cannot make it cycle.
+     *
+     * The answer is accepted only if it passes verify_contact_velocities()
+     * with V computed by a product with the final P; the last product the
+     * solver makes is that one. Otherwise (no settling within
+     * max_iterations, a linear solve that stalls) converged is false and
+     * the caller falls back to Lemke's method.
+     */
+    class ActiveSetSolver
+    {
+    public:
+      /**
+       * @p state_guess (one per contact, or empty: states from P = 0) and
+       * @p impulse_guess (the start of the first linear solve, or empty)
+       * warm-start the method.
+       */
+      const ActiveSetReport &
+      solve(const DelassusProduct           &W,
+            const DelassusProduct           &preconditioner,
+            const std::vector<double>       &penalty,
+            const unsigned int               n_directions,
+            const std::vector<double>       &free_velocity,
+            const std::vector<double>       &gap_term,
+            const std::vector<double>       &mu,
+            const std::vector<ContactState> &state_guess,
+            const std::vector<double>       &impulse_guess,
+            const ActiveSetOptions          &options = {});
+
+      /// P, V = q + W P and the states of the last solve.
+      const std::vector<double> &
+      impulses() const;
+      const std::vector<double> &
+      velocities() const;
+      const std::vector<ContactState> &
+      states() const;
+      const ActiveSetReport &
+      report() const;
+
+    private:
+      ActiveSetReport           last_report;
+      std::vector<double>       P, V, x, rhs, work, c, full_in, full_out;
+      std::vector<ContactState> state, new_state;
+      /// Per contact, the size of the violation that changes its state;
+      /// hashes of the sets of states met; the contacts that change.
+      std::vector<double>       violation;
+      std::vector<std::size_t>  seen;
+      std::vector<unsigned int> changed;
+      unsigned int              cycles = 0;
+      /// Unknown k is local row unknowns[k]; position[row] is k or -1.
+      std::vector<unsigned int> unknowns;
+      std::vector<int>          position;
+      /// GMRES storage: the Krylov basis (restart + 1 vectors), Hessenberg.
+      std::vector<std::vector<double>> basis;
+      std::vector<double> hessenberg, givens_cos, givens_sin, g, y_small;
+
+      void
+      expand(const std::vector<double> &x_unknowns,
+             const std::vector<double> &mu,
+             std::vector<double>       &P_full) const;
+      unsigned int
+      gmres(const DelassusProduct     &W,
+            const DelassusProduct     &preconditioner,
+            const std::vector<double> &mu,
+            const ActiveSetOptions    &options,
+            bool                      &stalled);
+    };
+
+  } // namespace lcp
+} // namespace impactfe
+
+#endif

@@ -1,0 +1,432 @@
+#include <impactfe/lcp/active_set.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace impactfe
+{
+  namespace lcp
+  {
+    namespace
+    {
+      double
+      dot(const std::vector<double> &a,
+          const std::vector<double> &b,
+          const std::size_t          n)
+      {
+        double s = 0.;
+        for (std::size_t i = 0; i < n; ++i)
+          s += a[i] * b[i];
+        return s;
+      }
+
+      double
+      max_abs(const std::vector<double> &a)
+      {
+        double m = 0.;
+        for (const double v : a)
+          m = std::max(m, std::abs(v));
+        return m;
+      }
+
+      /// Sign of P_T of a sliding contact: slip_negative (V_T < 0) has
+      /// P_T = +mu P_N.
+      double
+      slip_sign(const ContactState state)
+      {
+        return state == ContactState::slip_negative ? 1. : -1.;
+      }
+    } // namespace
+
+
+
+    void
+    ActiveSetSolver::expand(const std::vector<double> &x_unknowns,
+                            const std::vector<double> &mu,
+                            std::vector<double>       &P_full) const
+    {
+      std::fill(P_full.begin(), P_full.end(), 0.);
+      for (std::size_t k = 0; k < unknowns.size(); ++k)
+        P_full[unknowns[k]] = x_unknowns[k];
+      const unsigned int nd =
+        P_full.size() / std::max<std::size_t>(state.size(), 1);
+      if (nd == 2)
+        for (unsigned int a = 0; a < state.size(); ++a)
+          if (is_sliding(state[a]))
+            P_full[2 * a + 1] = slip_sign(state[a]) * mu[a] * P_full[2 * a];
+    }
+
+
+
+    // Restarted GMRES on K x = rhs, K = (W E)(unknown rows), right
+    // preconditioned by Z restricted to the unknowns. Starts from x and
+    // leaves in `work` the product W P of the final P = E x: the caller's
+    // V = q + W P needs no further product.
+    unsigned int
+    ActiveSetSolver::gmres(const DelassusProduct     &W,
+                           const DelassusProduct     &preconditioner,
+                           const std::vector<double> &mu,
+                           const ActiveSetOptions    &options,
+                           bool                      &stalled)
+    {
+      const std::size_t  m = unknowns.size();
+      const unsigned int k_max =
+        std::max<unsigned int>(1, std::min<std::size_t>(options.restart, m));
+      std::vector<double> &WP      = work;
+      auto                 apply_K = [&](const std::vector<double> &in,
+                         std::vector<double>       &out) {
+        expand(in, mu, P);
+        W(P, WP);
+        ++last_report.operator_applications;
+        for (std::size_t k = 0; k < m; ++k)
+          out[k] = WP[unknowns[k]];
+      };
+      auto apply_Z = [&](const std::vector<double> &in,
+                         std::vector<double>       &out) {
+        std::fill(full_in.begin(), full_in.end(), 0.);
+        for (std::size_t k = 0; k < m; ++k)
+          full_in[unknowns[k]] = in[k];
+        preconditioner(full_in, full_out);
+        for (std::size_t k = 0; k < m; ++k)
+          out[k] = full_out[unknowns[k]];
+      };
+
+      basis.resize(k_max + 1);
+      for (auto &v : basis)
+        v.resize(m);
+      hessenberg.assign((k_max + 1) * k_max, 0.);
+      givens_cos.resize(k_max);
+      givens_sin.resize(k_max);
+      g.resize(k_max + 1);
+      y_small.resize(k_max);
+      std::vector<double> &r = basis[k_max], z(m), w(m);
+      auto                 H = [&](unsigned int i, unsigned int j) -> double                 &{
+        return hessenberg[i * k_max + j];
+      };
+
+      const double rhs_norm = std::sqrt(dot(rhs, rhs, m));
+      const double target   = options.linear_tolerance * rhs_norm;
+      apply_K(x, r);
+      for (std::size_t k = 0; k < m; ++k)
+        r[k] = rhs[k] - r[k];
+      double       beta       = std::sqrt(dot(r, r, m));
+      unsigned int iterations = 0;
+      stalled                 = false;
+      while (beta > target && iterations < options.max_linear_iterations)
+        {
+          for (std::size_t k = 0; k < m; ++k)
+            basis[0][k] = r[k] / beta;
+          std::fill(g.begin(), g.end(), 0.);
+          g[0]           = beta;
+          unsigned int j = 0;
+          while (j < k_max && iterations < options.max_linear_iterations)
+            {
+              apply_Z(basis[j], z);
+              apply_K(z, w);
+              for (unsigned int i = 0; i <= j; ++i)
+                {
+                  H(i, j) = dot(w, basis[i], m);
+                  for (std::size_t k = 0; k < m; ++k)
+                    w[k] -= H(i, j) * basis[i][k];
+                }
+              const double h_next = std::sqrt(dot(w, w, m));
+              if (j + 1 < k_max + 1 && h_next > 0. && j + 1 < k_max)
+                for (std::size_t k = 0; k < m; ++k)
+                  basis[j + 1][k] = w[k] / h_next;
+              for (unsigned int i = 0; i < j; ++i)
+                {
+                  const double t =
+                    givens_cos[i] * H(i, j) + givens_sin[i] * H(i + 1, j);
+                  H(i + 1, j) =
+                    -givens_sin[i] * H(i, j) + givens_cos[i] * H(i + 1, j);
+                  H(i, j) = t;
+                }
+              const double rho = std::hypot(H(j, j), h_next);
+              givens_cos[j]    = rho > 0. ? H(j, j) / rho : 1.;
+              givens_sin[j]    = rho > 0. ? h_next / rho : 0.;
+              H(j, j)          = rho;
+              g[j + 1]         = -givens_sin[j] * g[j];
+              g[j]             = givens_cos[j] * g[j];
+              ++j;
+              ++iterations;
+              if (std::abs(g[j]) <= target || h_next == 0.)
+                break;
+            }
+          for (int i = static_cast<int>(j) - 1; i >= 0; --i)
+            {
+              double s = g[i];
+              for (unsigned int l = i + 1; l < j; ++l)
+                s -= H(i, l) * y_small[l];
+              y_small[i] = H(i, i) != 0. ? s / H(i, i) : 0.;
+            }
+          std::fill(w.begin(), w.end(), 0.);
+          for (unsigned int i = 0; i < j; ++i)
+            for (std::size_t k = 0; k < m; ++k)
+              w[k] += y_small[i] * basis[i][k];
+          apply_Z(w, z);
+          for (std::size_t k = 0; k < m; ++k)
+            x[k] += z[k];
+          // the true residual (and W P of the new x)
+          apply_K(x, r);
+          for (std::size_t k = 0; k < m; ++k)
+            r[k] = rhs[k] - r[k];
+          const double new_beta = std::sqrt(dot(r, r, m));
+          if (new_beta > 0.999 * beta)
+            {
+              stalled = new_beta > target;
+              beta    = new_beta;
+              break;
+            }
+          beta = new_beta;
+        }
+      stalled = stalled || beta > target;
+      last_report.linear_iterations += iterations;
+      return iterations;
+    }
+
+
+
+    const ActiveSetReport &
+    ActiveSetSolver::solve(const DelassusProduct           &W,
+                           const DelassusProduct           &preconditioner,
+                           const std::vector<double>       &penalty,
+                           const unsigned int               nd,
+                           const std::vector<double>       &q,
+                           const std::vector<double>       &b,
+                           const std::vector<double>       &mu,
+                           const std::vector<ContactState> &state_guess,
+                           const std::vector<double>       &impulse_guess,
+                           const ActiveSetOptions          &options)
+    {
+      const std::size_t n = b.size(), n_rows = n * nd;
+      if (nd < 1 || nd > 2)
+        throw std::invalid_argument(
+          "ActiveSetSolver: frictionless or 2D problems only (n_directions "
+          "1 or 2), got " +
+          std::to_string(nd));
+      if (q.size() != n_rows || (nd == 2 && mu.size() != n) ||
+          penalty.size() != n_rows)
+        throw std::invalid_argument("ActiveSetSolver: inconsistent sizes");
+      last_report = ActiveSetReport();
+      seen.clear();
+      cycles = 0;
+      P.assign(n_rows, 0.);
+      V = q;
+      work.assign(n_rows, 0.);
+      position.assign(n_rows, -1);
+
+      // c ~ 1 / diag(W): the complementarity constants, in units of
+      // impulse per velocity.
+      c = penalty;
+      full_in.assign(n_rows, 0.);
+      full_out.assign(n_rows, 0.);
+      double c_max = 0.;
+      for (const double ci : c)
+        c_max = std::max(c_max, ci);
+      for (double &ci : c)
+        if (!(ci > 0.))
+          ci = c_max > 0. ? c_max : 1.;
+      c_max                           = std::max(c_max, 1e-300);
+      const double impulse_scale_free = c_max * (max_abs(q) + max_abs(b));
+
+      // The state update from (P, V); a change needs a violation of more
+      // than `margin` (see the class documentation).
+      // violation[a]: by how much contact a's condition is violated when
+      // its state changes (the size of |zeta| or of ||xi| - bound|).
+      auto update_states = [&](const double margin) {
+        new_state.resize(n);
+        violation.assign(n, 0.);
+        for (unsigned int a = 0; a < n; ++a)
+          {
+            const unsigned int iN   = a * nd;
+            const double       zeta = P[iN] - c[iN] * (V[iN] + b[a]);
+            const bool         closed =
+              is_closed(state[a]) ? zeta > -margin : zeta > margin;
+            if (!closed)
+              new_state[a] = ContactState::open;
+            else if (nd == 1)
+              new_state[a] = ContactState::stick;
+            else
+              {
+                const double xi       = P[iN + 1] - c[iN + 1] * V[iN + 1];
+                const double bound    = mu[a] * std::max(zeta, 0.);
+                const auto slip_state = xi > 0. ? ContactState::slip_negative :
+                                                  ContactState::slip_positive;
+                if (std::abs(xi) <= bound - margin)
+                  new_state[a] = ContactState::stick;
+                else if (std::abs(xi) > bound + margin)
+                  // a sliding contact whose velocity turned against its
+                  // impulse sticks first instead of turning round: turning
+                  // round directly makes the method cycle
+                  new_state[a] =
+                    is_sliding(state[a]) && state[a] != slip_state ?
+                      ContactState::stick :
+                      slip_state;
+                else // within the margin: keep a consistent state
+                  new_state[a] =
+                    state[a] == slip_state ? slip_state : ContactState::stick;
+                violation[a] = std::abs(std::abs(xi) - bound);
+              }
+            if (is_closed(new_state[a]) != is_closed(state[a]))
+              violation[a] = std::abs(zeta);
+          }
+      };
+
+      // A set of states met before means a cycle: then only the most
+      // violated part of the changes is made, half as many each time a
+      // cycle is met again (down to one contact, as in Murty's method).
+      auto damp_cycles = [&]() {
+        std::size_t hash = 1469598103934665603ull;
+        for (const ContactState s : new_state)
+          hash = (hash ^ static_cast<unsigned char>(s)) * 1099511628211ull;
+        if (std::find(seen.begin(), seen.end(), hash) == seen.end())
+          {
+            seen.push_back(hash);
+            return;
+          }
+        ++cycles;
+        changed.clear();
+        for (unsigned int a = 0; a < n; ++a)
+          if (new_state[a] != state[a])
+            changed.push_back(a);
+        const std::size_t keep =
+          std::max<std::size_t>(1, changed.size() >> std::min(cycles, 30u));
+        std::sort(changed.begin(), changed.end(), [&](auto i, auto j) {
+          return violation[i] > violation[j];
+        });
+        for (std::size_t k = keep; k < changed.size(); ++k)
+          new_state[changed[k]] = state[changed[k]];
+      };
+
+      if (state_guess.size() == n)
+        {
+          state = state_guess;
+          if (nd == 1)
+            for (ContactState &s : state)
+              if (is_closed(s))
+                s = ContactState::stick;
+        }
+      else
+        {
+          state.assign(n, ContactState::open);
+          update_states(0.);
+          state = new_state;
+        }
+      if (impulse_guess.size() == n_rows)
+        P = impulse_guess;
+
+      for (unsigned int iteration = 1; iteration <= options.max_iterations;
+           ++iteration)
+        {
+          last_report.iterations = iteration;
+          unknowns.clear();
+          std::fill(position.begin(), position.end(), -1);
+          for (unsigned int a = 0; a < n; ++a)
+            if (is_closed(state[a]))
+              {
+                unknowns.push_back(a * nd);
+                if (nd == 2 && state[a] == ContactState::stick)
+                  unknowns.push_back(a * nd + 1);
+              }
+          const std::size_t m = unknowns.size();
+          x.resize(m);
+          rhs.resize(m);
+          for (std::size_t k = 0; k < m; ++k)
+            {
+              const unsigned int row = unknowns[k];
+              position[row]          = static_cast<int>(k);
+              x[k]                   = P[row];
+              rhs[k] = row % nd == 0 ? -(q[row] + b[row / nd]) : -q[row];
+            }
+          if (m == 0)
+            {
+              std::fill(P.begin(), P.end(), 0.);
+              V = q;
+            }
+          else
+            {
+              bool stalled = false;
+              gmres(W, preconditioner, mu, options, stalled);
+              expand(x, mu, P);
+              for (std::size_t i = 0; i < n_rows; ++i)
+                V[i] = q[i] + work[i];
+              if (stalled)
+                {
+                  last_report.message =
+                    "GMRES did not reach the relative residual " +
+                    std::to_string(options.linear_tolerance) +
+                    " at active-set iteration " + std::to_string(iteration);
+                  break;
+                }
+            }
+
+          const double p_max = max_abs(P);
+          update_states(1e-10 * std::max(p_max, impulse_scale_free));
+          if (new_state != state)
+            damp_cycles();
+          if (new_state == state)
+            {
+              double wp_max = 0.;
+              for (std::size_t i = 0; i < n_rows; ++i)
+                wp_max = std::max(wp_max, std::abs(V[i] - q[i]));
+              const double norm_W = p_max > 0. ? wp_max / p_max : 1. / c_max;
+              last_report.verification = verify_contact_velocities(
+                nd, q, b, mu, P, V, norm_W, options.tolerance);
+              last_report.converged = last_report.verification.ok;
+              if (!last_report.converged)
+                last_report.message =
+                  "the contact states settled but (P, V) failed the "
+                  "verification (Signorini " +
+                  std::to_string(
+                    last_report.verification.max_signorini_violation) +
+                  ", cone " +
+                  std::to_string(last_report.verification.max_cone_violation) +
+                  ", sliding " +
+                  std::to_string(
+                    last_report.verification.max_sliding_violation) +
+                  ")";
+              break;
+            }
+          state = new_state;
+        }
+      if (!last_report.converged && last_report.message.empty())
+        last_report.message = "the contact states did not settle in " +
+                              std::to_string(options.max_iterations) +
+                              " active-set iterations";
+      return last_report;
+    }
+
+
+
+    const std::vector<double> &
+    ActiveSetSolver::impulses() const
+    {
+      return P;
+    }
+
+
+
+    const std::vector<double> &
+    ActiveSetSolver::velocities() const
+    {
+      return V;
+    }
+
+
+
+    const std::vector<ContactState> &
+    ActiveSetSolver::states() const
+    {
+      return state;
+    }
+
+
+
+    const ActiveSetReport &
+    ActiveSetSolver::report() const
+    {
+      return last_report;
+    }
+  } // namespace lcp
+} // namespace impactfe

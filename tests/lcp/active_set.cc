@@ -1,0 +1,244 @@
+// The active set (semismooth Newton) solver of lcp/active_set.h against
+// Lemke's method, on problems whose W is only used through products:
+//
+// 1. 50 random 2D frictional problems, 20 to 200 contacts (W = B B^T /
+//    (2 n_c) + I, mu in [0, 0.2], where the answer is unique in practice),
+//    cold start, Jacobi preconditioner: every answer converged, passes the
+//    dense verify_contact_solution(), and equals cold Lemke's (solve_contact_
+//    problem) to 1e-8 relative.
+// 2. The same with warm starts (the states and impulses of Lemke's answer
+//    perturbed): the same answers.
+// 3. 50 random frictionless problems (n_directions = 1, W = B B^T + I/2,
+//    strongly coupled), 20 to 200 contacts: the same checks.
+// 4. 30 strongly coupled frictional problems (W = B B^T + I/2, mu up to
+//    1), where the method may cycle: every answer it accepts passes the
+//    dense verification (the ones it does not accept are left to Lemke's
+//    method in the time loop).
+// 5. A solve that cannot converge (1 iteration from a wrong guess) says so.
+// 6. verify_contact_velocities() with V = q + W P and ||W||_inf gives
+//    verify_contact_solution()'s numbers.
+// No iteration counts are printed.
+#include <impactfe/lcp/active_set.h>
+#include <impactfe/lcp/contact_problem.h>
+
+#include "../tests.h"
+
+#include "lcp_test_tools.h"
+
+using namespace impactfe::lcp;
+using impactfe::ContactState;
+
+namespace
+{
+  ContactProblem
+  random_problem(lcp_test::Rng     &rng,
+                 const unsigned int nc,
+                 const unsigned int nd,
+                 const double       mu_max,
+                 const bool         weakly_coupled)
+  {
+    const unsigned int m = nd * nc;
+    DenseMatrix        B(m, m);
+    const double       b = weakly_coupled ? 1. / std::sqrt(2. * nc) : 1.;
+    for (unsigned int i = 0; i < m; ++i)
+      for (unsigned int j = 0; j < m; ++j)
+        B(i, j) = b * rng.uniform(-1., 1.);
+    ContactProblem p;
+    p.n_directions = nd;
+    p.n_contacts   = nc;
+    p.W            = lcp_test::gram_plus_shift(B, weakly_coupled ? 1. : 0.5);
+    p.free_velocity.resize(m);
+    p.gap_term.resize(nc);
+    p.mu.assign(nc, 0.);
+    for (unsigned int i = 0; i < m; ++i)
+      p.free_velocity[i] = rng.uniform(-1., 1.);
+    for (unsigned int c = 0; c < nc; ++c)
+      {
+        p.gap_term[c] = rng.uniform(-0.5, 0.5);
+        if (nd > 1)
+          p.mu[c] = rng.uniform(0., mu_max);
+      }
+    return p;
+  }
+
+  /// The products with W, a Jacobi preconditioner and c = 1 / W_jj.
+  struct DenseOperators
+  {
+    explicit DenseOperators(const ContactProblem &p)
+      : penalty(p.W.n_rows())
+    {
+      for (unsigned int i = 0; i < penalty.size(); ++i)
+        penalty[i] = 1. / p.W(i, i);
+      product = [&p](const std::vector<double> &x, std::vector<double> &y) {
+        p.W.vmult(y, x);
+      };
+      jacobi = [this](const std::vector<double> &x, std::vector<double> &y) {
+        y.resize(x.size());
+        for (unsigned int i = 0; i < x.size(); ++i)
+          y[i] = penalty[i] * x[i];
+      };
+    }
+    std::vector<double> penalty;
+    DelassusProduct     product, jacobi;
+  };
+
+  double
+  relative_difference(const ContactProblem      &p,
+                      const std::vector<double> &a,
+                      const std::vector<double> &b)
+  {
+    const double scale = std::max(lcp_test::linfty(b),
+                                  (lcp_test::linfty(p.free_velocity) +
+                                   lcp_test::linfty(p.gap_term)) /
+                                    p.W.linfty_norm());
+    return lcp_test::max_diff(a, b) / scale;
+  }
+
+  /// Cases 1 to 3: @p n problems, each solved by the active set method
+  /// (cold, or warm from Lemke's perturbed answer) and compared with Lemke.
+  void
+  compare_with_lemke(const std::string  &title,
+                     const unsigned int  nd,
+                     const double        mu_max,
+                     const bool          weakly_coupled,
+                     const bool          warm,
+                     const std::uint64_t seed)
+  {
+    lcp_test::Rng      rng(seed);
+    ActiveSetSolver    solver;
+    unsigned int       converged = 0, verified = 0, agree = 0, lemke_solved = 0;
+    const unsigned int n_problems = 50;
+    for (unsigned int k = 0; k < n_problems; ++k)
+      {
+        const unsigned int   nc = 20 + rng.integer(181);
+        const ContactProblem p =
+          random_problem(rng, nc, nd, mu_max, weakly_coupled);
+        const ContactSolution lemke = solve_contact_problem(p);
+        if (lemke.lcp.status != Status::solved)
+          continue;
+        ++lemke_solved;
+        std::vector<ContactState> state_guess;
+        std::vector<double>       impulse_guess;
+        if (warm)
+          {
+            state_guess   = lemke.states;
+            impulse_guess = lemke.P;
+            for (unsigned int c = 0; c < nc; c += 7) // a few wrong states
+              state_guess[c] = ContactState::open;
+            for (double &v : impulse_guess)
+              v *= 1. + 0.1 * rng.uniform(-1., 1.);
+          }
+        const DenseOperators   ops(p);
+        const ActiveSetReport &report = solver.solve(ops.product,
+                                                     ops.jacobi,
+                                                     ops.penalty,
+                                                     nd,
+                                                     p.free_velocity,
+                                                     p.gap_term,
+                                                     p.mu,
+                                                     state_guess,
+                                                     impulse_guess);
+        if (!report.converged)
+          {
+            dealii::deallog << "  not converged (" << nc
+                            << " contacts): " << report.message << std::endl;
+            continue;
+          }
+        ++converged;
+        if (verify_contact_solution(p, solver.impulses()).ok)
+          ++verified;
+        if (relative_difference(p, solver.impulses(), lemke.P) <= 1e-8)
+          ++agree;
+      }
+    dealii::deallog << title << ": Lemke solved " << lemke_solved << " of "
+                    << n_problems << "; active set converged " << converged
+                    << ", verified " << verified
+                    << ", equal to Lemke's P (1e-8) " << agree << std::endl;
+  }
+} // namespace
+
+
+
+int
+main()
+{
+  impactfe_tests::initlog();
+  using impactfe_tests::check;
+  auto &log = dealii::deallog;
+
+  compare_with_lemke("1. 2D, mu <= 0.2, cold", 2, 0.2, true, false, 11);
+  compare_with_lemke("2. 2D, mu <= 0.2, warm", 2, 0.2, true, true, 11);
+  compare_with_lemke("3. frictionless, coupled", 1, 0., false, false, 12);
+
+  // 4. Strongly coupled, large mu: what is accepted is verified.
+  {
+    lcp_test::Rng   rng(13);
+    ActiveSetSolver solver;
+    bool            all_verified = true;
+    for (unsigned int k = 0; k < 30; ++k)
+      {
+        const ContactProblem p =
+          random_problem(rng, 20 + rng.integer(61), 2, 1., false);
+        const DenseOperators ops(p);
+        if (solver
+              .solve(ops.product,
+                     ops.jacobi,
+                     ops.penalty,
+                     2,
+                     p.free_velocity,
+                     p.gap_term,
+                     p.mu,
+                     {},
+                     {})
+              .converged)
+          all_verified =
+            all_verified && verify_contact_solution(p, solver.impulses()).ok;
+      }
+    check(all_verified, "4. coupled, mu <= 1: every accepted answer verified");
+  }
+
+  // 5. No convergence is reported, not hidden.
+  {
+    lcp_test::Rng        rng(14);
+    const ContactProblem p = random_problem(rng, 40, 2, 0.2, true);
+    const DenseOperators ops(p);
+    ActiveSetOptions     options;
+    options.max_iterations = 1;
+    ActiveSetSolver        solver;
+    const ActiveSetReport &report =
+      solver.solve(ops.product,
+                   ops.jacobi,
+                   ops.penalty,
+                   2,
+                   p.free_velocity,
+                   p.gap_term,
+                   p.mu,
+                   std::vector<ContactState>(40, ContactState::slip_positive),
+                   {},
+                   options);
+    check(!report.converged,
+          "5. one iteration from a wrong guess: not converged");
+    log << "   message: " << report.message << std::endl;
+  }
+
+  // 6. The matrix-free verification equals the dense one.
+  {
+    lcp_test::Rng         rng(15);
+    const ContactProblem  p = random_problem(rng, 30, 2, 0.5, true);
+    const ContactSolution s = solve_contact_problem(p);
+    std::vector<double>   V;
+    p.W.vmult(V, s.P);
+    for (unsigned int i = 0; i < V.size(); ++i)
+      V[i] += p.free_velocity[i];
+    const ContactVerification dense = verify_contact_solution(p, s.P);
+    const ContactVerification free  = verify_contact_velocities(
+      2, p.free_velocity, p.gap_term, p.mu, s.P, V, p.W.linfty_norm());
+    check(dense.ok == free.ok &&
+            dense.max_signorini_violation == free.max_signorini_violation &&
+            dense.max_cone_violation == free.max_cone_violation &&
+            dense.n_sliding == free.n_sliding &&
+            dense.n_sticking == free.n_sticking,
+          "6. verify_contact_velocities() = verify_contact_solution()");
+  }
+  return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
+}
