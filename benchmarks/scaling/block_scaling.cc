@@ -33,6 +33,8 @@
 // Seconds are CPU seconds of the thread. Not a test: timings depend on the
 // machine. benchmarks/scaling/run_scaling.py runs the sweeps and plots them.
 //
+// --cell-size H makes the block nx H wide instead of 1 m (cells of a fixed
+// size: the step then has the same Courant number at every nx).
 // --method chooses the contact solver (`Contact solver/Method`): Lemke's
 // method on the dense W, the matrix-free active set method, or automatic
 // (the default: active set from 300 candidates on). The RESULT line gives
@@ -40,7 +42,8 @@
 // the final kinetic energy to 15 digits.
 //
 //   block_scaling --nx NX --ny NY [--steps S] [--top-candidates]
-//                 [--method lemke|active-set|automatic] [--header]
+//                 [--method lemke|active-set|automatic] [--cell-size H]
+//                 [--header]
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
@@ -153,10 +156,12 @@ namespace
       const unsigned int ny,
       const unsigned int n_steps,
       const bool         top_candidates,
-      const std::string &method)
+      const std::string &method,
+      const double       given_cell_size)
   {
-    const double width     = 1.;         // [m]
-    const double cell_size = width / nx; // [m]
+    // [m]: 1 m wide, or nx cells of the given size
+    const double cell_size = given_cell_size > 0. ? given_cell_size : 1. / nx;
+    const double width     = nx * cell_size;
     const double mu        = 0.3;
     const double v_n = 1., v_t = 0.3; // [m/s]
     const double body_force = 1e4;    // [N/m^3], presses the block down
@@ -255,6 +260,9 @@ namespace
               << " active_set_iterations=" << active_set.iterations
               << " gmres_iterations=" << active_set.linear_iterations
               << " fallbacks=" << active_set.fallbacks;
+    if (active_set.fallbacks > 0)
+      std::cerr << "last fallback: " << active_set.last_fallback_reason
+                << std::endl;
     if (active_set.solves > active_set.fallbacks)
       std::cout << " lcp_relative_error=" << active_set.largest_violation;
     std::cout << std::setprecision(15)
@@ -273,7 +281,8 @@ main(int argc, char **argv)
     {
       unsigned int nx = 0, ny = 0, n_steps = 10;
       bool         top_candidates = false, header = false;
-      std::string  method = "automatic";
+      std::string  method    = "automatic";
+      double       cell_size = 0.;
       for (int i = 1; i < argc; ++i)
         {
           const std::string a = argv[i];
@@ -285,6 +294,8 @@ main(int argc, char **argv)
             n_steps = std::atoi(argv[++i]);
           else if (a == "--top-candidates")
             top_candidates = true;
+          else if (a == "--cell-size" && i + 1 < argc)
+            cell_size = std::atof(argv[++i]);
           else if (a == "--method" && i + 1 < argc)
             method = argv[++i];
           else if (a == "--header")
@@ -299,6 +310,7 @@ main(int argc, char **argv)
           std::cerr
             << "usage: block_scaling --nx NX --ny NY [--steps S] "
                "[--top-candidates] [--method lemke|active-set|automatic] "
+               "[--cell-size H] "
                "[--header]   (NX, NY, S >= 1)\n";
           return 1;
         }
@@ -309,7 +321,7 @@ main(int argc, char **argv)
                      "update_per_step,max_active,max_lcp_size,peak_rss_mb,"
                      "stored_columns_mb,factor_entries,floor_rhs_seconds,"
                      "floor_solve_seconds\n";
-      run(nx, ny, n_steps, top_candidates, method);
+      run(nx, ny, n_steps, top_candidates, method, cell_size);
     }
   catch (std::exception &exc)
     {

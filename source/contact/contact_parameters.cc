@@ -38,6 +38,15 @@ namespace impactfe
                       Patterns::Integer(1),
                       "Active set (Newton) iterations of one contact solve "
                       "before it falls back to Lemke's method [-].");
+    prm.declare_entry(
+      "Largest Lemke fallback",
+      "3000",
+      Patterns::Integer(0),
+      "The largest number of candidates whose problem falls back to "
+      "Lemke's method when the active set method does not converge [-]. "
+      "A larger problem stops the run with a message naming the step: "
+      "its dense W and Lemke's pivoting would take gigabytes and minutes "
+      "(3000 frictional 2D contacts: 3 min per step).");
     prm.declare_entry("Warm start",
                       "true",
                       Patterns::Bool(),
@@ -90,6 +99,7 @@ namespace impactfe
                                                                   Method::automatic;
     active_set_threshold          = prm.get_integer("Active set threshold");
     active_set_iterations         = prm.get_integer("Active set iterations");
+    largest_lemke_fallback        = prm.get_integer("Largest Lemke fallback");
     warm_start                    = prm.get_bool("Warm start");
     dump_step                     = prm.get_integer("Dump LCP of step");
     friction_cone = lcp::cone_model_from_string(prm.get("Friction cone"));

@@ -593,17 +593,31 @@ namespace impactfe
             contact_set.add_column(lcp_candidates[j / nd] * nd + j % nd,
                                    x[j],
                                    schur_nodal);
+        // M~_IC y and M~_CC y touch only the rows next to C, and
+        // M~_CI u only the rows of C: sparse products over C's rows (M~ is
+        // symmetric), not full ones.
         for (unsigned int b = 0; b < n_bodies; ++b)
           {
-            step_matrices[b]->vmult(schur_product.block(b),
-                                    schur_nodal.block(b));
-            schur_interior.block(b) = schur_product.block(b);
+            const SparseMatrix<double> &A   = *step_matrices[b];
+            Vector<double>             &y_C = schur_nodal.block(b);
+            Vector<double>             &t   = schur_product.block(b);
+            Vector<double>             &u   = schur_interior.block(b);
+            t                               = 0.;
             for (const auto d : schur_contact_dofs[b])
-              schur_interior.block(b)(d) = 0.;
-            interior_solvers[b]->solve(schur_interior.block(b));
-            step_matrices[b]->vmult(schur_nodal.block(b),
-                                    schur_interior.block(b));
-            schur_product.block(b) -= schur_nodal.block(b);
+              if (const double y_d = y_C(d); y_d != 0.)
+                for (auto it = A.begin(d); it != A.end(d); ++it)
+                  t(it->column()) += it->value() * y_d;
+            u = t;
+            for (const auto d : schur_contact_dofs[b])
+              u(d) = 0.;
+            interior_solvers[b]->solve(u);
+            for (const auto d : schur_contact_dofs[b])
+              {
+                double s = 0.;
+                for (auto it = A.begin(d); it != A.end(d); ++it)
+                  s += it->value() * u(it->column());
+                t(d) -= s;
+              }
           }
         y.resize(n * nd);
         for (unsigned int j = 0; j < n * nd; ++j)
@@ -918,6 +932,18 @@ namespace impactfe
             continue;
           }
 
+        if (report.active_set_fallback &&
+            lcp_candidates.size() > solver_parameters.largest_lemke_fallback)
+          throw ContactSolverFailure(
+            "The contact problem of step " + std::to_string(step_number) +
+            " (t = " + format_number(report.time) + " s, " +
+            std::to_string(lcp_candidates.size()) +
+            " contact candidates) was not solved: the active set method did "
+            "not converge (" +
+            active_set_stats.last_fallback_reason +
+            "), and the problem is larger than 'Largest Lemke fallback' = " +
+            std::to_string(solver_parameters.largest_lemke_fallback) +
+            " candidates for Lemke's method on the dense W.");
         clock.charge(costs.lcp);
         ensure_delassus_columns(lcp_candidates);
         clock.charge(costs.delassus);

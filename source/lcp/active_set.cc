@@ -67,12 +67,14 @@ namespace impactfe
     ActiveSetSolver::gmres(const DelassusProduct     &W,
                            const DelassusProduct     &preconditioner,
                            const std::vector<double> &mu,
-                           const ActiveSetOptions    &options,
+                           const double               tolerance,
+                           const unsigned int         max_iterations,
+                           const unsigned int         restart,
                            bool                      &stalled)
     {
       const std::size_t  m = unknowns.size();
       const unsigned int k_max =
-        std::max<unsigned int>(1, std::min<std::size_t>(options.restart, m));
+        std::max<unsigned int>(1, std::min<std::size_t>(restart, m));
       std::vector<double> &WP      = work;
       auto                 apply_K = [&](const std::vector<double> &in,
                          std::vector<double>       &out) {
@@ -106,21 +108,21 @@ namespace impactfe
       };
 
       const double rhs_norm = std::sqrt(dot(rhs, rhs, m));
-      const double target   = options.linear_tolerance * rhs_norm;
+      const double target   = tolerance * rhs_norm;
       apply_K(x, r);
       for (std::size_t k = 0; k < m; ++k)
         r[k] = rhs[k] - r[k];
       double       beta       = std::sqrt(dot(r, r, m));
       unsigned int iterations = 0;
       stalled                 = false;
-      while (beta > target && iterations < options.max_linear_iterations)
+      while (beta > target && iterations < max_iterations)
         {
           for (std::size_t k = 0; k < m; ++k)
             basis[0][k] = r[k] / beta;
           std::fill(g.begin(), g.end(), 0.);
           g[0]           = beta;
           unsigned int j = 0;
-          while (j < k_max && iterations < options.max_linear_iterations)
+          while (j < k_max && iterations < max_iterations)
             {
               apply_Z(basis[j], z);
               apply_K(z, w);
@@ -315,6 +317,12 @@ namespace impactfe
         }
       if (impulse_guess.size() == n_rows)
         P = impulse_guess;
+      // Inexact Newton: while the states change, the linear systems are
+      // solved to inexact_linear_tolerance only; once they settle, once
+      // more to linear_tolerance (at once from a warm start, which is
+      // often right), and from then on always to linear_tolerance, so that
+      // the inexact solves cannot make the states cycle.
+      bool tight = state_guess.size() == n, settled_once = false;
 
       for (unsigned int iteration = 1; iteration <= options.max_iterations;
            ++iteration)
@@ -347,7 +355,15 @@ namespace impactfe
           else
             {
               bool stalled = false;
-              gmres(W, preconditioner, mu, options, stalled);
+              gmres(W,
+                    preconditioner,
+                    mu,
+                    tight ? options.linear_tolerance :
+                            std::max(options.linear_tolerance,
+                                     options.inexact_linear_tolerance),
+                    options.max_linear_iterations,
+                    options.restart,
+                    stalled);
               expand(x, mu, P);
               for (std::size_t i = 0; i < n_rows; ++i)
                 V[i] = q[i] + work[i];
@@ -362,9 +378,18 @@ namespace impactfe
             }
 
           const double p_max = max_abs(P);
-          update_states(1e-10 * std::max(p_max, impulse_scale_free));
+          // after an inexact solve, only changes well above its error
+          update_states(
+            (tight ? 1e-10 : 1e2 * options.inexact_linear_tolerance) *
+            std::max(p_max, impulse_scale_free));
           if (new_state != state)
             damp_cycles();
+          if (new_state == state && !tight && m > 0)
+            {
+              tight        = true;
+              settled_once = true;
+              continue;
+            }
           if (new_state == state)
             {
               double wp_max = 0.;
@@ -389,6 +414,7 @@ namespace impactfe
               break;
             }
           state = new_state;
+          tight = settled_once;
         }
       if (!last_report.converged && last_report.message.empty())
         last_report.message = "the contact states did not settle in " +

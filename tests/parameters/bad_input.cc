@@ -135,6 +135,9 @@ main()
   run_case("zero_exact_cone_tolerance",
            with("Contact solver", "Exact cone tolerance = 0"),
            plate_3d);
+  run_case("active_set_with_3d_friction",
+           with("Contact solver", "Method = active set"),
+           plate_3d);
   run_case("plate_3d_missing_contact_boundary",
            with("Mesh", "Contact boundary id = 7"),
            plate_3d);
@@ -156,6 +159,14 @@ main()
            block);
   run_case("block_body_2_zero_density",
            with("Material of body 2", "Density = 0"),
+           block);
+  run_case("block_unknown_contact_method",
+           with("Contact solver", "Method = newton"),
+           block);
+  run_case("block_active_set_without_fallback",
+           with("Contact solver",
+                "Method = active set\n  set Active set iterations = 1\n"
+                "  set Largest Lemke fallback = 0"),
            block);
   run_case("block_final_phase_after_end",
            with("Verification", "Start of the final phase = 2"),

@@ -31,6 +31,10 @@ namespace impactfe
     Method       method                = Method::automatic;
     unsigned int active_set_threshold  = 300;
     unsigned int active_set_iterations = 50;
+    /// Largest problem (candidates) that may fall back to Lemke's method
+    /// when the active set method does not converge; larger ones stop the
+    /// run with a message instead of a dense W of that size.
+    unsigned int largest_lemke_fallback = 3000;
     /// Start Lemke from the previous step's active set.
     bool warm_start = true;
     /// Step whose LCP is written to the output directory (-1: none). A step

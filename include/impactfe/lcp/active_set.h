@@ -27,8 +27,10 @@ namespace impactfe
     {
       /// Active-set (Newton) iterations before giving up.
       unsigned int max_iterations = 50;
-      /// Relative residual of each linear solve (GMRES).
-      double linear_tolerance = 1e-12;
+      /// Relative residual of the linear solve (GMRES) at the final states,
+      /// and of the solves while the states still change (inexact Newton).
+      double linear_tolerance         = 1e-12;
+      double inexact_linear_tolerance = 1e-6;
       /// GMRES iterations per linear solve, and its restart length.
       unsigned int max_linear_iterations = 2000;
       unsigned int restart               = 120;
@@ -128,7 +130,9 @@ namespace impactfe
       gmres(const DelassusProduct     &W,
             const DelassusProduct     &preconditioner,
             const std::vector<double> &mu,
-            const ActiveSetOptions    &options,
+            const double               tolerance,
+            const unsigned int         max_iterations,
+            const unsigned int         restart,
             bool                      &stalled);
     };
 
