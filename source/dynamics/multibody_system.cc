@@ -52,12 +52,14 @@ namespace impactfe
   {
     AssertThrow(!(contact_directions > 2 &&
                   solver_parameters.method ==
-                    ContactSolverParameters::Method::active_set),
+                    ContactSolverParameters::Method::active_set &&
+                  solver_parameters.friction_cone != lcp::ConeModel::exact),
                 ExcMessage(
-                  "Contact solver: 'Method = active set' solves frictionless "
-                  "and 2D contact problems; this scene is 3D with friction. "
-                  "Use 'lemke' or 'automatic' (which uses Lemke's method "
-                  "for 3D friction)."));
+                  "Contact solver: 'Method = active set' solves 3D friction "
+                  "with the circular cone only; this scene asks for "
+                  "'Friction cone = facets'. Use 'Friction cone = exact', or "
+                  "'Method = lemke' or 'automatic' (which uses Lemke's "
+                  "method for the polygonal cone)."));
   }
 
 
@@ -528,7 +530,8 @@ namespace impactfe
   MultibodySystem<dim>::use_active_set(const unsigned int n) const
   {
     using Method = ContactSolverParameters::Method;
-    return contact_set.n_directions() <= 2 &&
+    return (contact_set.n_directions() <= 2 ||
+            solver_parameters.friction_cone == lcp::ConeModel::exact) &&
            (solver_parameters.method == Method::active_set ||
             (solver_parameters.method == Method::automatic &&
              n >= solver_parameters.active_set_threshold));

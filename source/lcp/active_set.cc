@@ -30,13 +30,6 @@ namespace impactfe
         return m;
       }
 
-      /// Sign of P_T of a sliding contact: slip_negative (V_T < 0) has
-      /// P_T = +mu P_N.
-      double
-      slip_sign(const ContactState state)
-      {
-        return state == ContactState::slip_negative ? 1. : -1.;
-      }
     } // namespace
 
 
@@ -51,10 +44,60 @@ namespace impactfe
         P_full[unknowns[k]] = x_unknowns[k];
       const unsigned int nd =
         P_full.size() / std::max<std::size_t>(state.size(), 1);
-      if (nd == 2)
+      if (nd == 2) // 3D: P_T of sliding contacts are unknowns
         for (unsigned int a = 0; a < state.size(); ++a)
           if (is_sliding(state[a]))
-            P_full[2 * a + 1] = slip_sign(state[a]) * mu[a] * P_full[2 * a];
+            P_full[2 * a + 1] = mu[a] * P_full[2 * a] * direction[a];
+    }
+
+
+
+    bool
+    ActiveSetSolver::is_slip_row(const unsigned int row) const
+    {
+      return dimension == 3 && row % 3 != 0 && is_sliding(state[row / 3]);
+    }
+
+
+
+    // The Newton equation of a sliding contact in 3D, in P (see the class
+    // documentation): with n = xi/|xi| and beta = mu P_N/|xi| of the last
+    // iterate and xi(P) = P_T - C (q_T + (W P)_T),
+    //   P_T - mu n P_N - beta (I - n n^T) xi(P) = 0;
+    // slip_row() is its P-linear part without C q_T, slip_rhs() the rest.
+    double
+    ActiveSetSolver::slip_row(const unsigned int         row,
+                              const std::vector<double> &P_full,
+                              const std::vector<double> &WP,
+                              const std::vector<double> &mu) const
+    {
+      const unsigned int a = row / 3, iN = 3 * a;
+      const double       n1 = direction[2 * a], n2 = direction[2 * a + 1];
+      const double       e1      = P_full[iN + 1] - c[iN + 1] * WP[iN + 1];
+      const double       e2      = P_full[iN + 2] - c[iN + 2] * WP[iN + 2];
+      const double       n_dot_e = n1 * e1 + n2 * e2;
+      const unsigned int k       = row - iN - 1;
+      const double       n_k     = k == 0 ? n1 : n2;
+      const double       e_k     = k == 0 ? e1 : e2;
+      // divided by c: in velocity units, like the other rows
+      return (P_full[row] - mu[a] * n_k * P_full[iN] -
+              beta[a] * (e_k - n_k * n_dot_e)) /
+             c[row];
+    }
+
+
+
+    double
+    ActiveSetSolver::slip_rhs(const unsigned int         row,
+                              const std::vector<double> &q) const
+    {
+      const unsigned int a = row / 3, iN = 3 * a;
+      const double       n1 = direction[2 * a], n2 = direction[2 * a + 1];
+      const double       f1 = c[iN + 1] * q[iN + 1], f2 = c[iN + 2] * q[iN + 2];
+      const unsigned int k   = row - iN - 1;
+      const double       n_k = k == 0 ? n1 : n2;
+      return -beta[a] * ((k == 0 ? f1 : f2) - n_k * (n1 * f1 + n2 * f2)) /
+             c[row];
     }
 
 
@@ -82,16 +125,23 @@ namespace impactfe
         W(P, WP);
         ++last_report.operator_applications;
         for (std::size_t k = 0; k < m; ++k)
-          out[k] = WP[unknowns[k]];
+          {
+            const unsigned int row = unknowns[k];
+            out[k] = is_slip_row(row) ? slip_row(row, P, WP, mu) : WP[row];
+          }
       };
       auto apply_Z = [&](const std::vector<double> &in,
                          std::vector<double>       &out) {
+        // slip rows (3D): c, their operator is (I + O(beta (1 - c W_TT))) / c
+        // with c W_TT ~ 1
         std::fill(full_in.begin(), full_in.end(), 0.);
         for (std::size_t k = 0; k < m; ++k)
-          full_in[unknowns[k]] = in[k];
+          if (!is_slip_row(unknowns[k]))
+            full_in[unknowns[k]] = in[k];
         preconditioner(full_in, full_out);
         for (std::size_t k = 0; k < m; ++k)
-          out[k] = full_out[unknowns[k]];
+          out[k] = is_slip_row(unknowns[k]) ? c[unknowns[k]] * in[k] :
+                                              full_out[unknowns[k]];
       };
 
       basis.resize(k_max + 1);
@@ -202,12 +252,11 @@ namespace impactfe
                            const ActiveSetOptions          &options)
     {
       const std::size_t n = b.size(), n_rows = n * nd;
-      if (nd < 1 || nd > 2)
+      if (nd < 1 || nd > 3)
         throw std::invalid_argument(
-          "ActiveSetSolver: frictionless or 2D problems only (n_directions "
-          "1 or 2), got " +
+          "ActiveSetSolver: n_directions must be 1, 2 or 3, got " +
           std::to_string(nd));
-      if (q.size() != n_rows || (nd == 2 && mu.size() != n) ||
+      if (q.size() != n_rows || (nd > 1 && mu.size() != n) ||
           penalty.size() != n_rows)
         throw std::invalid_argument("ActiveSetSolver: inconsistent sizes");
       last_report = ActiveSetReport();
@@ -229,7 +278,11 @@ namespace impactfe
       for (double &ci : c)
         if (!(ci > 0.))
           ci = c_max > 0. ? c_max : 1.;
-      c_max                           = std::max(c_max, 1e-300);
+      c_max = std::max(c_max, 1e-300);
+      // one c_T per contact: proj(P_T - c_T V_T) is Coulomb's law only
+      // for a scalar c_T (with two, P_T would align with C^{-1} V_T)
+      for (unsigned int a = 0; a < n && nd == 3; ++a)
+        c[3 * a + 1] = c[3 * a + 2] = 0.5 * (c[3 * a + 1] + c[3 * a + 2]);
       const double impulse_scale_free = c_max * (max_abs(q) + max_abs(b));
 
       // The state update from (P, V); a change needs a violation of more
@@ -251,24 +304,44 @@ namespace impactfe
               new_state[a] = ContactState::stick;
             else
               {
-                const double xi       = P[iN + 1] - c[iN + 1] * V[iN + 1];
-                const double bound    = mu[a] * std::max(zeta, 0.);
-                const auto slip_state = xi > 0. ? ContactState::slip_negative :
-                                                  ContactState::slip_positive;
-                if (std::abs(xi) <= bound - margin)
+                // xi = P_T - c V_T; a slip direction d = xi / |xi|
+                double xi_norm = 0., turn = 0.;
+                for (unsigned int k = 1; k < nd; ++k)
+                  {
+                    const double xi = P[iN + k] - c[iN + k] * V[iN + k];
+                    new_direction[a * (nd - 1) + k - 1] = xi;
+                    xi_norm += xi * xi;
+                  }
+                xi_norm = std::sqrt(xi_norm);
+                for (unsigned int k = 0; k + 1 < nd; ++k)
+                  {
+                    double &d = new_direction[a * (nd - 1) + k];
+                    d         = xi_norm > 0. ? d / xi_norm : 0.;
+                    turn += d * direction[a * (nd - 1) + k];
+                  }
+                // 2D: the sign of P_T names the state; 3D: slip_positive
+                // stands for sliding in direction d
+                const auto slip_state =
+                  nd == 2 && new_direction[a] < 0. ?
+                    ContactState::slip_positive :
+                    (nd == 2 ? ContactState::slip_negative :
+                               ContactState::slip_positive);
+                const bool   turns_round = is_sliding(state[a]) && turn < 0.;
+                const double bound       = mu[a] * std::max(zeta, 0.);
+                if (xi_norm <= bound - margin)
                   new_state[a] = ContactState::stick;
-                else if (std::abs(xi) > bound + margin)
+                else if (xi_norm > bound + margin)
                   // a sliding contact whose velocity turned against its
                   // impulse sticks first instead of turning round: turning
                   // round directly makes the method cycle
-                  new_state[a] =
-                    is_sliding(state[a]) && state[a] != slip_state ?
-                      ContactState::stick :
-                      slip_state;
+                  new_state[a] = turns_round ? ContactState::stick : slip_state;
                 else // within the margin: keep a consistent state
-                  new_state[a] =
-                    state[a] == slip_state ? slip_state : ContactState::stick;
-                violation[a] = std::abs(std::abs(xi) - bound);
+                  new_state[a] = is_sliding(state[a]) && !turns_round ?
+                                   slip_state :
+                                   ContactState::stick;
+                violation[a] = std::abs(xi_norm - bound);
+                new_beta[a] =
+                  xi_norm > 0. ? mu[a] * std::max(P[iN], 0.) / xi_norm : 0.;
               }
             if (is_closed(new_state[a]) != is_closed(state[a]))
               violation[a] = std::abs(zeta);
@@ -301,6 +374,35 @@ namespace impactfe
           new_state[changed[k]] = state[changed[k]];
       };
 
+      // Slip directions: of the guessed impulses, else against the free
+      // velocity (2D: the sign of the guessed state).
+      const unsigned int nt = nd - 1;
+      direction.assign(n * nt, 0.);
+      new_direction.assign(n * nt, 0.);
+      beta.assign(n, 0.);
+      new_beta.assign(n, 0.);
+      dimension = nd;
+      if (impulse_guess.size() == n_rows)
+        P = impulse_guess;
+      for (unsigned int a = 0; a < n && nt > 0; ++a)
+        {
+          double norm = 0.;
+          for (unsigned int k = 0; k < nt; ++k)
+            {
+              const double d        = impulse_guess.size() == n_rows ?
+                                        P[a * nd + 1 + k] :
+                                        -q[a * nd + 1 + k];
+              direction[a * nt + k] = d;
+              norm += d * d;
+            }
+          norm = std::sqrt(norm);
+          for (unsigned int k = 0; k < nt; ++k)
+            direction[a * nt + k] =
+              norm > 0. ? direction[a * nt + k] / norm : (k == 0 ? 1. : 0.);
+          if (nt == 1 && a < state_guess.size() && is_sliding(state_guess[a]))
+            direction[a] =
+              state_guess[a] == ContactState::slip_negative ? 1. : -1.;
+        }
       if (state_guess.size() == n)
         {
           state = state_guess;
@@ -313,10 +415,10 @@ namespace impactfe
         {
           state.assign(n, ContactState::open);
           update_states(0.);
-          state = new_state;
+          state     = new_state;
+          direction = new_direction;
+          beta      = new_beta;
         }
-      if (impulse_guess.size() == n_rows)
-        P = impulse_guess;
       // Inexact Newton: while the states change, the linear systems are
       // solved to inexact_linear_tolerance only; once they settle, once
       // more to linear_tolerance (at once from a warm start, which is
@@ -334,8 +436,10 @@ namespace impactfe
             if (is_closed(state[a]))
               {
                 unknowns.push_back(a * nd);
-                if (nd == 2 && state[a] == ContactState::stick)
-                  unknowns.push_back(a * nd + 1);
+                if (state[a] == ContactState::stick ||
+                    (nd == 3 && is_sliding(state[a])))
+                  for (unsigned int k = 1; k < nd; ++k)
+                    unknowns.push_back(a * nd + k);
               }
           const std::size_t m = unknowns.size();
           x.resize(m);
@@ -346,6 +450,8 @@ namespace impactfe
               position[row]          = static_cast<int>(k);
               x[k]                   = P[row];
               rhs[k] = row % nd == 0 ? -(q[row] + b[row / nd]) : -q[row];
+              if (is_slip_row(row))
+                rhs[k] = slip_rhs(row, q);
             }
           if (m == 0)
             {
@@ -384,13 +490,32 @@ namespace impactfe
             std::max(p_max, impulse_scale_free));
           if (new_state != state)
             damp_cycles();
-          if (new_state == state && !tight && m > 0)
+          // 3D: how far the slip directions of the sliding contacts moved
+          // (they settle like the states; in 2D they are the states' signs)
+          double turn = 0.;
+          for (unsigned int a = 0; a < n && nd == 3; ++a)
+            if (is_sliding(state[a]) && is_sliding(new_state[a]))
+              turn =
+                std::max(turn,
+                         std::hypot(new_direction[2 * a] - direction[2 * a],
+                                    new_direction[2 * a + 1] -
+                                      direction[2 * a + 1]));
+          const bool same = new_state == state;
+          for (unsigned int a = 0; a < n; ++a)
+            if (is_sliding(new_state[a]))
+              {
+                for (unsigned int k = 0; k < nt; ++k)
+                  direction[a * nt + k] = new_direction[a * nt + k];
+                beta[a] = new_beta[a];
+              }
+          if (same && !tight && m > 0 &&
+              turn <= options.inexact_direction_tolerance)
             {
               tight        = true;
               settled_once = true;
               continue;
             }
-          if (new_state == state)
+          if (same && turn <= options.direction_tolerance)
             {
               double wp_max = 0.;
               for (std::size_t i = 0; i < n_rows; ++i)

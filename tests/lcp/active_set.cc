@@ -10,6 +10,9 @@
 //    perturbed): the same answers.
 // 3. 50 random frictionless problems (n_directions = 1, W = B B^T + I/2,
 //    strongly coupled), 20 to 200 contacts: the same checks.
+// 3b, 3c. 50 random 3D problems (20 to 60 contacts, the circular cone),
+//    cold and warm, against ExactConeSolver (facet LCPs re-aligned until
+//    the circular cone holds to 1e-12): the same checks.
 // 4. 30 strongly coupled frictional problems (W = B B^T + I/2, mu up to
 //    1), where the method may cycle: every answer it accepts passes the
 //    dense verification (the ones it does not accept are left to Lemke's
@@ -20,6 +23,7 @@
 // No iteration counts are printed.
 #include <impactfe/lcp/active_set.h>
 #include <impactfe/lcp/contact_problem.h>
+#include <impactfe/lcp/exact_cone.h>
 
 #include "../tests.h"
 
@@ -102,7 +106,8 @@ namespace
                      const double        mu_max,
                      const bool          weakly_coupled,
                      const bool          warm,
-                     const std::uint64_t seed)
+                     const std::uint64_t seed,
+                     const unsigned int  max_contacts = 200)
   {
     lcp_test::Rng      rng(seed);
     ActiveSetSolver    solver;
@@ -110,10 +115,17 @@ namespace
     const unsigned int n_problems = 50;
     for (unsigned int k = 0; k < n_problems; ++k)
       {
-        const unsigned int   nc = 20 + rng.integer(181);
+        const unsigned int   nc = 20 + rng.integer(max_contacts - 19);
         const ContactProblem p =
           random_problem(rng, nc, nd, mu_max, weakly_coupled);
-        const ContactSolution lemke = solve_contact_problem(p);
+        // the reference: Lemke's method; in 3D on facet LCPs re-aligned
+        // until the circular cone holds (ExactConeSolver)
+        ExactConeOptions cone;
+        cone.tolerance = 1e-12;
+        ExactConeSolver       exact;
+        const ContactSolution lemke = nd == 3 ?
+                                        exact.solve(p, ContactOptions(), cone) :
+                                        solve_contact_problem(p);
         if (lemke.lcp.status != Status::solved)
           continue;
         ++lemke_solved;
@@ -169,6 +181,10 @@ main()
   compare_with_lemke("1. 2D, mu <= 0.2, cold", 2, 0.2, true, false, 11);
   compare_with_lemke("2. 2D, mu <= 0.2, warm", 2, 0.2, true, true, 11);
   compare_with_lemke("3. frictionless, coupled", 1, 0., false, false, 12);
+  compare_with_lemke(
+    "3b. 3D, circular cone, mu <= 0.2, cold", 3, 0.2, true, false, 16, 60);
+  compare_with_lemke(
+    "3c. 3D, circular cone, mu <= 0.2, warm", 3, 0.2, true, true, 16, 60);
 
   // 4. Strongly coupled, large mu: what is accepted is verified.
   {

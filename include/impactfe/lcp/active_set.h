@@ -31,6 +31,11 @@ namespace impactfe
       /// and of the solves while the states still change (inexact Newton).
       double linear_tolerance         = 1e-12;
       double inexact_linear_tolerance = 1e-6;
+      /// 3D: the slip directions of the sliding contacts settle when they
+      /// move by less than direction_tolerance in an iteration (and by less
+      /// than inexact_direction_tolerance before the final, exact solves).
+      double direction_tolerance         = 1e-10;
+      double inexact_direction_tolerance = 1e-4;
       /// GMRES iterations per linear solve, and its restart length.
       unsigned int max_linear_iterations = 2000;
       unsigned int restart               = 120;
@@ -52,22 +57,30 @@ namespace impactfe
     };
 
     /**
-     * Frictionless (n_directions = 1) and 2D Coulomb (n_directions = 2)
-     * contact problems V = q + W P, w_N = V_N + b_N (the conventions of
-     * ContactProblem), solved by a primal-dual active set method, the
-     * semismooth Newton method of the complementarity functions
+     * Frictionless (n_directions = 1), 2D and 3D Coulomb (n_directions 2, 3;
+     * in 3D the circular cone) contact problems V = q + W P,
+     * w_N = V_N + b_N (the conventions of ContactProblem), solved by a
+     * primal-dual active set method, the semismooth Newton method of the
+     * complementarity functions
      *   P_N = max(0, P_N - c_N w_N),
-     *   P_T = proj_[-mu zeta, mu zeta](P_T - c_T V_T), zeta = P_N - c_N w_N
+     *   P_T = proj_{|P_T| <= mu zeta}(P_T - c_T V_T), zeta = P_N - c_N w_N
      * (Hueber, Stadler and Wohlmuth, SIAM J. Sci. Comput. 30 (2008)).
-     * Given the states (open, stick, slip+-), one linear system fixes P:
-     * P = 0 on open contacts, w_N = 0 on closed ones, V_T = 0 on sticking
-     * ones and P_T = -+mu P_N on sliding ones; it is solved by GMRES on
-     * products with W, right-preconditioned by @p preconditioner (an
-     * approximation of W^{-1}, applied to vectors that are zero outside the
-     * unknowns and restricted to them). The states are then updated from
+     * Given the states (open, stick, slip) and the slip directions d, one
+     * linear system fixes P: P = 0 on open contacts, w_N = 0 on closed
+     * ones, V_T = 0 on sticking ones and P_T = mu P_N d on sliding ones; it
+     * is solved by GMRES on products with W, right-preconditioned by
+     * @p preconditioner (an approximation of W^{-1}, applied to vectors
+     * that are zero outside the unknowns and restricted to them). The
+     * states and d = xi / |xi|, xi = P_T - c_T V_T, are then updated from
      * (P, V) with c = @p penalty (per row, ~ 1 / W_jj), until they settle.
+     * In 2D d is the sign that slip_positive / slip_negative name; in 3D
+     * the directions settle by a fixed point (direction_tolerance) and a
+     * sliding contact is reported as slip_positive.
      * A state changes only if its condition is violated by more than
-     * 1e-10 of the scale, so rounding cannot make it cycle.
+     * 1e-10 of the scale, so rounding cannot make it cycle; a sliding
+     * contact whose slip turns round sticks first; a set of states met
+     * again makes only the most violated part of the changes (halved at
+     * each repetition).
      *
      * The answer is accepted only if it passes verify_contact_velocities()
      * with V computed by a product with the final P; the last product the
@@ -109,6 +122,12 @@ namespace impactfe
       ActiveSetReport           last_report;
       std::vector<double>       P, V, x, rhs, work, c, full_in, full_out;
       std::vector<ContactState> state, new_state;
+      /// Per contact, the unit direction d of P_T of a sliding contact
+      /// (P_T = mu P_N d; 2D: +-1), and its update.
+      std::vector<double> direction, new_direction;
+      /// 3D: beta = mu P_N / |xi| of the last iterate, per contact.
+      std::vector<double> beta, new_beta;
+      unsigned int        dimension = 1;
       /// Per contact, the size of the violation that changes its state;
       /// hashes of the sets of states met; the contacts that change.
       std::vector<double>       violation;
@@ -126,6 +145,17 @@ namespace impactfe
       expand(const std::vector<double> &x_unknowns,
              const std::vector<double> &mu,
              std::vector<double>       &P_full) const;
+      /// Whether local row @p row is a tangential row of a sliding contact
+      /// in 3D, and its Newton equation (active_set.cc).
+      bool
+      is_slip_row(const unsigned int row) const;
+      double
+      slip_row(const unsigned int         row,
+               const std::vector<double> &P_full,
+               const std::vector<double> &WP,
+               const std::vector<double> &mu) const;
+      double
+      slip_rhs(const unsigned int row, const std::vector<double> &q) const;
       unsigned int
       gmres(const DelassusProduct     &W,
             const DelassusProduct     &preconditioner,
