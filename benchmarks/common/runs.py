@@ -5,6 +5,7 @@ Run the scripts from the repository top with /usr/bin/python3 (Debian's
 python3-matplotlib)."""
 import csv
 import json
+import math
 import os
 import subprocess
 import sys
@@ -145,3 +146,15 @@ def pareto_front(points):
         if not front or error < front[-1][1]:
             front.append((cost, error))
     return front
+
+
+def fit_exponent(points):
+    """Least-squares exponent p of y ~ x^p over the (x, y) points with
+    y > 0 (nan with fewer than two)."""
+    pts = [(math.log(x), math.log(y)) for x, y in points if y > 0]
+    if len(pts) < 2:
+        return float("nan")
+    mx = sum(p[0] for p in pts) / len(pts)
+    my = sum(p[1] for p in pts) / len(pts)
+    sxx = sum((p[0] - mx) ** 2 for p in pts)
+    return sum((p[0] - mx) * (p[1] - my) for p in pts) / sxx

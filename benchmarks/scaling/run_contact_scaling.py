@@ -30,13 +30,12 @@ exponents, and ends with one RESULT line. Run from the repository top:
 import argparse
 import csv
 import json
-import math
 import os
 import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "common"))
-from runs import machine_and_commit  # noqa: E402
+from runs import fit_exponent as fit, machine_and_commit  # noqa: E402
 
 
 def run(build, nx, method, sweep):
@@ -57,17 +56,6 @@ def run(build, nx, method, sweep):
           f"gmres={row['gmres_iterations']:>5s} "
           f"fallbacks={row['fallbacks']}", flush=True)
     return row
-
-
-def fit(points):
-    """Least-squares exponent p of y ~ x^p."""
-    pts = [(math.log(x), math.log(y)) for x, y in points if y > 0]
-    if len(pts) < 2:
-        return float("nan")
-    mx = sum(p[0] for p in pts) / len(pts)
-    my = sum(p[1] for p in pts) / len(pts)
-    sxx = sum((p[0] - mx) ** 2 for p in pts)
-    return sum((p[0] - mx) * (p[1] - my) for p in pts) / sxx
 
 
 def main():

@@ -18,13 +18,12 @@ half of each sweep). Run from the repository top:
 import argparse
 import csv
 import io
-import math
 import os
 import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "common"))
-from runs import machine_and_commit  # noqa: E402
+from runs import fit_exponent, machine_and_commit  # noqa: E402
 
 PHASES = [("assembly_seconds", "assembly (once)"),
           ("factorization_seconds", "factorisation (once)"),
@@ -51,14 +50,8 @@ def run(build, nx, ny, steps, top):
 
 def fit(xs, ys):
     """Exponent p of y ~ x^p over the larger half of the points."""
-    pts = [(math.log(x), math.log(y)) for x, y in zip(xs, ys) if y > 0]
-    pts = pts[len(pts) // 2:]
-    if len(pts) < 2:
-        return float("nan")
-    mx = sum(p[0] for p in pts) / len(pts)
-    my = sum(p[1] for p in pts) / len(pts)
-    sxx = sum((p[0] - mx) ** 2 for p in pts)
-    return sum((p[0] - mx) * (p[1] - my) for p in pts) / sxx
+    pts = [(x, y) for x, y in zip(xs, ys) if y > 0]
+    return fit_exponent(pts[len(pts) // 2:])
 
 
 def plot(rows, xkey, xlabel, title, path):

@@ -86,18 +86,6 @@ namespace
     DelassusProduct     product, jacobi;
   };
 
-  double
-  relative_difference(const ContactProblem      &p,
-                      const std::vector<double> &a,
-                      const std::vector<double> &b)
-  {
-    const double scale = std::max(lcp_test::linfty(b),
-                                  (lcp_test::linfty(p.free_velocity) +
-                                   lcp_test::linfty(p.gap_term)) /
-                                    p.W.linfty_norm());
-    return lcp_test::max_diff(a, b) / scale;
-  }
-
   /// Cases 1 to 3: @p n problems, each solved by the active set method
   /// (cold, or warm from Lemke's perturbed answer) and compared with Lemke.
   void
@@ -159,7 +147,8 @@ namespace
         ++converged;
         if (verify_contact_solution(p, solver.impulses()).ok)
           ++verified;
-        if (relative_difference(p, solver.impulses(), lemke.P) <= 1e-8)
+        if (lcp_test::relative_difference(p, solver.impulses(), lemke.P) <=
+            1e-8)
           ++agree;
       }
     dealii::deallog << title << ": Lemke solved " << lemke_solved << " of "

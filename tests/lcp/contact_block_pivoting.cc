@@ -51,21 +51,6 @@ namespace
     return s;
   }
 
-  /// max |a - b| over the impulse scale of verify_contact_solution():
-  /// max(||b||, (||V_free|| + ||b_N||) / ||W||), so that answers that are
-  /// both zero up to rounding compare equal.
-  double
-  relative_difference(const ContactProblem      &p,
-                      const std::vector<double> &a,
-                      const std::vector<double> &b)
-  {
-    const double scale = std::max(lcp_test::linfty(b),
-                                  (lcp_test::linfty(p.free_velocity) +
-                                   lcp_test::linfty(p.gap_term)) /
-                                    p.W.linfty_norm());
-    return lcp_test::max_diff(a, b) / scale;
-  }
-
   ContactProblem
   random_problem(lcp_test::Rng     &rng,
                  const unsigned int nc,
@@ -201,7 +186,8 @@ main()
               const bool ok =
                 s.lcp.status == Status::solved && s.lcp.verification.ok &&
                 verify_contact_solution(p, s.P).ok &&
-                (!compare || relative_difference(p, s.P, cold.P) <= 1e-9);
+                (!compare ||
+                 lcp_test::relative_difference(p, s.P, cold.P) <= 1e-9);
               if (!ok)
                 dealii::deallog << "trial " << trial << ", guess " << g << ": "
                                 << s.message << std::endl;
@@ -302,7 +288,7 @@ main()
     check(s.lcp.status == Status::solved &&
             s.lcp.start_path != StartPath::block_pivoting &&
             s.form == FrictionForm::klarbring &&
-            relative_difference(p, s.P, cold.P) <= 1e-9 &&
+            lcp_test::relative_difference(p, s.P, cold.P) <= 1e-9 &&
             s.message.find("block pivoting gave up") != std::string::npos,
           "fallback to Lemke");
   }
@@ -322,11 +308,11 @@ main()
           s = all_states[rng.integer(2)];
         const ContactSolution s = solve_contact_problem(p, {}, guess);
         const ContactSolution e = solve_contact_problem(p, {}, cold.states);
-        n_ok +=
-          (s.lcp.status == Status::solved &&
-           s.form == FrictionForm::frictionless &&
-           relative_difference(p, s.P, cold.P) <= 1e-9 && e.lcp.pivots == 0 &&
-           relative_difference(p, e.P, cold.P) <= 1e-9);
+        n_ok += (s.lcp.status == Status::solved &&
+                 s.form == FrictionForm::frictionless &&
+                 lcp_test::relative_difference(p, s.P, cold.P) <= 1e-9 &&
+                 e.lcp.pivots == 0 &&
+                 lcp_test::relative_difference(p, e.P, cold.P) <= 1e-9);
       }
     check(n_ok == 50, "frictionless, warm from states == cold");
   }

@@ -4,8 +4,10 @@
 #ifndef impactfe_tests_lcp_test_tools_h
 #define impactfe_tests_lcp_test_tools_h
 
+#include <impactfe/lcp/contact_problem.h>
 #include <impactfe/lcp/dense_matrix.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <sstream>
@@ -209,6 +211,21 @@ namespace lcp_test
           W(i, j) = s;
         }
     return W;
+  }
+
+  /// max |a - b| over the impulse scale of verify_contact_solution():
+  /// max(||b||, (||V_free|| + ||b_N||) / ||W||), so that answers that are
+  /// both zero up to rounding compare equal.
+  inline double
+  relative_difference(const impactfe::lcp::ContactProblem &p,
+                      const std::vector<double>           &a,
+                      const std::vector<double>           &b)
+  {
+    const double scale =
+      std::max(linfty(b),
+               (linfty(p.free_velocity) + linfty(p.gap_term)) /
+                 p.W.linfty_norm());
+    return max_diff(a, b) / scale;
   }
 } // namespace lcp_test
 
