@@ -148,8 +148,9 @@ namespace impactfe
                            std::to_string(determinant(F)) +
                            " <= 0 (an element is inverted)."));
     const Tensor<2, 3> b = F * Tensor<2, 3>(unpack(internal)) * transpose(F);
-    const auto         eigen = eigenvectors(symmetrize(b));
-    Principal          principal;
+    const auto         eigen =
+      eigenvectors(symmetrize(b), SymmetricTensorEigenvectorMethod::jacobi);
+    Principal principal;
     for (unsigned int i = 0; i < 3; ++i)
       {
         principal.log_strain[i] = 0.5 * std::log(eigen[i].first);

@@ -190,5 +190,27 @@ main()
            with("Geometry",
                 "Number of refinements = 3\n  set Pole cell factor = 0.2"),
            hertz);
+
+  // taylor_bar: the finite-strain program's own entries.
+  const std::string taylor = TAYLOR_BAR_EXECUTABLE;
+  run_case("taylor_theta_below_half", with("Time", "Theta = 0.3"), taylor);
+  run_case("taylor_negative_time_step",
+           with("Time", "Time step = -1e-7"),
+           taylor);
+  run_case("taylor_zero_yield_stress",
+           with("Plasticity", "Yield stress = 0"),
+           taylor);
+  run_case("taylor_negative_hardening",
+           with("Plasticity", "Hardening modulus = -1e6"),
+           taylor);
+  run_case("taylor_negative_friction",
+           with("Contact", "Friction coefficient = -0.1"),
+           taylor);
+  run_case("taylor_rebound_check_with_poisson",
+           with("Verification", "Elastic rebound check = true"),
+           taylor);
+  run_case("taylor_newton_not_converged",
+           with("Discretisation", "Maximum Newton iterations = 1"),
+           taylor);
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
 }

@@ -1,0 +1,396 @@
+/* ---------------------------------------------------------------------
+ * taylor_bar: a copper cylinder hits a rigid wall at 227 m/s and
+ * mushrooms (the Taylor bar; the paper's section 6.4, Laursen & Simo
+ * 1993). Finite-strain J2 plasticity, axisymmetric Q1 with F-bar, the
+ * theta-method at velocity level with Newton's method, and the contact
+ * LCP solved by Lemke's method at every Newton iterate.
+ * ---------------------------------------------------------------------
+ */
+
+// @sect3{Introduction}
+//
+// The bar (radius r0, length L0) touches the wall z = 0 at t = 0 and moves
+// at -v0 e_z. The impact end deforms plastically within microseconds; at
+// t = 80 us nearly all the kinetic energy is plastic work. The program
+// reports the final length, the radius of the impact end (footprint), the
+// largest equivalent plastic strain, Newton's iterations per step and an
+// energy balance
+//   E_kin(0) = E_kin + E_stored + W_plastic + D_contact + D_scheme + error,
+// with D_contact the work the contact impulses take out and D_scheme =
+// (theta - 1/2) sum |v1 - v0|_M^2 the theta-scheme's dissipation, both
+// summed over the steps. The error is the gap between the internal forces'
+// discrete work and the increments of stored energy and plastic work.
+//
+// The model (impactfe::AxisymmetricImpact): total Lagrangian, Q1 in (r, z)
+// with the hoop stretch 1 + u_r/r, F-bar against volumetric locking,
+// Hencky elasticity with the exponential-map return mapping
+// (impactfe::FiniteStrainJ2Model), lumped ring masses.
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <impactfe/finite_strain/axisymmetric_impact.h>
+#include <impactfe/output/output.h>
+#include <impactfe/utilities/program.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+
+namespace TaylorBarProgram
+{
+  using namespace dealii;
+  using namespace impactfe;
+
+  // @sect3{The TaylorBarProblem class}
+  class TaylorBarProblem
+  {
+  public:
+    void
+    run(const std::string &parameter_file);
+
+  private:
+    void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+    void
+    setup_system();
+    void
+    output_results(const FiniteStrainStepReport &report);
+    void
+    report_results() const;
+    bool
+    report_checks() const;
+
+    AxisymmetricImpact::Settings        settings;
+    MaterialParameters                  material;
+    PlasticityParameters                plasticity;
+    OutputParameters                    output;
+    bool                                rebound_check       = false;
+    double                              max_rebound_error   = 0.05;
+    double                              published_tolerance = 0.;
+    std::unique_ptr<AxisymmetricImpact> bar;
+    std::unique_ptr<HistoryWriter>      history;
+
+    unsigned int n_steps       = 0;
+    double       worst_balance = 0., initial_momentum = 0.;
+    double       cpu_seconds = 0.;
+  };
+
+
+
+  // @sect3{Parameters}
+  //
+  // The bar, the step and the wall are AxisymmetricImpact::Settings'; the
+  // checks of `Verification` compare the run with results found without
+  // it (see report_checks()).
+  void
+  TaylorBarProblem::declare_parameters(ParameterHandler &prm)
+  {
+    AxisymmetricImpact::Settings::declare_parameters(prm);
+    MaterialParameters::declare_parameters(prm, 3);
+    prm.enter_subsection("Material"); // copper, unless the file says otherwise
+    prm.set("Young's modulus", "117e9");
+    prm.set("Poisson's ratio", "0.35");
+    prm.set("Density", "8930");
+    prm.leave_subsection();
+    PlasticityParameters::declare_parameters(prm);
+    OutputParameters::declare_parameters(prm, "results/taylor_bar");
+    prm.enter_subsection("Verification");
+    prm.declare_entry("Elastic rebound check",
+                      "false",
+                      Patterns::Bool(),
+                      "Compare with the 1D elastic bar hitting a rigid wall "
+                      "(needs nu = 0 and an elastic impact): contact for "
+                      "2 L0/c, force rho c v0 A, wall impulse 2 m v0.");
+    prm.declare_entry("Maximum rebound error",
+                      "0.05",
+                      Patterns::Double(0),
+                      "Largest relative error of the rebound check.");
+    prm.declare_entry("Published range tolerance",
+                      "0",
+                      Patterns::Double(0),
+                      "If > 0: the final length and footprint radius must "
+                      "lie within the published ranges widened by this "
+                      "relative amount.");
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  TaylorBarProblem::parse_parameters(ParameterHandler &prm)
+  {
+    settings.parse_parameters(prm);
+    material.parse_parameters(prm, 3);
+    plasticity.parse_parameters(prm);
+    output.parse_parameters(prm);
+    prm.enter_subsection("Verification");
+    rebound_check       = prm.get_bool("Elastic rebound check");
+    max_rebound_error   = prm.get_double("Maximum rebound error");
+    published_tolerance = prm.get_double("Published range tolerance");
+    prm.leave_subsection();
+    AssertThrow(!rebound_check || material.poissons_ratio == 0.,
+                ExcMessage("Verification/Elastic rebound check needs "
+                           "Material/Poisson's ratio = 0 (a 1D bar)."));
+    n_steps = settings.n_steps();
+  }
+
+
+
+  // @sect3{Set-up}
+  void
+  TaylorBarProblem::setup_system()
+  {
+    bar = std::make_unique<AxisymmetricImpact>(settings, material, plasticity);
+    create_output_directory(output.directory);
+    history = std::make_unique<HistoryWriter>(
+      output.directory + "/history.csv",
+      std::vector<std::string>{"time",
+                               "length_mm",
+                               "footprint_radius_mm",
+                               "kinetic_energy",
+                               "stored_energy",
+                               "plastic_work",
+                               "contact_dissipation",
+                               "scheme_dissipation",
+                               "energy_balance_error",
+                               "normal_force",
+                               "max_equivalent_plastic_strain",
+                               "newton_iterations",
+                               "lcp_rows"});
+    std::cout << "Taylor bar: " << settings.n_radial << " x "
+              << settings.n_axial << " cells, " << bar->n_dofs() << " DoFs, "
+              << n_steps << " steps of " << settings.time_step
+              << " s, theta = " << settings.theta
+              << (settings.f_bar ? ", F-bar" : ", plain Q1")
+              << ", mu = " << settings.friction_coefficient << std::endl;
+    initial_momentum = bar->axial_momentum();
+    bar->write_cells_csv(output.directory + "/cells_initial.csv");
+  }
+
+
+
+  // @sect3{Output at each step}
+  void
+  TaylorBarProblem::output_results(const FiniteStrainStepReport &report)
+  {
+    const FiniteStrainRunTotals &totals = bar->totals();
+    const double kinetic = bar->kinetic_energy(), stored = bar->stored_energy(),
+                 plastic = bar->plastic_work();
+    const double balance = bar->energy_balance_error();
+    worst_balance        = std::max(worst_balance, std::abs(balance));
+    history->add_row({bar->time(),
+                      1e3 * bar->current_length(),
+                      1e3 * bar->footprint_radius(),
+                      kinetic,
+                      stored,
+                      plastic,
+                      totals.contact_dissipation,
+                      totals.scheme_dissipation,
+                      balance,
+                      report.normal_impulse / settings.time_step,
+                      bar->max_equivalent_plastic_strain(),
+                      static_cast<double>(report.newton_iterations),
+                      static_cast<double>(report.n_candidates)});
+    const unsigned int step =
+      static_cast<unsigned int>(std::llround(bar->time() / settings.time_step));
+    if (output.vtu_output &&
+        (step % output.output_interval == 0 || step == n_steps))
+      bar->write_vtu(output.directory, step);
+  }
+
+
+
+  // @sect3{Results}
+  void
+  TaylorBarProblem::report_results() const
+  {
+    const double length            = 1e3 * bar->current_length(),
+                 radius            = 1e3 * bar->footprint_radius(),
+                 alpha             = bar->max_equivalent_plastic_strain();
+    const FiniteStrainRunTotals &t = bar->totals();
+    const double momentum_change   = bar->axial_momentum() - initial_momentum;
+    std::cout << std::setprecision(4) << "At t = " << bar->time() << " s:\n"
+              << "  final length " << length
+              << " mm (L0 = " << 1e3 * settings.length << " mm)\n"
+              << "  footprint radius " << radius
+              << " mm (r0 = " << 1e3 * settings.radius << " mm)\n"
+              << "  largest equivalent plastic strain " << alpha << "\n"
+              << "  energy: kinetic " << bar->kinetic_energy() << " J, stored "
+              << bar->stored_energy() << " J, plastic work "
+              << bar->plastic_work() << " J, contact " << t.contact_dissipation
+              << " J, scheme " << t.scheme_dissipation << " J of "
+              << bar->initial_energy() << " J\n"
+              << "  largest energy balance error "
+              << format_figure(worst_balance, 1e-9) << " of E_kin(0)\n"
+              << "  contact: largest verification violation "
+              << format_figure(t.worst_contact_violation, 1e-12)
+              << ", last contact force at t = " << t.last_contact_time
+              << " s, peak force " << t.peak_contact_force << " N\n"
+              << "  wall impulse " << t.wall_impulse
+              << " N s, change of momentum " << momentum_change
+              << " N s, relative difference "
+              << format_figure(std::abs(t.wall_impulse - momentum_change) /
+                                 std::abs(initial_momentum),
+                               1e-9)
+              << std::endl;
+    if (output.print_performance)
+      std::cout << "  Newton: " << t.newton_iterations_per_step()
+                << " iterations per step (at most " << t.most_newton_iterations
+                << "), median order near the solution "
+                << format_figure(t.median_convergence_order(), 1e-3)
+                << "\n  CPU " << cpu_seconds << " s" << std::endl;
+    JsonObject summary;
+    summary.add("program", std::string("taylor_bar"))
+      .add("n_dofs", bar->n_dofs())
+      .add("steps", n_steps)
+      .add("final_length_mm", length)
+      .add("footprint_radius_mm", radius)
+      .add("max_equivalent_plastic_strain", alpha)
+      .add("energy_balance_relative_error", worst_balance)
+      .add("newton_iterations_per_step", t.newton_iterations_per_step())
+      .add("newton_convergence_order", t.median_convergence_order())
+      .add("max_contact_violation", t.worst_contact_violation)
+      .add("wall_impulse", t.wall_impulse)
+      .add("momentum_change", momentum_change)
+      .add("initial_momentum", initial_momentum)
+      .add("last_contact_time", t.last_contact_time)
+      .add("peak_contact_force", t.peak_contact_force)
+      .add("kinetic_energy", bar->kinetic_energy())
+      .add("initial_kinetic_energy", bar->initial_energy())
+      .add("plastic_work", bar->plastic_work())
+      .add("stored_energy", bar->stored_energy())
+      .add("contact_dissipation", t.contact_dissipation)
+      .add("scheme_dissipation", t.scheme_dissipation)
+      .add("cpu_seconds", cpu_seconds);
+    summary.write(output.directory + "/summary.json");
+  }
+
+
+
+  // @sect3{Checks}
+  //
+  // Against what is known without the run: the wall impulse equals the
+  // change of momentum (the internal forces cancel in the sum), the
+  // contact solutions pass Lemke's verification, the dissipations are not
+  // negative; optionally the 1D elastic rebound and the published ranges.
+  bool
+  TaylorBarProblem::report_checks() const
+  {
+    bool       ok = true;
+    const auto check =
+      [&](const std::string &what, const double value, const double bound) {
+        const bool pass = value <= bound;
+        std::cout << "  Check: " << what << " = " << format_figure(value, 1e-9)
+                  << " <= " << bound << ": " << (pass ? "passed" : "FAILED")
+                  << std::endl;
+        ok = ok && pass;
+      };
+    const FiniteStrainRunTotals &t = bar->totals();
+    const double p0 = initial_momentum, dp = bar->axial_momentum() - p0;
+    check("|wall impulse - change of momentum| / |p0|",
+          std::abs(t.wall_impulse - dp) / std::abs(p0),
+          1e-7);
+    check("contact verification violation", t.worst_contact_violation, 1e-8);
+    check("-(contact dissipation) / E_kin(0)",
+          std::max(0., -t.contact_dissipation) / bar->initial_energy(),
+          1e-9);
+    if (rebound_check)
+      {
+        const double c = std::sqrt(material.youngs_modulus / material.density);
+        const double mass = material.density * numbers::PI * settings.radius *
+                            settings.radius * settings.length;
+        check("rebound: |contact time - 2 L0/c| / (2 L0/c)",
+              std::abs(t.last_contact_time - 2. * settings.length / c) /
+                (2. * settings.length / c),
+              max_rebound_error);
+        check("rebound: |wall impulse - 2 m v0| / (2 m v0)",
+              std::abs(t.wall_impulse - 2. * mass * settings.speed) /
+                (2. * mass * settings.speed),
+              max_rebound_error);
+        check("rebound: plastic work / E_kin(0)",
+              bar->plastic_work() / bar->initial_energy(),
+              1e-12);
+      }
+    if (published_tolerance > 0.)
+      {
+        // The ranges of published finite-element results (issue 13).
+        const auto outside =
+          [&](const double value, const double low, const double high) {
+            return std::max({0., low - value, value - high}) / low;
+          };
+        std::cout << "  Published: final length 21.42-21.7 mm, footprint "
+                     "radius 7.0-7.1 mm"
+                  << std::endl;
+        check("final length: relative distance to the published range",
+              outside(1e3 * bar->current_length(), 21.42, 21.7),
+              published_tolerance);
+        check("footprint radius: relative distance to the published range",
+              outside(1e3 * bar->footprint_radius(), 7.0, 7.1),
+              published_tolerance);
+      }
+    std::cout << "RESULT program=taylor_bar final_length_mm="
+              << 1e3 * bar->current_length()
+              << " footprint_radius_mm=" << 1e3 * bar->footprint_radius()
+              << " max_equivalent_plastic_strain="
+              << bar->max_equivalent_plastic_strain()
+              << " energy_balance_relative_error=" << worst_balance
+              << " n_dofs=" << bar->n_dofs()
+              << " checks=" << (ok ? "passed" : "failed") << std::endl;
+    return ok;
+  }
+
+
+
+  // @sect3{The run}
+  void
+  TaylorBarProblem::run(const std::string &parameter_file)
+  {
+    ParameterHandler prm;
+    declare_parameters(prm);
+    AssertThrow(std::filesystem::exists(parameter_file),
+                ExcMessage("The parameter file '" + parameter_file +
+                           "' does not exist."));
+    prm.parse_input(parameter_file);
+    parse_parameters(prm);
+    set_thread_limit(1);
+    setup_system();
+    CpuStopwatch timer;
+    for (unsigned int step = 0; step < n_steps; ++step)
+      {
+        timer.start();
+        const FiniteStrainStepReport report = bar->do_time_step();
+        timer.stop();
+        output_results(report);
+      }
+    cpu_seconds = timer.seconds();
+    bar->write_cells_csv(output.directory + "/cells_final.csv");
+    report_results();
+    AssertThrow(report_checks(),
+                ExcMessage("Taylor bar: a check failed (see above); the "
+                           "output files are complete."));
+  }
+} // namespace TaylorBarProgram
+
+
+
+// @sect3{The main function}
+int
+main(int argc, char *argv[])
+{
+  try
+    {
+      TaylorBarProgram::TaylorBarProblem().run(
+        argc > 1 ?
+          std::string(argv[1]) :
+          std::string(IMPACTFE_SOURCE_DIR) + "/parameter_files/taylor_bar.prm");
+    }
+  catch (...)
+    {
+      return impactfe::report_current_exception();
+    }
+  return 0;
+}
