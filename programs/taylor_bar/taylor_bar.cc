@@ -237,6 +237,9 @@ namespace TaylorBarProgram
                                  std::abs(initial_momentum),
                                1e-9)
               << std::endl;
+    if (t.step_reductions > 0)
+      std::cout << "  Steps redone as 2-8 smaller steps (Newton did not "
+                << "converge): " << t.step_reductions << std::endl;
     if (output.print_performance)
       std::cout << "  Newton: " << t.newton_iterations_per_step()
                 << " iterations per step (at most " << t.most_newton_iterations
@@ -253,6 +256,7 @@ namespace TaylorBarProgram
       .add("energy_balance_relative_error", worst_balance)
       .add("newton_iterations_per_step", t.newton_iterations_per_step())
       .add("newton_convergence_order", t.median_convergence_order())
+      .add("newton_step_reductions", t.step_reductions)
       .add("max_contact_violation", t.worst_contact_violation)
       .add("wall_impulse", t.wall_impulse)
       .add("momentum_change", momentum_change)

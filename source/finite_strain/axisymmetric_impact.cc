@@ -375,14 +375,75 @@ namespace impactfe
   // Each Newton iterate linearises f at u1 (A = M + h^2 theta^2 K_t),
   // condenses onto the candidates (W = H^T A^{-1} H) and solves the LCP for
   // the whole impulse P with Lemke's method, verified.
+  //
+  // If Newton's method does not converge in `Maximum Newton iterations`,
+  // the step is made again as 2, 4, then 8 steps of h/2, h/4, h/8 (counted
+  // in FiniteStrainRunTotals::step_reductions); if that fails too, the run
+  // stops with a message naming the step.
   FiniteStrainStepReport
   AxisymmetricImpact::do_time_step()
   {
-    const double           h = settings.time_step, theta = settings.theta;
-    const double           mu           = settings.friction_coefficient;
-    const unsigned int     n_directions = mu > 0. ? 2 : 1;
-    FiniteStrainStepReport report;
     ++step_number;
+    const double start_time = current_time;
+    for (unsigned int level = 0; level <= 3; ++level)
+      {
+        const unsigned int n_sub = 1u << level;
+        // The state to go back to if a substep fails.
+        const Vector<double> saved_v = velocity, saved_u = displacement,
+                             saved_f         = old_force;
+        const auto             saved_history = history_old;
+        const auto             saved_states  = contact_states;
+        const auto             saved_totals  = run_totals;
+        FiniteStrainStepReport total;
+        bool                   converged = true;
+        for (unsigned int k = 0; k < n_sub && converged; ++k)
+          {
+            FiniteStrainStepReport report;
+            converged = try_step(settings.time_step / n_sub, report);
+            total.newton_iterations += report.newton_iterations;
+            total.residuals = report.residuals;
+            total.n_candidates =
+              std::max(total.n_candidates, report.n_candidates);
+            total.n_closed = std::max(total.n_closed, report.n_closed);
+            total.normal_impulse += report.normal_impulse;
+            total.contact_work += report.contact_work;
+            total.scheme_dissipation += report.scheme_dissipation;
+            total.contact_violation =
+              std::max(total.contact_violation, report.contact_violation);
+          }
+        if (converged)
+          {
+            run_totals.step_reductions += level > 0 ? 1 : 0;
+            current_time = start_time + settings.time_step;
+            return total;
+          }
+        velocity       = saved_v;
+        displacement   = saved_u;
+        old_force      = saved_f;
+        history_old    = saved_history;
+        contact_states = saved_states;
+        run_totals     = saved_totals;
+        current_time   = start_time;
+      }
+    AssertThrow(false,
+                ExcMessage("Taylor bar: Newton's method did not converge in "
+                           "step " +
+                           std::to_string(step_number) +
+                           " (t = " + format_number(start_time) + " s) in " +
+                           std::to_string(settings.max_newton_iterations) +
+                           " iterations, nor in 8 steps of h/8; reduce the "
+                           "time step or refine."));
+    return {};
+  }
+
+
+
+  bool
+  AxisymmetricImpact::try_step(const double h, FiniteStrainStepReport &report)
+  {
+    const double       theta        = settings.theta;
+    const double       mu           = settings.friction_coefficient;
+    const unsigned int n_directions = mu > 0. ? 2 : 1;
 
     // Candidates that can touch during the step: gap below twice the
     // distance they approach at their current speed.
@@ -408,13 +469,8 @@ namespace impactfe
 
     for (unsigned int it = 0;; ++it)
       {
-        AssertThrow(it < settings.max_newton_iterations,
-                    ExcMessage("Taylor bar: Newton's method did not converge "
-                               "in step " +
-                               std::to_string(step_number) +
-                               " (t = " + format_number(time()) + " s) after " +
-                               std::to_string(it) +
-                               " iterations; reduce the time step."));
+        if (it >= settings.max_newton_iterations)
+          return false;
         u1 = u0;
         u1.add(h * theta, v1, h * (1. - theta), v0);
         assemble_internal_force(u1, force, &step_matrix);
@@ -528,6 +584,7 @@ namespace impactfe
     for (unsigned int i = 0; i < v0.size(); ++i)
       report.scheme_dissipation +=
         (theta - 0.5) * lumped_mass[i] * (v1[i] - v0[i]) * (v1[i] - v0[i]);
+    current_time += h;
     FiniteStrainRunTotals &t = run_totals;
     ++t.steps;
     t.newton_iterations += report.newton_iterations;
@@ -551,7 +608,7 @@ namespace impactfe
     displacement = u1;
     old_force    = force;
     history_old  = history_new;
-    return report;
+    return true;
   }
 
 
@@ -559,7 +616,7 @@ namespace impactfe
   double
   AxisymmetricImpact::time() const
   {
-    return step_number * settings.time_step;
+    return current_time;
   }
 
 

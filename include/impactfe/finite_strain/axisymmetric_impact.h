@@ -50,7 +50,10 @@ namespace impactfe
   /** Sums over the steps so far. */
   struct FiniteStrainRunTotals
   {
+    /// Steps made (substeps included), Newton iterations, steps redone
+    /// with smaller substeps because Newton's method did not converge.
     unsigned int steps = 0, newton_iterations = 0, most_newton_iterations = 0;
+    unsigned int step_reductions = 0;
     /// Wall impulse [N s], largest contact force [N], last step with one [s].
     double wall_impulse = 0., peak_contact_force = 0., last_contact_time = 0.;
     /// Energy taken out by the contact impulses and by the scheme [J].
@@ -180,6 +183,10 @@ namespace impactfe
 
     void
     setup_system();
+    /// One theta-step of length @p h; false if Newton's method did not
+    /// converge (the state is then partly updated: the caller restores it).
+    bool
+    try_step(const double h, FiniteStrainStepReport &report);
     /** f_int(u) (and its tangent by element central differences). */
     void
     assemble_internal_force(const Vector<double> &displacement,
@@ -214,7 +221,8 @@ namespace impactfe
     std::vector<bool>                                   on_lower_end;
     /// The last contact state of every candidate (guess for the next LCP).
     std::vector<ContactState>                   contact_states;
-    unsigned int                                step_number = 0;
+    unsigned int                                step_number  = 0;
+    double                                      current_time = 0.;
     FiniteStrainRunTotals                       run_totals;
     std::vector<std::pair<double, std::string>> vtu_records;
   };
