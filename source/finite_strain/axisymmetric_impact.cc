@@ -260,6 +260,26 @@ namespace impactfe
 
 
 
+  Tensor<2, 3>
+  AxisymmetricImpact::deformation_gradient(const CellGeometry          &g,
+                                           const std::array<double, 8> &u,
+                                           const unsigned int           q)
+  {
+    Tensor<2, 3> F;
+    F[0][0] = F[1][1] = F[2][2] = 1.;
+    for (unsigned int i = 0; i < 8; ++i)
+      {
+        const unsigned int c = g.component[i];
+        F[c][0] += u[i] * g.grad_N[q][i][0];
+        F[c][1] += u[i] * g.grad_N[q][i][1];
+        if (c == 0)
+          F[2][2] += u[i] * g.N[q][i] / g.radius[q];
+      }
+    return F;
+  }
+
+
+
   // @sect3{The internal force of a cell: F-bar, the return mapping}
   //
   // F = [[1 + du_r/dR, du_r/dZ, 0], [du_z/dR, 1 + du_z/dZ, 0], [0, 0,
@@ -276,26 +296,13 @@ namespace impactfe
     std::array<double, 8>            &force,
     std::vector<std::vector<double>> *history) const
   {
-    const CellGeometry &g                    = cells[cell];
-    auto                deformation_gradient = [&](const unsigned int q) {
-      Tensor<2, 3> F;
-      F[0][0] = F[1][1] = F[2][2] = 1.;
-      for (unsigned int i = 0; i < 8; ++i)
-        {
-          const unsigned int c = g.component[i];
-          F[c][0] += u[i] * g.grad_N[q][i][0];
-          F[c][1] += u[i] * g.grad_N[q][i][1];
-          if (c == 0)
-            F[2][2] += u[i] * g.N[q][i] / g.radius[q];
-        }
-      return F;
-    };
-    const double J0 = determinant(deformation_gradient(4));
+    const CellGeometry &g  = cells[cell];
+    const double        J0 = determinant(deformation_gradient(g, u, 4));
     force.fill(0.);
     std::vector<double> updated;
     for (unsigned int q = 0; q < 4; ++q)
       {
-        const Tensor<2, 3> F = deformation_gradient(q);
+        const Tensor<2, 3> F = deformation_gradient(g, u, q);
         const double       J = determinant(F);
         AssertThrow(J > 0. && J0 > 0.,
                     ExcMessage("Taylor bar: an element is inverted (det F = " +
@@ -683,23 +690,10 @@ namespace impactfe
         const CellGeometry &g = cells[c];
         for (unsigned int i = 0; i < 8; ++i)
           u[i] = displacement[g.dofs[i]];
-        auto F_at = [&](const unsigned int q) {
-          Tensor<2, 3> F;
-          F[0][0] = F[1][1] = F[2][2] = 1.;
-          for (unsigned int i = 0; i < 8; ++i)
-            {
-              const unsigned int k = g.component[i];
-              F[k][0] += u[i] * g.grad_N[q][i][0];
-              F[k][1] += u[i] * g.grad_N[q][i][1];
-              if (k == 0)
-                F[2][2] += u[i] * g.N[q][i] / g.radius[q];
-            }
-          return F;
-        };
-        const double J0 = determinant(F_at(4));
+        const double J0 = determinant(deformation_gradient(g, u, 4));
         for (unsigned int q = 0; q < 4; ++q)
           {
-            const Tensor<2, 3> F = F_at(q);
+            const Tensor<2, 3> F = deformation_gradient(g, u, q);
             const double       scale =
               settings.f_bar ? std::cbrt(J0 / determinant(F)) : 1.;
             e += law.stored_energy(scale * F, history_old[4 * c + q]) *

@@ -183,6 +183,12 @@ namespace impactfe
 
     void
     setup_system();
+    /// F = I + Grad u with the hoop stretch 1 + u_r/r at point @p q of a
+    /// cell (4: the centre) for its nodal displacements @p u.
+    static Tensor<2, 3>
+    deformation_gradient(const CellGeometry          &cell,
+                         const std::array<double, 8> &u,
+                         const unsigned int           q);
     /// One theta-step of length @p h; false if Newton's method did not
     /// converge (the state is then partly updated: the caller restores it).
     bool
