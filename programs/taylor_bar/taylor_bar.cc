@@ -21,10 +21,8 @@
 // summed over the steps. The error is the gap between the internal forces'
 // discrete work and the increments of stored energy and plastic work.
 //
-// The model (impactfe::AxisymmetricImpact): total Lagrangian, Q1 in (r, z)
-// with the hoop stretch 1 + u_r/r, F-bar against volumetric locking,
-// Hencky elasticity with the exponential-map return mapping
-// (impactfe::FiniteStrainJ2Model), lumped ring masses.
+// The model (impactfe::AxisymmetricImpact, FiniteStrainJ2Model) is
+// described in doc/taylor_bar.md.
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -166,7 +164,8 @@ namespace TaylorBarProgram
               << n_steps << " steps of " << settings.time_step
               << " s, theta = " << settings.theta
               << (settings.f_bar ? ", F-bar" : ", plain Q1")
-              << ", mu = " << settings.friction_coefficient << std::endl;
+              << ", mu = " << settings.friction_coefficient
+              << (settings.bilateral ? ", bilateral contact" : "") << std::endl;
     initial_momentum = bar->axial_momentum();
     bar->write_cells_csv(output.directory + "/cells_initial.csv");
   }
@@ -252,6 +251,7 @@ namespace TaylorBarProgram
       .add("steps", n_steps)
       .add("final_length_mm", length)
       .add("footprint_radius_mm", radius)
+      .add("contact_radius_mm", 1e3 * bar->contact_radius())
       .add("max_equivalent_plastic_strain", alpha)
       .add("energy_balance_relative_error", worst_balance)
       .add("newton_iterations_per_step", t.newton_iterations_per_step())

@@ -64,6 +64,14 @@ namespace impactfe
                       "theta of the theta-method, in [0.5, 1].");
     prm.leave_subsection();
     prm.enter_subsection("Contact");
+    prm.declare_entry("Bilateral contact",
+                      "false",
+                      Patterns::Bool(),
+                      "true: a node stays tied to the wall, in both "
+                      "directions, from the step after it first pushes on "
+                      "it (the full-stick treatment common for the Taylor "
+                      "bar); false: unilateral contact with Coulomb "
+                      "friction.");
     prm.declare_entry("Friction coefficient",
                       "0",
                       Patterns::Double(),
@@ -114,6 +122,7 @@ namespace impactfe
     require_positive(time_step, "Time", "Time step");
     prm.enter_subsection("Contact");
     friction_coefficient = prm.get_double("Friction coefficient");
+    bilateral            = prm.get_bool("Bilateral contact");
     prm.leave_subsection();
     require_non_negative(friction_coefficient,
                          "Contact",
@@ -240,6 +249,7 @@ namespace impactfe
                 }
             }
     contact_states.assign(candidate_dofs.size(), ContactState::open);
+    tied.assign(candidate_dofs.size(), false);
     for (const auto dof : axis)
       constraints.add_line(dof);
     constraints.close();
@@ -400,6 +410,7 @@ namespace impactfe
                              saved_f         = old_force;
         const auto             saved_history = history_old;
         const auto             saved_states  = contact_states;
+        const auto             saved_tied    = tied;
         const auto             saved_totals  = run_totals;
         FiniteStrainStepReport total;
         bool                   converged = true;
@@ -429,6 +440,7 @@ namespace impactfe
         old_force      = saved_f;
         history_old    = saved_history;
         contact_states = saved_states;
+        tied           = saved_tied;
         run_totals     = saved_totals;
         current_time   = start_time;
       }
@@ -459,16 +471,39 @@ namespace impactfe
     auto                      gap = [&](const unsigned int k) {
       return candidate_positions[k][1] + displacement[candidate_dofs[k][1]];
     };
+    // Rows held at zero velocity: u_r on the axis, and both components of
+    // the nodes tied to the wall (bilateral contact).
+    std::vector<types::global_dof_index> fixed;
+    std::vector<bool> tied_normal; // per entry of fixed: a tied node's u_z
+    for (const auto &line : constraints.get_lines())
+      fixed.push_back(line.index);
+    tied_normal.assign(fixed.size(), false);
     for (unsigned int k = 0; k < candidate_dofs.size(); ++k)
       {
         const double g = gap(k), vn = velocity[candidate_dofs[k][1]];
-        if (g <= 2. * h * std::max(-vn, 0.) + 1e-12 * settings.length)
+        if (tied[k])
+          {
+            fixed.insert(fixed.end(),
+                         candidate_dofs[k].begin(),
+                         candidate_dofs[k].end());
+            tied_normal.insert(tied_normal.end(), {false, true});
+          }
+        else if (g <= 2. * h * std::max(-vn, 0.) + 1e-12 * settings.length)
           active.push_back(k);
+        else
+          contact_states[k] = ContactState::open; // out of reach
       }
+    std::vector<bool> is_fixed(displacement.size(), false);
+    for (const auto dof : fixed)
+      is_fixed[dof] = true;
+    // Tied nodes stop at once; their reaction is their residual row.
+    std::vector<double> tied_reaction(fixed.size());
 
     const Vector<double> v0 = velocity, u0 = displacement;
     Vector<double>       v1 = v0, u1(u0.size()), force(u0.size()),
                    residual(u0.size()), dv_free(u0.size());
+    for (const auto dof : fixed)
+      v1[dof] = 0.;
     std::vector<Vector<double>> columns;
     std::vector<double>         P;
     lcp::ContactProblem         problem;
@@ -488,8 +523,11 @@ namespace impactfe
         for (unsigned int c = 0; c < P.size(); ++c)
           residual[candidate_dofs[active[c / n_directions]]
                                  [c % n_directions == 0 ? 1 : 0]] -= P[c];
-        for (const auto &line : constraints.get_lines())
-          residual[line.index] = 0.;
+        for (unsigned int i = 0; i < fixed.size(); ++i)
+          {
+            tied_reaction[i]   = residual[fixed[i]];
+            residual[fixed[i]] = 0.;
+          }
         report.residuals.push_back(residual.linfty_norm() / momentum_scale);
         if (it > 0 && report.residuals.back() < settings.newton_tolerance)
           break;
@@ -499,13 +537,13 @@ namespace impactfe
         step_matrix *= h * h * theta * theta;
         for (unsigned int i = 0; i < u0.size(); ++i)
           step_matrix.add(i, i, lumped_mass[i]);
-        for (const auto &line : constraints.get_lines())
+        for (const auto dof : fixed)
           {
-            for (auto entry = step_matrix.begin(line.index);
-                 entry != step_matrix.end(line.index);
+            for (auto entry = step_matrix.begin(dof);
+                 entry != step_matrix.end(dof);
                  ++entry)
               entry->value() = 0.;
-            step_matrix.set(line.index, line.index, lumped_mass[line.index]);
+            step_matrix.set(dof, dof, lumped_mass[dof]);
           }
         SparseDirectUMFPACK solver;
         solver.initialize(step_matrix);
@@ -529,7 +567,7 @@ namespace impactfe
                                            [c % n_directions == 0 ? 1 : 0];
             unit      = 0.;
             unit[dof] = 1.;
-            if (!constraints.is_constrained(dof))
+            if (!is_fixed[dof])
               solver.vmult(columns[c], unit);
           }
         problem.n_directions = n_directions;
@@ -588,6 +626,19 @@ namespace impactfe
             report.n_closed += P[c] > 0. ? 1 : 0;
           }
       }
+    // Tied nodes: their reaction (the axis rows' is zero by symmetry).
+    for (unsigned int i = constraints.n_constraints(); i < fixed.size(); ++i)
+      {
+        const auto dof = fixed[i];
+        report.contact_work +=
+          tied_reaction[i] * (theta * v1[dof] + (1. - theta) * v0[dof]);
+        if (tied_normal[i])
+          report.normal_impulse += tied_reaction[i];
+      }
+    if (settings.bilateral)
+      for (unsigned int c = 0; c < P.size(); c += n_directions)
+        if (P[c] > 0.)
+          tied[active[c / n_directions]] = true;
     for (unsigned int i = 0; i < v0.size(); ++i)
       report.scheme_dissipation +=
         (theta - 0.5) * lumped_mass[i] * (v1[i] - v0[i]) * (v1[i] - v0[i]);
@@ -739,6 +790,20 @@ namespace impactfe
     double r = 0.;
     for (unsigned int k = 0; k < candidate_dofs.size(); ++k)
       if (on_lower_end[k])
+        r = std::max(r,
+                     candidate_positions[k][0] +
+                       displacement[candidate_dofs[k][0]]);
+    return r;
+  }
+
+
+
+  double
+  AxisymmetricImpact::contact_radius() const
+  {
+    double r = 0.;
+    for (unsigned int k = 0; k < candidate_dofs.size(); ++k)
+      if (tied[k] || contact_states[k] != ContactState::open)
         r = std::max(r,
                      candidate_positions[k][0] +
                        displacement[candidate_dofs[k][0]]);

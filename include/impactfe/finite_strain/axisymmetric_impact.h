@@ -91,6 +91,7 @@ namespace impactfe
       unsigned int n_radial = 5, n_axial = 50;
       double       theta = 1., time_step = 2e-7, end_time = 80e-6;
       double       friction_coefficient  = 0.;
+      bool         bilateral             = false;
       bool         f_bar                 = true;
       double       newton_tolerance      = 1e-9;
       unsigned int max_newton_iterations = 25;
@@ -136,6 +137,12 @@ namespace impactfe
     /** Largest r of the nodes of the lower end [m]. */
     double
     footprint_radius() const;
+    /**
+     * Largest r of the nodes touching the wall (closed in the last contact
+     * problem, or tied) [m]: the radius of the contact zone.
+     */
+    double
+    contact_radius() const;
     /** Largest equivalent plastic strain at a quadrature point. */
     double
     max_equivalent_plastic_strain() const;
@@ -226,7 +233,9 @@ namespace impactfe
     std::vector<Point<2>>                               candidate_positions;
     std::vector<bool>                                   on_lower_end;
     /// The last contact state of every candidate (guess for the next LCP).
-    std::vector<ContactState>                   contact_states;
+    std::vector<ContactState> contact_states;
+    /// Candidates tied to the wall (bilateral contact).
+    std::vector<bool>                           tied;
     unsigned int                                step_number  = 0;
     double                                      current_time = 0.;
     FiniteStrainRunTotals                       run_totals;
