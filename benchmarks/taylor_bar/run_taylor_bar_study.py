@@ -30,24 +30,26 @@ from matplotlib.collections import PolyCollection  # noqa: E402
 PRM = "parameter_files/taylor_bar.prm"
 PUBLISHED = {"final_length_mm": (21.42, 21.7),
              "footprint_radius_mm": (7.0, 7.1)}
-# name, radial cells, axial cells, time step, F-bar, mu
-CASES = [("mesh 5x50", 5, 50, 2e-7, True, 0.),
-         ("mesh 10x100", 10, 100, 1e-7, True, 0.),
-         ("mesh 20x200", 20, 200, 5e-8, True, 0.),
-         ("plain Q1 10x100", 10, 100, 1e-7, False, 0.),
-         ("mu 0.1 10x100", 10, 100, 1e-7, True, 0.1),
-         ("mu 1 10x100", 10, 100, 1e-7, True, 1.0)]
-KEYS = ["final_length_mm", "footprint_radius_mm",
+# name, radial cells, axial cells, time step, F-bar, mu, bilateral contact
+CASES = [("mesh 5x50", 5, 50, 2e-7, True, 0., False),
+         ("mesh 10x100", 10, 100, 1e-7, True, 0., False),
+         ("mesh 20x200", 20, 200, 5e-8, True, 0., False),
+         ("plain Q1 10x100", 10, 100, 1e-7, False, 0., False),
+         ("mu 0.1 10x100", 10, 100, 1e-7, True, 0.1, False),
+         ("mu 1 10x100", 10, 100, 1e-7, True, 1.0, False),
+         ("bilateral 10x100", 10, 100, 1e-7, True, 0., True)]
+KEYS = ["final_length_mm", "footprint_radius_mm", "contact_radius_mm",
         "max_equivalent_plastic_strain", "energy_balance_relative_error",
         "newton_iterations_per_step", "max_contact_violation", "cpu_seconds"]
 
 
-def overrides(nr, nz, h, fbar, mu):
+def overrides(nr, nz, h, fbar, mu, bilateral):
     return (f"subsection Geometry\n  set Radial cells = {nr}\n"
             f"  set Axial cells = {nz}\nend\n"
             f"subsection Time\n  set Time step = {h}\nend\n"
             f"subsection Discretisation\n  set F-bar = {'true' if fbar else 'false'}\nend\n"
-            f"subsection Contact\n  set Friction coefficient = {mu}\nend\n")
+            f"subsection Contact\n  set Friction coefficient = {mu}\n"
+            f"  set Bilateral contact = {'true' if bilateral else 'false'}\nend\n")
 
 
 def read_cells(path):
@@ -94,11 +96,11 @@ def main():
     args = parser.parse_args()
     cases = CASES[:2] if args.quick else CASES
     results = {}
-    for name, nr, nz, h, fbar, mu in cases:
+    for name, nr, nz, h, fbar, mu, bilateral in cases:
         directory = os.path.join("results", "taylor_bar_study",
                                  name.replace(" ", "_"))
         summary = runs.run(args.build, "taylor_bar", os.path.abspath(PRM),
-                           directory, overrides(nr, nz, h, fbar, mu))
+                           directory, overrides(nr, nz, h, fbar, mu, bilateral))
         results[name] = {k: summary[k] for k in KEYS}
         results[name]["dir"] = directory
         print(f"{name:18s} " + " ".join(f"{k}={summary[k]:.4g}" for k in KEYS),
