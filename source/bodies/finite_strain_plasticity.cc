@@ -162,12 +162,13 @@ namespace impactfe
 
 
   template <int dim>
-  void
+  bool
   FiniteStrainJ2Model<dim>::evaluate_3d(const Tensor<2, 3>        &F,
                                         const std::vector<double> &old_internal,
                                         std::vector<double>       &new_internal,
                                         Tensor<2, 3>              &P,
-                                        Tensor<4, 3> *tangent) const
+                                        Tensor<4, 3>              *tangent,
+                                        const Branch               branch) const
   {
     AssertDimension(old_internal.size(), n_variables);
     Principal    state = trial_state(F, old_internal);
@@ -185,8 +186,11 @@ namespace impactfe
     const double alpha_old = old_internal[6];
     const double yield =
       std::sqrt(2. / 3.) * (yield_stress + hardening_modulus * alpha_old);
-    double alpha = alpha_old;
-    if (norm - yield > 0.)
+    double     alpha = alpha_old;
+    const bool plastic =
+      norm > 0. && (branch == Branch::automatic ? norm - yield > 0. :
+                                                  branch == Branch::plastic);
+    if (plastic)
       {
         // Radial return: exact for linear hardening, in logarithmic strain.
         const double dgamma =
@@ -217,7 +221,9 @@ namespace impactfe
 
     if (tangent != nullptr)
       {
-        // The consistent tangent by central differences of this update.
+        // The consistent tangent by central differences of this update, on
+        // the branch it took.
+        const Branch        taken = plastic ? Branch::plastic : Branch::elastic;
         const double        delta = 1e-6;
         std::vector<double> scratch(n_variables);
         Tensor<2, 3>        P_plus, P_minus;
@@ -226,15 +232,18 @@ namespace impactfe
             {
               Tensor<2, 3> F_perturbed = F;
               F_perturbed[k][l] += delta;
-              evaluate_3d(F_perturbed, old_internal, scratch, P_plus, nullptr);
+              evaluate_3d(
+                F_perturbed, old_internal, scratch, P_plus, nullptr, taken);
               F_perturbed[k][l] -= 2. * delta;
-              evaluate_3d(F_perturbed, old_internal, scratch, P_minus, nullptr);
+              evaluate_3d(
+                F_perturbed, old_internal, scratch, P_minus, nullptr, taken);
               for (unsigned int i = 0; i < 3; ++i)
                 for (unsigned int j = 0; j < 3; ++j)
                   (*tangent)[i][j][k][l] =
                     (P_plus[i][j] - P_minus[i][j]) / (2. * delta);
             }
       }
+    return plastic;
   }
 
 

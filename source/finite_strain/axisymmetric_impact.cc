@@ -300,11 +300,11 @@ namespace impactfe
   // sigma = tau(Fbar)/J0 on the current configuration:
   // f_i = int (J/J0) tau : (dF_i F^{-1}) dV0.
   void
-  AxisymmetricImpact::cell_force(
-    const unsigned int                cell,
-    const std::array<double, 8>      &u,
-    std::array<double, 8>            &force,
-    std::vector<std::vector<double>> *history) const
+  AxisymmetricImpact::cell_force(const unsigned int                cell,
+                                 const std::array<double, 8>      &u,
+                                 std::array<double, 8>            &force,
+                                 std::vector<std::vector<double>> *history,
+                                 std::array<Branch, 4> &branches) const
   {
     const CellGeometry &g  = cells[cell];
     const double        J0 = determinant(deformation_gradient(g, u, 4));
@@ -321,8 +321,14 @@ namespace impactfe
         const double       scale = settings.f_bar ? std::cbrt(J0 / J) : 1.;
         const Tensor<2, 3> F_bar = scale * F;
         Tensor<2, 3>       P_bar;
-        law.evaluate_3d(
-          F_bar, history_old[4 * cell + q], updated, P_bar, nullptr);
+        const bool         plastic = law.evaluate_3d(F_bar,
+                                             history_old[4 * cell + q],
+                                             updated,
+                                             P_bar,
+                                             nullptr,
+                                             branches[q]);
+        if (branches[q] == Branch::automatic)
+          branches[q] = plastic ? Branch::plastic : Branch::elastic;
         const Tensor<2, 3> tau = P_bar * transpose(F_bar);
         const Tensor<2, 3> G =
           (J / determinant(F_bar)) * tau * transpose(invert(F));
@@ -351,7 +357,10 @@ namespace impactfe
     if (tangent != nullptr)
       *tangent = 0.;
     // The consistent tangent by central differences of the cell force
-    // (F-bar's dependence on the centre included).
+    // (F-bar's dependence on the centre included), each Gauss point on the
+    // branch of the return mapping it took: a difference across the yield
+    // surface would average the elastic and the plastic tangent, and
+    // Newton's method would converge only linearly.
     const double                         delta = 1e-6 * smallest_cell_size;
     std::array<double, 8>                u_cell, f_cell, f_plus, f_minus;
     FullMatrix<double>                   k_cell(8, 8);
@@ -360,7 +369,9 @@ namespace impactfe
       {
         for (unsigned int i = 0; i < 8; ++i)
           u_cell[i] = u[cells[c].dofs[i]];
-        cell_force(c, u_cell, f_cell, &history_new);
+        std::array<Branch, 4> branches;
+        branches.fill(Branch::automatic);
+        cell_force(c, u_cell, f_cell, &history_new, branches);
         for (unsigned int i = 0; i < 8; ++i)
           force[cells[c].dofs[i]] += f_cell[i];
         if (tangent == nullptr)
@@ -369,9 +380,9 @@ namespace impactfe
           {
             const double saved = u_cell[j];
             u_cell[j]          = saved + delta;
-            cell_force(c, u_cell, f_plus, nullptr);
+            cell_force(c, u_cell, f_plus, nullptr, branches);
             u_cell[j] = saved - delta;
-            cell_force(c, u_cell, f_minus, nullptr);
+            cell_force(c, u_cell, f_minus, nullptr, branches);
             u_cell[j] = saved;
             for (unsigned int i = 0; i < 8; ++i)
               k_cell(i, j) = (f_plus[i] - f_minus[i]) / (2. * delta);

@@ -93,13 +93,28 @@ namespace impactfe
              std::vector<double>                &new_internal,
              MaterialPointResponse<dim>         &response) const override;
 
-    /** The update in three dimensions; the tangent only if asked for. */
-    void
+    /// Which branch of the return mapping an update takes: the one the
+    /// yield condition chooses, or a given one (for a tangent by finite
+    /// differences that must not straddle the yield surface).
+    enum class Branch
+    {
+      automatic,
+      elastic,
+      plastic
+    };
+
+    /**
+     * The update in three dimensions; the tangent only if asked for (the
+     * derivative of the update on the branch it took). Returns whether the
+     * plastic branch was taken.
+     */
+    bool
     evaluate_3d(const Tensor<2, 3>        &deformation_gradient,
                 const std::vector<double> &old_internal,
                 std::vector<double>       &new_internal,
                 Tensor<2, 3>              &first_piola_kirchhoff,
-                Tensor<4, 3>              *tangent) const;
+                Tensor<4, 3>              *tangent,
+                const Branch               branch = Branch::automatic) const;
 
     /** The Kirchhoff stress tau = P F^T of the last update of @p F. */
     static Tensor<2, 3>

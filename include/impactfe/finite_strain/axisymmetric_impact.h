@@ -205,13 +205,17 @@ namespace impactfe
     assemble_internal_force(const Vector<double> &displacement,
                             Vector<double>       &force,
                             SparseMatrix<double> *tangent);
+    using Branch = FiniteStrainJ2Model<3>::Branch;
     /// The cell's internal force; updated internal variables to @p history
-    /// (one vector per Gauss point) if not null.
+    /// (one vector per Gauss point) if not null. A Gauss point whose entry
+    /// of @p branches is automatic gets the return-mapping branch it took;
+    /// the others are evaluated on the branch given.
     void
     cell_force(const unsigned int                cell,
                const std::array<double, 8>      &cell_displacement,
                std::array<double, 8>            &force,
-               std::vector<std::vector<double>> *history) const;
+               std::vector<std::vector<double>> *history,
+               std::array<Branch, 4>            &branches) const;
 
     Settings                         settings;
     MaterialParameters               material;
