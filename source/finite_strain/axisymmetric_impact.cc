@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <set>
 
@@ -413,21 +414,25 @@ namespace impactfe
   {
     ++step_number;
     const double start_time = current_time;
-    for (unsigned int level = 0; level <= 3; ++level)
+    // A step that fails changes nothing but the contact states' guesses:
+    // the full state is copied only when substeps are needed.
+    const auto             saved_states = contact_states;
+    FiniteStrainStepReport report;
+    if (try_step(settings.time_step, report))
+      return report;
+    contact_states               = saved_states;
+    const Vector<double> saved_v = velocity, saved_u = displacement,
+                         saved_f = old_force;
+    const auto saved_history     = history_old;
+    const auto saved_tied        = tied;
+    const auto saved_totals      = run_totals;
+    for (unsigned int level = 1; level <= 3; ++level)
       {
-        const unsigned int n_sub = 1u << level;
-        // The state to go back to if a substep fails.
-        const Vector<double> saved_v = velocity, saved_u = displacement,
-                             saved_f         = old_force;
-        const auto             saved_history = history_old;
-        const auto             saved_states  = contact_states;
-        const auto             saved_tied    = tied;
-        const auto             saved_totals  = run_totals;
+        const unsigned int     n_sub = 1u << level;
         FiniteStrainStepReport total;
         bool                   converged = true;
         for (unsigned int k = 0; k < n_sub && converged; ++k)
           {
-            FiniteStrainStepReport report;
             converged = try_step(settings.time_step / n_sub, report);
             total.newton_iterations += report.newton_iterations;
             total.residuals = report.residuals;
@@ -442,7 +447,7 @@ namespace impactfe
           }
         if (converged)
           {
-            run_totals.step_reductions += level > 0 ? 1 : 0;
+            ++run_totals.step_reductions;
             current_time = start_time + settings.time_step;
             return total;
           }
@@ -796,11 +801,12 @@ namespace impactfe
 
 
   double
-  AxisymmetricImpact::footprint_radius() const
+  AxisymmetricImpact::largest_candidate_radius(
+    const std::function<bool(unsigned int)> &selected) const
   {
     double r = 0.;
     for (unsigned int k = 0; k < candidate_dofs.size(); ++k)
-      if (on_lower_end[k])
+      if (selected(k))
         r = std::max(r,
                      candidate_positions[k][0] +
                        displacement[candidate_dofs[k][0]]);
@@ -810,15 +816,20 @@ namespace impactfe
 
 
   double
+  AxisymmetricImpact::footprint_radius() const
+  {
+    return largest_candidate_radius(
+      [this](const unsigned int k) { return bool(on_lower_end[k]); });
+  }
+
+
+
+  double
   AxisymmetricImpact::contact_radius() const
   {
-    double r = 0.;
-    for (unsigned int k = 0; k < candidate_dofs.size(); ++k)
-      if (tied[k] || contact_states[k] != ContactState::open)
-        r = std::max(r,
-                     candidate_positions[k][0] +
-                       displacement[candidate_dofs[k][0]]);
-    return r;
+    return largest_candidate_radius([this](const unsigned int k) {
+      return tied[k] || contact_states[k] != ContactState::open;
+    });
   }
 
 

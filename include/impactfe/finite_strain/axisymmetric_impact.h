@@ -22,6 +22,7 @@
 #include <impactfe/lcp/contact_problem.h>
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -190,6 +191,10 @@ namespace impactfe
 
     void
     setup_system();
+    /// Largest current r of the candidates that @p selected picks [m].
+    double
+    largest_candidate_radius(
+      const std::function<bool(unsigned int)> &selected) const;
     /// F = I + Grad u with the hoop stretch 1 + u_r/r at point @p q of a
     /// cell (4: the centre) for its nodal displacements @p u.
     static Tensor<2, 3>
