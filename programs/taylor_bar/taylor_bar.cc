@@ -21,12 +21,12 @@
 // summed over the steps. The error is the gap between the internal forces'
 // discrete work and the increments of stored energy and plastic work.
 //
-// The model (impactfe::AxisymmetricImpact, FiniteStrainJ2Model) is
-// described in doc/taylor_bar.md.
+// The model (impactfe::FiniteStrainImpact, axisymmetric or a 3D quarter of
+// the bar, and FiniteStrainJ2Model) is described in doc/taylor_bar.md.
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <impactfe/finite_strain/axisymmetric_impact.h>
+#include <impactfe/finite_strain/finite_strain_impact.h>
 #include <impactfe/output/output.h>
 #include <impactfe/utilities/program.h>
 
@@ -62,14 +62,14 @@ namespace TaylorBarProgram
     bool
     report_checks() const;
 
-    AxisymmetricImpact::Settings        settings;
+    FiniteStrainImpact::Settings        settings;
     MaterialParameters                  material;
     PlasticityParameters                plasticity;
     OutputParameters                    output;
     bool                                rebound_check       = false;
     double                              max_rebound_error   = 0.05;
     double                              published_tolerance = 0.;
-    std::unique_ptr<AxisymmetricImpact> bar;
+    std::unique_ptr<FiniteStrainImpact> bar;
     std::unique_ptr<HistoryWriter>      history;
 
     unsigned int n_steps       = 0;
@@ -81,13 +81,13 @@ namespace TaylorBarProgram
 
   // @sect3{Parameters}
   //
-  // The bar, the step and the wall are AxisymmetricImpact::Settings'; the
+  // The bar, the step and the wall are FiniteStrainImpact::Settings'; the
   // checks of `Verification` compare the run with results found without
   // it (see report_checks()).
   void
   TaylorBarProblem::declare_parameters(ParameterHandler &prm)
   {
-    AxisymmetricImpact::Settings::declare_parameters(prm);
+    FiniteStrainImpact::Settings::declare_parameters(prm);
     MaterialParameters::declare_parameters(prm, 3);
     prm.enter_subsection("Material"); // copper, unless the file says otherwise
     prm.set("Young's modulus", "117e9");
@@ -142,7 +142,7 @@ namespace TaylorBarProgram
   void
   TaylorBarProblem::setup_system()
   {
-    bar = std::make_unique<AxisymmetricImpact>(settings, material, plasticity);
+    bar = FiniteStrainImpact::create(settings, material, plasticity);
     create_output_directory(output.directory);
     history = std::make_unique<HistoryWriter>(
       output.directory + "/history.csv",
@@ -159,9 +159,13 @@ namespace TaylorBarProgram
                                "max_equivalent_plastic_strain",
                                "newton_iterations",
                                "lcp_rows"});
-    std::cout << "Taylor bar: " << settings.n_radial << " x "
-              << settings.n_axial << " cells, " << bar->n_dofs() << " DoFs, "
-              << n_steps << " steps of " << settings.time_step
+    std::cout << "Taylor bar ("
+              << (settings.model == FiniteStrainImpact::Model::axisymmetric ?
+                    "axisymmetric" :
+                    "3D quarter")
+              << "): " << settings.n_radial << " x " << settings.n_axial
+              << " cells, " << bar->n_dofs() << " DoFs, " << n_steps
+              << " steps of " << settings.time_step
               << " s, theta = " << settings.theta
               << (settings.f_bar ? ", F-bar" : ", plain Q1")
               << ", mu = " << settings.friction_coefficient
@@ -257,6 +261,7 @@ namespace TaylorBarProgram
       .add("newton_iterations_per_step", t.newton_iterations_per_step())
       .add("newton_convergence_order", t.median_convergence_order())
       .add("newton_step_reductions", t.step_reductions)
+      .add("late_contact_candidates", t.late_candidates)
       .add("max_contact_violation", t.worst_contact_violation)
       .add("wall_impulse", t.wall_impulse)
       .add("momentum_change", momentum_change)

@@ -8,13 +8,15 @@
 #include <deal.II/fe/mapping_q_eulerian.h>
 
 #include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/manifold_lib.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparse_direct.h>
 
 #include <deal.II/numerics/data_out.h>
 
-#include <impactfe/finite_strain/axisymmetric_impact.h>
+#include <impactfe/finite_strain/finite_strain_impact.h>
 #include <impactfe/utilities/program.h>
 
 #include <algorithm>
@@ -27,9 +29,15 @@
 namespace impactfe
 {
   void
-  AxisymmetricImpact::Settings::declare_parameters(ParameterHandler &prm)
+  FiniteStrainImpact::Settings::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
+    prm.declare_entry("Model",
+                      "axisymmetric",
+                      Patterns::Selection("axisymmetric|3d"),
+                      "axisymmetric: the r-z plane with the hoop terms; 3d: "
+                      "the quarter x, y >= 0 of the cylinder with symmetry "
+                      "planes (frictionless or bilateral wall only).");
     prm.declare_entry("Radius",
                       "3.2e-3",
                       Patterns::Double(),
@@ -41,7 +49,8 @@ namespace impactfe
     prm.declare_entry("Radial cells",
                       "5",
                       Patterns::Integer(1),
-                      "Q1 cells across the radius.");
+                      "Q1 cells across the radius (3d: a power of two "
+                      ">= 2, the refined quarter disc).");
     prm.declare_entry("Axial cells",
                       "50",
                       Patterns::Integer(1),
@@ -100,9 +109,11 @@ namespace impactfe
 
 
   void
-  AxisymmetricImpact::Settings::parse_parameters(ParameterHandler &prm)
+  FiniteStrainImpact::Settings::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
+    model =
+      prm.get("Model") == "3d" ? Model::three_dimensional : Model::axisymmetric;
     radius   = prm.get_double("Radius");
     length   = prm.get_double("Length");
     n_radial = prm.get_integer("Radial cells");
@@ -120,70 +131,141 @@ namespace impactfe
     theta     = prm.get_double("Theta");
     prm.leave_subsection();
     require_positive(end_time, "Time", "End time");
-    require_positive(time_step, "Time", "Time step");
     prm.enter_subsection("Contact");
     friction_coefficient = prm.get_double("Friction coefficient");
     bilateral            = prm.get_bool("Bilateral contact");
     prm.leave_subsection();
-    require_non_negative(friction_coefficient,
-                         "Contact",
-                         "Friction coefficient");
     prm.enter_subsection("Discretisation");
     f_bar                 = prm.get_bool("F-bar");
     newton_tolerance      = prm.get_double("Newton tolerance");
     max_newton_iterations = prm.get_integer("Maximum Newton iterations");
     prm.leave_subsection();
     require_positive(newton_tolerance, "Discretisation", "Newton tolerance");
+    check();
+  }
+
+
+
+  void
+  FiniteStrainImpact::Settings::check() const
+  {
+    AssertThrow(theta >= 0.5 && theta <= 1.,
+                ExcMessage("Time/Theta = " + format_number(theta) +
+                           " must be in [0.5, 1]."));
+    require_positive(time_step, "Time", "Time step");
+    require_non_negative(friction_coefficient,
+                         "Contact",
+                         "Friction coefficient");
+    if (model == Model::three_dimensional)
+      {
+        AssertThrow(friction_coefficient == 0.,
+                    ExcMessage("Contact/Friction coefficient = " +
+                               format_number(friction_coefficient) +
+                               ": the 3d model has the frictionless and the "
+                               "bilateral wall only; use Geometry/Model = "
+                               "axisymmetric for Coulomb friction."));
+        AssertThrow(n_radial >= 2 && (n_radial & (n_radial - 1)) == 0,
+                    ExcMessage(
+                      "Geometry/Radial cells = " + std::to_string(n_radial) +
+                      ": the 3d model needs a power of two >= 2."));
+      }
+  }
+
+
+
+  std::unique_ptr<FiniteStrainImpact>
+  FiniteStrainImpact::create(const Settings             &settings,
+                             const MaterialParameters   &material,
+                             const PlasticityParameters &plasticity)
+  {
+    if (settings.model == Model::three_dimensional)
+      return std::make_unique<FiniteStrainCylinder<3>>(settings,
+                                                       material,
+                                                       plasticity);
+    return std::make_unique<FiniteStrainCylinder<2>>(settings,
+                                                     material,
+                                                     plasticity);
   }
 
 
 
   unsigned int
-  AxisymmetricImpact::Settings::n_steps() const
+  FiniteStrainImpact::Settings::n_steps() const
   {
     return static_cast<unsigned int>(std::llround(end_time / time_step));
   }
 
 
 
-  AxisymmetricImpact::AxisymmetricImpact(const Settings             &settings,
-                                         const MaterialParameters   &material,
-                                         const PlasticityParameters &plasticity)
+  template <int dim>
+  FiniteStrainCylinder<dim>::FiniteStrainCylinder(
+    const Settings             &settings,
+    const MaterialParameters   &material,
+    const PlasticityParameters &plasticity)
     : settings(settings)
     , material(material)
     , law(material, plasticity)
-    , fe(FE_Q<2>(1), 2)
+    , fe(FE_Q<dim>(1), dim)
   {
-    AssertThrow(settings.theta >= 0.5 && settings.theta <= 1.,
-                ExcMessage("Time/Theta = " + format_number(settings.theta) +
-                           " must be in [0.5, 1]."));
-    AssertThrow(settings.time_step > 0.,
-                ExcMessage(
-                  "Time/Time step = " + format_number(settings.time_step) +
-                  " must be > 0 [s]."));
-    AssertThrow(settings.friction_coefficient >= 0.,
-                ExcMessage("Contact/Friction coefficient = " +
-                           format_number(settings.friction_coefficient) +
-                           " must be >= 0."));
+    settings.check();
+    AssertThrow((dim == 3) == (settings.model == Model::three_dimensional),
+                ExcMessage("FiniteStrainCylinder<" + std::to_string(dim) +
+                           "> does not make this Geometry/Model."));
     setup_system();
   }
 
 
 
   // @sect3{Set-up: mesh, reference shape functions, mass, candidates}
+  //
+  // Axisymmetric: the rectangle [0, r0] x [0, L0] in the r-z plane. 3D: the
+  // quarter disc (deal.II's quarter_hyper_ball, its curved edge on the
+  // circle) refined to Radial cells across the radius, flattened and
+  // extruded along z.
+  template <>
   void
-  AxisymmetricImpact::setup_system()
+  FiniteStrainCylinder<2>::make_mesh()
   {
     GridGenerator::subdivided_hyper_rectangle(
       triangulation,
       {settings.n_radial, settings.n_axial},
       Point<2>(0., 0.),
-      Point<2>(settings.radius, settings.length),
-      /*colorize: 0 axis, 1 side, 2 lower end, 3 upper end*/ true);
+      Point<2>(settings.radius, settings.length));
+  }
+
+
+
+  template <>
+  void
+  FiniteStrainCylinder<3>::make_mesh()
+  {
+    Triangulation<2> disc;
+    GridGenerator::quarter_hyper_ball(disc, Point<2>(), settings.radius);
+    // quarter_hyper_ball has two cells across the radius.
+    disc.refine_global(std::lround(std::log2(settings.n_radial)) - 1);
+    Triangulation<2> flat_disc;
+    GridGenerator::flatten_triangulation(disc, flat_disc);
+    GridGenerator::extrude_triangulation(flat_disc,
+                                         settings.n_axial + 1,
+                                         settings.length,
+                                         triangulation);
+  }
+
+
+
+  template <int dim>
+  void
+  FiniteStrainCylinder<dim>::setup_system()
+  {
+    make_mesh();
     dof_handler.reinit(triangulation);
     dof_handler.distribute_dofs(fe);
-    smallest_cell_size = std::min(settings.radius / settings.n_radial,
-                                  settings.length / settings.n_axial);
+    // The finite-difference step of the tangent is relative to this.
+    smallest_cell_size =
+      (dim == 2) ?
+        std::min(settings.radius / settings.n_radial,
+                 settings.length / settings.n_axial) :
+        GridTools::minimal_cell_diameter(triangulation) / std::sqrt(3.);
 
     DynamicSparsityPattern dsp(dof_handler.n_dofs());
     DoFTools::make_sparsity_pattern(dof_handler, dsp);
@@ -191,67 +273,85 @@ namespace impactfe
     step_matrix.reinit(sparsity);
 
     // Shape functions at the Gauss points and at the centre of each cell.
-    std::vector<Point<2>> points = QGauss<2>(2).get_points();
-    points.emplace_back(0.5, 0.5);
-    const Quadrature<2> quadrature(points, std::vector<double>(n_points, 0.25));
-    FEValues<2>         fe_values(fe,
-                          quadrature,
-                          update_values | update_gradients |
-                            update_quadrature_points | update_JxW_values);
+    std::vector<Point<dim>> points = QGauss<dim>(2).get_points();
+    Point<dim>              centre;
+    for (unsigned int d = 0; d < dim; ++d)
+      centre[d] = 0.5;
+    points.push_back(centre);
+    const Quadrature<dim> quadrature(points,
+                                     std::vector<double>(n_points,
+                                                         1. / n_gauss));
+    FEValues<dim>         fe_values(fe,
+                            quadrature,
+                            update_values | update_gradients |
+                              update_quadrature_points | update_JxW_values);
     lumped_mass.reinit(dof_handler.n_dofs());
     cells.resize(triangulation.n_active_cells());
-    std::vector<types::global_dof_index> dofs(8);
+    std::vector<types::global_dof_index> dofs(n_cell_dofs);
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
         fe_values.reinit(cell);
         cell->get_dof_indices(dofs);
         CellGeometry &g = cells[cell->active_cell_index()];
-        for (unsigned int i = 0; i < 8; ++i)
+        for (unsigned int i = 0; i < n_cell_dofs; ++i)
           {
             g.dofs[i]      = dofs[i];
             g.component[i] = fe.system_to_component_index(i).first;
           }
         for (unsigned int q = 0; q < n_points; ++q)
           {
-            g.radius[q] = fe_values.quadrature_point(q)[0];
-            g.ring_weight[q] =
-              (q < 4) ? 2. * numbers::PI * g.radius[q] * fe_values.JxW(q) : 0.;
-            for (unsigned int i = 0; i < 8; ++i)
+            const Point<dim> &x = fe_values.quadrature_point(q);
+            g.radius[q] =
+              dim == 2 ? x[0] : std::sqrt(x[0] * x[0] + x[1] * x[1]);
+            g.weight[q] =
+              (q == n_gauss) ? 0. :
+              (dim == 2)     ? 2. * numbers::PI * x[0] * fe_values.JxW(q) :
+                               4. * fe_values.JxW(q);
+            for (unsigned int i = 0; i < n_cell_dofs; ++i)
               {
                 const unsigned int c = g.component[i];
                 g.N[q][i]            = fe_values.shape_value_component(i, q, c);
                 g.grad_N[q][i]       = fe_values.shape_grad_component(i, q, c);
-                // Row sums of the consistent ring mass.
-                if (q < 4)
-                  lumped_mass[dofs[i]] +=
-                    material.density * g.N[q][i] * g.ring_weight[q];
+                // Row sums of the consistent mass.
+                lumped_mass[dofs[i]] +=
+                  material.density * g.N[q][i] * g.weight[q];
               }
           }
       }
 
-    // u_r = 0 on the axis; candidates on the side and the lower end.
-    std::set<types::global_dof_index> axis;
+    // Symmetry: u_x = 0 on x = 0 (the axis in r-z), and in 3D u_y = 0 on
+    // y = 0. Candidates: the nodes of the side and of the lower end.
+    const double                      tolerance = 1e-10 * settings.radius;
+    std::set<types::global_dof_index> symmetry;
     std::set<unsigned int>            seen;
     for (const auto &cell : dof_handler.active_cell_iterators())
       for (const unsigned int f : cell->face_indices())
         if (cell->face(f)->at_boundary())
           for (const unsigned int v : cell->face(f)->vertex_indices())
             {
-              const auto face = cell->face(f);
-              if (face->boundary_id() == 0)
-                axis.insert(face->vertex_dof_index(v, 0));
-              if ((face->boundary_id() == 1 || face->boundary_id() == 2) &&
+              const auto        face = cell->face(f);
+              const Point<dim> &x    = face->vertex(v);
+              for (unsigned int d = 0; d < dim - 1; ++d)
+                if (std::abs(x[d]) < tolerance)
+                  symmetry.insert(face->vertex_dof_index(v, d));
+              double r = std::abs(x[0]);
+              if (dim == 3)
+                r = std::sqrt(x[0] * x[0] + x[1] * x[1]);
+              const bool on_end = std::abs(x[axial]) < tolerance;
+              if ((on_end || std::abs(r - settings.radius) < tolerance) &&
                   seen.insert(face->vertex_index(v)).second)
                 {
-                  candidate_dofs.push_back({{face->vertex_dof_index(v, 0),
-                                             face->vertex_dof_index(v, 1)}});
-                  candidate_positions.push_back(face->vertex(v));
-                  on_lower_end.push_back(face->vertex(v)[1] == 0.);
+                  std::array<types::global_dof_index, dim> node_dofs;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    node_dofs[d] = face->vertex_dof_index(v, d);
+                  candidate_dofs.push_back(node_dofs);
+                  candidate_positions.push_back(x);
+                  on_lower_end.push_back(on_end);
                 }
             }
     contact_states.assign(candidate_dofs.size(), ContactState::open);
     tied.assign(candidate_dofs.size(), false);
-    for (const auto dof : axis)
+    for (const auto dof : symmetry)
       constraints.add_line(dof);
     constraints.close();
 
@@ -260,10 +360,10 @@ namespace impactfe
     old_force.reinit(dof_handler.n_dofs());
     for (const auto &cell : dof_handler.active_cell_iterators())
       for (const unsigned int v : cell->vertex_indices())
-        velocity[cell->vertex_dof_index(v, 1)] = -settings.speed;
+        velocity[cell->vertex_dof_index(v, axial)] = -settings.speed;
     initial_kinetic_energy = kinetic_energy();
 
-    history_old.resize(4 * cells.size());
+    history_old.resize(n_gauss * cells.size());
     for (auto &h : history_old)
       law.initialize(h);
     history_new = history_old;
@@ -271,19 +371,20 @@ namespace impactfe
 
 
 
+  template <int dim>
   Tensor<2, 3>
-  AxisymmetricImpact::deformation_gradient(const CellGeometry          &g,
-                                           const std::array<double, 8> &u,
-                                           const unsigned int           q)
+  FiniteStrainCylinder<dim>::deformation_gradient(const CellGeometry &g,
+                                                  const CellVector   &u,
+                                                  const unsigned int  q)
   {
     Tensor<2, 3> F;
     F[0][0] = F[1][1] = F[2][2] = 1.;
-    for (unsigned int i = 0; i < 8; ++i)
+    for (unsigned int i = 0; i < n_cell_dofs; ++i)
       {
         const unsigned int c = g.component[i];
-        F[c][0] += u[i] * g.grad_N[q][i][0];
-        F[c][1] += u[i] * g.grad_N[q][i][1];
-        if (c == 0)
+        for (unsigned int d = 0; d < dim; ++d)
+          F[c][d] += u[i] * g.grad_N[q][i][d];
+        if (dim == 2 && c == 0)
           F[2][2] += u[i] * g.N[q][i] / g.radius[q];
       }
     return F;
@@ -293,25 +394,27 @@ namespace impactfe
 
   // @sect3{The internal force of a cell: F-bar, the return mapping}
   //
-  // F = [[1 + du_r/dR, du_r/dZ, 0], [du_z/dR, 1 + du_z/dZ, 0], [0, 0,
-  // 1 + u_r/R]]. F-bar (de Souza Neto, Peric, Dutko, Owen 1996): the law
-  // sees Fbar = (J0/J)^{1/3} F, J0 = det F at the cell centre, so the
-  // volume change is constant per cell and the isochoric plastic flow does
-  // not lock Q1. The internal virtual work is that of the Cauchy stress
-  // sigma = tau(Fbar)/J0 on the current configuration:
-  // f_i = int (J/J0) tau : (dF_i F^{-1}) dV0.
+  // Axisymmetric: F = [[1 + du_r/dR, du_r/dZ, 0], [du_z/dR, 1 + du_z/dZ, 0],
+  // [0, 0, 1 + u_r/R]]; 3D: F = I + Grad u. F-bar (de Souza Neto, Peric,
+  // Dutko, Owen 1996): the law sees Fbar = (J0/J)^{1/3} F, J0 = det F at the
+  // cell centre, so the volume change is constant per cell and the
+  // isochoric plastic flow does not lock Q1. The internal virtual work is
+  // that of the Cauchy stress sigma = tau(Fbar)/J0 on the current
+  // configuration: f_i = int (J/J0) tau : (dF_i F^{-1}) dV0.
+  template <int dim>
   void
-  AxisymmetricImpact::cell_force(const unsigned int                cell,
-                                 const std::array<double, 8>      &u,
-                                 std::array<double, 8>            &force,
-                                 std::vector<std::vector<double>> *history,
-                                 std::array<Branch, 4> &branches) const
+  FiniteStrainCylinder<dim>::cell_force(
+    const unsigned int                cell,
+    const CellVector                 &u,
+    CellVector                       &force,
+    std::vector<std::vector<double>> *history,
+    std::array<Branch, n_gauss>      &branches) const
   {
     const CellGeometry &g  = cells[cell];
-    const double        J0 = determinant(deformation_gradient(g, u, 4));
+    const double        J0 = determinant(deformation_gradient(g, u, n_gauss));
     force.fill(0.);
     std::vector<double> updated;
-    for (unsigned int q = 0; q < 4; ++q)
+    for (unsigned int q = 0; q < n_gauss; ++q)
       {
         const Tensor<2, 3> F = deformation_gradient(g, u, q);
         const double       J = determinant(F);
@@ -323,7 +426,7 @@ namespace impactfe
         const Tensor<2, 3> F_bar = scale * F;
         Tensor<2, 3>       P_bar;
         const bool         plastic = law.evaluate_3d(F_bar,
-                                             history_old[4 * cell + q],
+                                             history_old[n_gauss * cell + q],
                                              updated,
                                              P_bar,
                                              nullptr,
@@ -333,26 +436,29 @@ namespace impactfe
         const Tensor<2, 3> tau = P_bar * transpose(F_bar);
         const Tensor<2, 3> G =
           (J / determinant(F_bar)) * tau * transpose(invert(F));
-        for (unsigned int i = 0; i < 8; ++i)
+        for (unsigned int i = 0; i < n_cell_dofs; ++i)
           {
-            const unsigned int c = g.component[i];
-            double             virtual_work =
-              G[c][0] * g.grad_N[q][i][0] + G[c][1] * g.grad_N[q][i][1];
-            if (c == 0)
+            const unsigned int c            = g.component[i];
+            double             virtual_work = 0.;
+            for (unsigned int d = 0; d < dim; ++d)
+              virtual_work += G[c][d] * g.grad_N[q][i][d];
+            if (dim == 2 && c == 0)
               virtual_work += G[2][2] * g.N[q][i] / g.radius[q];
-            force[i] += virtual_work * g.ring_weight[q];
+            force[i] += virtual_work * g.weight[q];
           }
         if (history != nullptr)
-          (*history)[4 * cell + q] = updated;
+          (*history)[n_gauss * cell + q] = updated;
       }
   }
 
 
 
+  template <int dim>
   void
-  AxisymmetricImpact::assemble_internal_force(const Vector<double> &u,
-                                              Vector<double>       &force,
-                                              SparseMatrix<double> *tangent)
+  FiniteStrainCylinder<dim>::assemble_internal_force(
+    const Vector<double> &u,
+    Vector<double>       &force,
+    SparseMatrix<double> *tangent)
   {
     force = 0.;
     if (tangent != nullptr)
@@ -363,21 +469,21 @@ namespace impactfe
     // surface would average the elastic and the plastic tangent, and
     // Newton's method would converge only linearly.
     const double                         delta = 1e-6 * smallest_cell_size;
-    std::array<double, 8>                u_cell, f_cell, f_plus, f_minus;
-    FullMatrix<double>                   k_cell(8, 8);
-    std::vector<types::global_dof_index> dofs(8);
+    CellVector                           u_cell, f_cell, f_plus, f_minus;
+    FullMatrix<double>                   k_cell(n_cell_dofs, n_cell_dofs);
+    std::vector<types::global_dof_index> dofs(n_cell_dofs);
     for (unsigned int c = 0; c < cells.size(); ++c)
       {
-        for (unsigned int i = 0; i < 8; ++i)
+        for (unsigned int i = 0; i < n_cell_dofs; ++i)
           u_cell[i] = u[cells[c].dofs[i]];
-        std::array<Branch, 4> branches;
+        std::array<Branch, n_gauss> branches;
         branches.fill(Branch::automatic);
         cell_force(c, u_cell, f_cell, &history_new, branches);
-        for (unsigned int i = 0; i < 8; ++i)
+        for (unsigned int i = 0; i < n_cell_dofs; ++i)
           force[cells[c].dofs[i]] += f_cell[i];
         if (tangent == nullptr)
           continue;
-        for (unsigned int j = 0; j < 8; ++j)
+        for (unsigned int j = 0; j < n_cell_dofs; ++j)
           {
             const double saved = u_cell[j];
             u_cell[j]          = saved + delta;
@@ -385,7 +491,7 @@ namespace impactfe
             u_cell[j] = saved - delta;
             cell_force(c, u_cell, f_minus, nullptr, branches);
             u_cell[j] = saved;
-            for (unsigned int i = 0; i < 8; ++i)
+            for (unsigned int i = 0; i < n_cell_dofs; ++i)
               k_cell(i, j) = (f_plus[i] - f_minus[i]) / (2. * delta);
           }
         std::copy(cells[c].dofs.begin(), cells[c].dofs.end(), dofs.begin());
@@ -409,8 +515,9 @@ namespace impactfe
   // the step is made again as 2, 4, then 8 steps of h/2, h/4, h/8 (counted
   // in FiniteStrainRunTotals::step_reductions); if that fails too, the run
   // stops with a message naming the step.
+  template <int dim>
   FiniteStrainStepReport
-  AxisymmetricImpact::do_time_step()
+  FiniteStrainCylinder<dim>::do_time_step()
   {
     ++step_number;
     const double start_time = current_time;
@@ -473,8 +580,10 @@ namespace impactfe
 
 
 
+  template <int dim>
   bool
-  AxisymmetricImpact::try_step(const double h, FiniteStrainStepReport &report)
+  FiniteStrainCylinder<dim>::try_step(const double            h,
+                                      FiniteStrainStepReport &report)
   {
     const double       theta        = settings.theta;
     const double       mu           = settings.friction_coefficient;
@@ -485,27 +594,33 @@ namespace impactfe
     std::vector<unsigned int> active;
     std::vector<double>       gap0;
     auto                      gap = [&](const unsigned int k) {
-      return candidate_positions[k][1] + displacement[candidate_dofs[k][1]];
+      return candidate_positions[k][axial] +
+             displacement[candidate_dofs[k][axial]];
     };
-    // Rows held at zero velocity: u_r on the axis, and both components of
-    // the nodes tied to the wall (bilateral contact).
+    // Rows held at zero velocity: the symmetry rows (u_r on the axis), and
+    // all components of the nodes tied to the wall (bilateral contact).
     std::vector<types::global_dof_index> fixed;
     std::vector<bool> tied_normal; // per entry of fixed: a tied node's u_z
+    std::vector<bool> in_lcp(candidate_dofs.size(), false);
     for (const auto &line : constraints.get_lines())
       fixed.push_back(line.index);
     tied_normal.assign(fixed.size(), false);
     for (unsigned int k = 0; k < candidate_dofs.size(); ++k)
       {
-        const double g = gap(k), vn = velocity[candidate_dofs[k][1]];
+        const double g = gap(k), vn = velocity[candidate_dofs[k][axial]];
         if (tied[k])
           {
             fixed.insert(fixed.end(),
                          candidate_dofs[k].begin(),
                          candidate_dofs[k].end());
-            tied_normal.insert(tied_normal.end(), {false, true});
+            for (unsigned int d = 0; d < dim; ++d)
+              tied_normal.push_back(d == axial);
           }
         else if (g <= 2. * h * std::max(-vn, 0.) + 1e-12 * settings.length)
-          active.push_back(k);
+          {
+            active.push_back(k);
+            in_lcp[k] = true;
+          }
         else
           contact_states[k] = ContactState::open; // out of reach
       }
@@ -538,7 +653,7 @@ namespace impactfe
                         h * (theta * force[i] + (1. - theta) * old_force[i]);
         for (unsigned int c = 0; c < P.size(); ++c)
           residual[candidate_dofs[active[c / n_directions]]
-                                 [c % n_directions == 0 ? 1 : 0]] -= P[c];
+                                 [c % n_directions == 0 ? axial : 0]] -= P[c];
         for (unsigned int i = 0; i < fixed.size(); ++i)
           {
             tied_reaction[i]   = residual[fixed[i]];
@@ -546,7 +661,23 @@ namespace impactfe
           }
         report.residuals.push_back(residual.linfty_norm() / momentum_scale);
         if (it > 0 && report.residuals.back() < settings.newton_tolerance)
-          break;
+          {
+            // A candidate left out as out of reach that has crossed the
+            // wall after all joins the LCP, and Newton's method goes on.
+            const std::size_t n_active = active.size();
+            for (unsigned int k = 0; k < candidate_dofs.size(); ++k)
+              if (!tied[k] && !in_lcp[k] &&
+                  candidate_positions[k][axial] + u1[candidate_dofs[k][axial]] <
+                    0.)
+                {
+                  active.push_back(k);
+                  in_lcp[k] = true;
+                  ++run_totals.late_candidates;
+                }
+            if (active.size() == n_active)
+              break;
+            P.resize(active.size() * n_directions, 0.);
+          }
         report.newton_iterations = it + 1;
 
         // A = M + h^2 theta^2 K_t; rows of the axis DoFs: identity (times M).
@@ -567,7 +698,7 @@ namespace impactfe
         // without the contact impulse.
         for (unsigned int c = 0; c < P.size(); ++c)
           residual[candidate_dofs[active[c / n_directions]]
-                                 [c % n_directions == 0 ? 1 : 0]] += P[c];
+                                 [c % n_directions == 0 ? axial : 0]] += P[c];
         residual *= -1.;
         solver.vmult(dv_free, residual);
         v1 += dv_free;
@@ -580,7 +711,7 @@ namespace impactfe
         for (unsigned int c = 0; c < n; ++c)
           {
             const auto dof = candidate_dofs[active[c / n_directions]]
-                                           [c % n_directions == 0 ? 1 : 0];
+                                           [c % n_directions == 0 ? axial : 0];
             unit      = 0.;
             unit[dof] = 1.;
             if (!is_fixed[dof])
@@ -595,14 +726,14 @@ namespace impactfe
         for (unsigned int a = 0; a < n; ++a)
           {
             const auto dof = candidate_dofs[active[a / n_directions]]
-                                           [a % n_directions == 0 ? 1 : 0];
+                                           [a % n_directions == 0 ? axial : 0];
             problem.free_velocity[a] = v1[dof];
             for (unsigned int b = 0; b < n; ++b)
               problem.W(a, b) = columns[b][dof];
           }
         for (unsigned int c = 0; c < active.size(); ++c)
           problem.gap_term[c] =
-            (1. - theta) / theta * v0[candidate_dofs[active[c]][1]] +
+            (1. - theta) / theta * v0[candidate_dofs[active[c]][axial]] +
             gap(active[c]) / (h * theta);
         std::vector<ContactState> guess(active.size());
         for (unsigned int c = 0; c < active.size(); ++c)
@@ -633,7 +764,7 @@ namespace impactfe
     for (unsigned int c = 0; c < P.size(); ++c)
       {
         const auto dof = candidate_dofs[active[c / n_directions]]
-                                       [c % n_directions == 0 ? 1 : 0];
+                                       [c % n_directions == 0 ? axial : 0];
         report.contact_work +=
           P[c] * (theta * v1[dof] + (1. - theta) * v0[dof]);
         if (c % n_directions == 0)
@@ -687,16 +818,18 @@ namespace impactfe
 
 
 
+  template <int dim>
   double
-  AxisymmetricImpact::time() const
+  FiniteStrainCylinder<dim>::time() const
   {
     return current_time;
   }
 
 
 
+  template <int dim>
   const FiniteStrainRunTotals &
-  AxisymmetricImpact::totals() const
+  FiniteStrainCylinder<dim>::totals() const
   {
     return run_totals;
   }
@@ -724,18 +857,19 @@ namespace impactfe
 
 
   double
-  AxisymmetricImpact::energy_balance_error() const
+  FiniteStrainImpact::energy_balance_error() const
   {
-    return (initial_kinetic_energy - kinetic_energy() - stored_energy() -
-            plastic_work() - run_totals.contact_dissipation -
-            run_totals.scheme_dissipation) /
-           initial_kinetic_energy;
+    const FiniteStrainRunTotals &t = totals();
+    return (initial_energy() - kinetic_energy() - stored_energy() -
+            plastic_work() - t.contact_dissipation - t.scheme_dissipation) /
+           initial_energy();
   }
 
 
 
+  template <int dim>
   double
-  AxisymmetricImpact::kinetic_energy() const
+  FiniteStrainCylinder<dim>::kinetic_energy() const
   {
     double e = 0.;
     for (unsigned int i = 0; i < velocity.size(); ++i)
@@ -745,26 +879,27 @@ namespace impactfe
 
 
 
+  template <int dim>
   double
-  AxisymmetricImpact::stored_energy() const
+  FiniteStrainCylinder<dim>::stored_energy() const
   {
     // Hencky energy of the elastic part at each Gauss point; F-bar's F as
     // the law saw it.
-    double                e = 0.;
-    std::array<double, 8> u;
+    double     e = 0.;
+    CellVector u;
     for (unsigned int c = 0; c < cells.size(); ++c)
       {
         const CellGeometry &g = cells[c];
-        for (unsigned int i = 0; i < 8; ++i)
+        for (unsigned int i = 0; i < n_cell_dofs; ++i)
           u[i] = displacement[g.dofs[i]];
-        const double J0 = determinant(deformation_gradient(g, u, 4));
-        for (unsigned int q = 0; q < 4; ++q)
+        const double J0 = determinant(deformation_gradient(g, u, n_gauss));
+        for (unsigned int q = 0; q < n_gauss; ++q)
           {
             const Tensor<2, 3> F = deformation_gradient(g, u, q);
             const double       scale =
               settings.f_bar ? std::cbrt(J0 / determinant(F)) : 1.;
-            e += law.stored_energy(scale * F, history_old[4 * c + q]) *
-                 g.ring_weight[q];
+            e += law.stored_energy(scale * F, history_old[n_gauss * c + q]) *
+                 g.weight[q];
           }
       }
     return e;
@@ -772,51 +907,69 @@ namespace impactfe
 
 
 
+  template <int dim>
   double
-  AxisymmetricImpact::plastic_work() const
+  FiniteStrainCylinder<dim>::plastic_work() const
   {
     double e = 0.;
     for (unsigned int c = 0; c < cells.size(); ++c)
-      for (unsigned int q = 0; q < 4; ++q)
+      for (unsigned int q = 0; q < n_gauss; ++q)
         e += law.plastic_work(FiniteStrainJ2Model<3>::equivalent_plastic_strain(
-               history_old[4 * c + q])) *
-             cells[c].ring_weight[q];
+               history_old[n_gauss * c + q])) *
+             cells[c].weight[q];
     return e;
   }
 
 
 
+  template <int dim>
   double
-  AxisymmetricImpact::current_length() const
+  FiniteStrainCylinder<dim>::current_length() const
   {
     double top = 0.;
     for (const auto &cell : dof_handler.active_cell_iterators())
       for (const unsigned int v : cell->vertex_indices())
         top = std::max(top,
-                       cell->vertex(v)[1] +
-                         displacement[cell->vertex_dof_index(v, 1)]);
+                       cell->vertex(v)[axial] +
+                         displacement[cell->vertex_dof_index(v, axial)]);
     return top;
   }
 
 
 
+  template <int dim>
   double
-  AxisymmetricImpact::largest_candidate_radius(
+  FiniteStrainCylinder<dim>::candidate_radius(const unsigned int k) const
+  {
+    double r2 = 0.;
+    for (unsigned int d = 0; d < dim - 1; ++d)
+      {
+        const double x =
+          candidate_positions[k][d] + displacement[candidate_dofs[k][d]];
+        r2 += x * x;
+      }
+    return std::sqrt(r2);
+  }
+
+
+
+  template <int dim>
+  double
+  FiniteStrainCylinder<dim>::largest_candidate_radius(
     const std::function<bool(unsigned int)> &selected) const
   {
     double r = 0.;
     for (unsigned int k = 0; k < candidate_dofs.size(); ++k)
       if (selected(k))
-        r = std::max(r,
-                     candidate_positions[k][0] +
-                       displacement[candidate_dofs[k][0]]);
+        r = std::max(r, candidate_radius(k));
     return r;
   }
 
 
 
+  template <int dim>
   double
-  AxisymmetricImpact::footprint_radius() const
+  FiniteStrainCylinder<dim>::footprint_radius() const
   {
     return largest_candidate_radius(
       [this](const unsigned int k) { return bool(on_lower_end[k]); });
@@ -824,8 +977,9 @@ namespace impactfe
 
 
 
+  template <int dim>
   double
-  AxisymmetricImpact::contact_radius() const
+  FiniteStrainCylinder<dim>::contact_radius() const
   {
     return largest_candidate_radius([this](const unsigned int k) {
       return tied[k] || contact_states[k] != ContactState::open;
@@ -834,8 +988,9 @@ namespace impactfe
 
 
 
+  template <int dim>
   double
-  AxisymmetricImpact::max_equivalent_plastic_strain() const
+  FiniteStrainCylinder<dim>::max_equivalent_plastic_strain() const
   {
     double alpha = 0.;
     for (const auto &h : history_old)
@@ -846,31 +1001,48 @@ namespace impactfe
 
 
 
+  template <int dim>
+  double
+  FiniteStrainCylinder<dim>::cell_alpha(const unsigned int cell) const
+  {
+    double alpha = 0.;
+    for (unsigned int q = 0; q < n_gauss; ++q)
+      alpha += FiniteStrainJ2Model<3>::equivalent_plastic_strain(
+                 history_old[n_gauss * cell + q]) /
+               n_gauss;
+    return alpha;
+  }
+
+
+
+  template <int dim>
   unsigned int
-  AxisymmetricImpact::n_dofs() const
+  FiniteStrainCylinder<dim>::n_dofs() const
   {
     return dof_handler.n_dofs();
   }
 
 
 
+  template <int dim>
   double
-  AxisymmetricImpact::initial_energy() const
+  FiniteStrainCylinder<dim>::initial_energy() const
   {
     return initial_kinetic_energy;
   }
 
 
 
+  template <int dim>
   double
-  AxisymmetricImpact::axial_momentum() const
+  FiniteStrainCylinder<dim>::axial_momentum() const
   {
     std::vector<bool> counted(dof_handler.n_dofs(), false);
     double            p = 0.;
     for (const auto &cell : dof_handler.active_cell_iterators())
       for (const unsigned int v : cell->vertex_indices())
         {
-          const auto dof = cell->vertex_dof_index(v, 1);
+          const auto dof = cell->vertex_dof_index(v, axial);
           if (!counted[dof])
             p += lumped_mass[dof] * velocity[dof];
           counted[dof] = true;
@@ -880,55 +1052,79 @@ namespace impactfe
 
 
 
+  template <int dim>
   void
-  AxisymmetricImpact::write_cells_csv(const std::string &file_name) const
+  FiniteStrainCylinder<dim>::write_cells_csv(const std::string &file_name) const
   {
     std::ofstream out(file_name);
     AssertThrow(out, ExcMessage("Cannot write " + file_name));
     out << "r0,z0,r1,z1,r2,z2,r3,z3,alpha\n" << std::setprecision(8);
+    const double tolerance = 1e-10 * settings.radius;
     for (const auto &cell : dof_handler.active_cell_iterators())
-      {
-        for (const unsigned int v : {0u, 1u, 3u, 2u})
-          out << cell->vertex(v)[0] + displacement[cell->vertex_dof_index(v, 0)]
-              << ','
-              << cell->vertex(v)[1] + displacement[cell->vertex_dof_index(v, 1)]
-              << ',';
-        double alpha = 0.;
-        for (unsigned int q = 0; q < 4; ++q)
-          alpha += 0.25 * FiniteStrainJ2Model<3>::equivalent_plastic_strain(
-                            history_old[4 * cell->active_cell_index() + q]);
-        out << alpha << '\n';
-      }
+      for (const unsigned int f : cell->face_indices())
+        {
+          // The r-z section: the cell itself, or in 3D its face on y = 0,
+          // its corners sorted counter-clockwise in the x-z plane.
+          std::vector<Point<2>> corners;
+          if (dim == 2 && f == 0)
+            for (const unsigned int v : {0u, 1u, 3u, 2u})
+              corners.emplace_back(
+                cell->vertex(v)[0] + displacement[cell->vertex_dof_index(v, 0)],
+                cell->vertex(v)[axial] +
+                  displacement[cell->vertex_dof_index(v, axial)]);
+          if (dim == 3 && std::abs(cell->face(f)->center()[1]) < tolerance)
+            {
+              for (const unsigned int v : cell->face(f)->vertex_indices())
+                corners.emplace_back(
+                  cell->face(f)->vertex(v)[0] +
+                    displacement[cell->face(f)->vertex_dof_index(v, 0)],
+                  cell->face(f)->vertex(v)[axial] +
+                    displacement[cell->face(f)->vertex_dof_index(v, axial)]);
+              const Point<2> centre =
+                0.25 * (corners[0] + corners[1] + corners[2] + corners[3]);
+              std::sort(corners.begin(),
+                        corners.end(),
+                        [&](const Point<2> &a, const Point<2> &b) {
+                          return std::atan2(a[1] - centre[1],
+                                            a[0] - centre[0]) <
+                                 std::atan2(b[1] - centre[1], b[0] - centre[0]);
+                        });
+            }
+          if (corners.empty())
+            continue;
+          for (const Point<2> &x : corners)
+            out << x[0] << ',' << x[1] << ',';
+          out << cell_alpha(cell->active_cell_index()) << '\n';
+        }
   }
 
 
 
+  template <int dim>
   void
-  AxisymmetricImpact::write_vtu(const std::string &directory,
-                                const unsigned int step)
+  FiniteStrainCylinder<dim>::write_vtu(const std::string &directory,
+                                       const unsigned int step)
   {
     const std::string name =
       "solution-" + Utilities::int_to_string(step, 5) + ".vtu";
     const std::string file_name = directory + "/" + name;
-    DataOut<2>        data_out;
+    DataOut<dim>      data_out;
     data_out.attach_dof_handler(dof_handler);
     const std::vector<DataComponentInterpretation::DataComponentInterpretation>
-      vector(2, DataComponentInterpretation::component_is_part_of_vector);
+      vector(dim, DataComponentInterpretation::component_is_part_of_vector);
     data_out.add_data_vector(displacement,
-                             std::vector<std::string>(2, "displacement"),
-                             DataOut<2>::type_dof_data,
+                             std::vector<std::string>(dim, "displacement"),
+                             DataOut<dim>::type_dof_data,
                              vector);
     data_out.add_data_vector(velocity,
-                             std::vector<std::string>(2, "velocity"),
-                             DataOut<2>::type_dof_data,
+                             std::vector<std::string>(dim, "velocity"),
+                             DataOut<dim>::type_dof_data,
                              vector);
     Vector<float> alpha(triangulation.n_active_cells());
     for (unsigned int c = 0; c < cells.size(); ++c)
-      for (unsigned int q = 0; q < 4; ++q)
-        alpha[c] += 0.25 * FiniteStrainJ2Model<3>::equivalent_plastic_strain(
-                             history_old[4 * c + q]);
+      alpha[c] = cell_alpha(c);
     data_out.add_data_vector(alpha, "equivalent_plastic_strain");
-    const MappingQEulerian<2> mapping(1, dof_handler, displacement);
+    const MappingQEulerian<dim> mapping(1, dof_handler, displacement);
     data_out.build_patches(mapping);
     std::ofstream out(file_name);
     AssertThrow(out, ExcMessage("Cannot write " + file_name));
@@ -937,4 +1133,9 @@ namespace impactfe
     std::ofstream pvd(directory + "/solution.pvd");
     DataOutBase::write_pvd_record(pvd, vtu_records);
   }
+
+
+
+  template class FiniteStrainCylinder<2>;
+  template class FiniteStrainCylinder<3>;
 } // namespace impactfe
