@@ -212,5 +212,13 @@ main()
   run_case("taylor_newton_not_converged",
            with("Discretisation", "Maximum Newton iterations = 1"),
            taylor);
+  run_case("taylor_3d_with_friction",
+           with("Geometry", "Model = 3d") +
+             "subsection Contact\n  set Friction coefficient = 0.2\nend\n",
+           taylor);
+  run_case("taylor_3d_radial_cells_not_a_power_of_two",
+           with("Geometry", "Model = 3d") +
+             "subsection Geometry\n  set Radial cells = 3\nend\n",
+           taylor);
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
 }
