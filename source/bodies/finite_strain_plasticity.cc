@@ -182,8 +182,15 @@ namespace impactfe
           2. * shear_modulus * (state.log_strain[i] - volumetric / 3.);
         norm += deviator[i] * deviator[i];
       }
-    norm                   = std::sqrt(norm);
-    const double alpha_old = old_internal[6];
+    norm = std::sqrt(norm);
+    // The trial state, for the tangent.
+    const double                trial_norm     = norm;
+    const std::array<double, 3> trial_deviator = deviator;
+    std::array<double, 3>       trial_b;
+    for (unsigned int i = 0; i < 3; ++i)
+      trial_b[i] = std::exp(2. * state.log_strain[i]);
+    double       plastic_multiplier = 0.;
+    const double alpha_old          = old_internal[6];
     const double yield =
       std::sqrt(2. / 3.) * (yield_stress + hardening_modulus * alpha_old);
     double     alpha = alpha_old;
@@ -195,6 +202,7 @@ namespace impactfe
         // Radial return: exact for linear hardening, in logarithmic strain.
         const double dgamma =
           (norm - yield) / (2. * shear_modulus + 2. / 3. * hardening_modulus);
+        plastic_multiplier = dgamma;
         for (unsigned int i = 0; i < 3; ++i)
           {
             const double flow = deviator[i] / norm;
@@ -221,26 +229,81 @@ namespace impactfe
 
     if (tangent != nullptr)
       {
-        // The consistent tangent by central differences of this update, on
-        // the branch it took.
-        const Branch        taken = plastic ? Branch::plastic : Branch::elastic;
-        const double        delta = 1e-6;
-        std::vector<double> scratch(n_variables);
-        Tensor<2, 3>        P_plus, P_minus;
+        // The consistent tangent in closed form (Simo 1992), on the branch
+        // taken: P = tau F^{-T} with tau = A(eps_trial), eps_trial =
+        // ln(b_trial)/2 and b_trial = F C_p^{-1} F^T. For each direction dF,
+        //   db   = dF C_p^{-1} F^T + F C_p^{-1} dF^T,
+        //   deps = (1/2) D ln(b)[db], in the eigenbasis of b the divided
+        //          differences (ln b_i - ln b_j)/(b_i - b_j) times db_ij
+        //          (Daleckii-Krein; 1/b_i for equal eigenvalues),
+        //   dtau = K tr(deps) I + 2 G beta dev(deps) - 2 G gamma (n : deps) n,
+        //          beta = 1 - 2 G dgamma/|s_trial|, gamma = 1/(1 + H/(3 G))
+        //          - (1 - beta), n = s_trial/|s_trial| (the radial return's
+        //          algorithmic modulus; beta = 1, gamma = 0 if elastic),
+        //   dP   = dtau F^{-T} - tau F^{-T} dF^T F^{-T}.
+        const Tensor<2, 3> C_p_inverse(unpack(old_internal));
+        const Tensor<2, 3> F_inverse_transpose = transpose(F_inverse);
+        const Tensor<2, 3> tau_full(tau);
+        Tensor<2, 3>       Q; // columns: the eigenvectors of b_trial
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int d = 0; d < 3; ++d)
+            Q[d][i] = state.direction[i][d];
+        std::array<std::array<double, 3>, 3> divided;
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            {
+              const double bi = trial_b[i], bj = trial_b[j];
+              const double mean = 0.5 * (bi + bj), x = (bi - bj) / mean;
+              divided[i][j] = std::abs(x) < 1e-4 ?
+                                (1. + x * x / 12.) / mean :
+                                (std::log(bi) - std::log(bj)) / (bi - bj);
+            }
+        double       beta = 1., gamma = 0.;
+        Tensor<2, 3> flow_direction;
+        if (plastic)
+          {
+            beta  = 1. - 2. * shear_modulus * plastic_multiplier / trial_norm;
+            gamma = 1. / (1. + hardening_modulus / (3. * shear_modulus)) -
+                    (1. - beta);
+            for (unsigned int i = 0; i < 3; ++i)
+              flow_direction +=
+                (trial_deviator[i] / trial_norm) *
+                outer_product(state.direction[i], state.direction[i]);
+          }
+        const Tensor<2, 3> FC = F * C_p_inverse;
         for (unsigned int k = 0; k < 3; ++k)
           for (unsigned int l = 0; l < 3; ++l)
             {
-              Tensor<2, 3> F_perturbed = F;
-              F_perturbed[k][l] += delta;
-              evaluate_3d(
-                F_perturbed, old_internal, scratch, P_plus, nullptr, taken);
-              F_perturbed[k][l] -= 2. * delta;
-              evaluate_3d(
-                F_perturbed, old_internal, scratch, P_minus, nullptr, taken);
+              // db for dF = e_k (x) e_l: (dF C F^T)_ij = delta_ik (F C)_jl.
+              Tensor<2, 3> db;
+              for (unsigned int j = 0; j < 3; ++j)
+                {
+                  db[k][j] += FC[j][l];
+                  db[j][k] += FC[j][l];
+                }
+              Tensor<2, 3> deps = transpose(Q) * db * Q;
               for (unsigned int i = 0; i < 3; ++i)
                 for (unsigned int j = 0; j < 3; ++j)
-                  (*tangent)[i][j][k][l] =
-                    (P_plus[i][j] - P_minus[i][j]) / (2. * delta);
+                  deps[i][j] *= 0.5 * divided[i][j];
+              deps                     = Q * deps * transpose(Q);
+              const double trace       = deps[0][0] + deps[1][1] + deps[2][2];
+              const double flow_amount = scalar_product(flow_direction, deps);
+              Tensor<2, 3> dtau        = 2. * shear_modulus * beta * deps;
+              for (unsigned int i = 0; i < 3; ++i)
+                dtau[i][i] +=
+                  (bulk_modulus - 2. * shear_modulus * beta / 3.) * trace;
+              dtau -= 2. * shear_modulus * gamma * flow_amount * flow_direction;
+              // F^{-T} dF^T F^{-T} for dF = e_k (x) e_l.
+              Tensor<2, 3> dF_inverse_transpose;
+              for (unsigned int i = 0; i < 3; ++i)
+                for (unsigned int j = 0; j < 3; ++j)
+                  dF_inverse_transpose[i][j] =
+                    F_inverse_transpose[i][l] * F_inverse_transpose[k][j];
+              const Tensor<2, 3> dP =
+                dtau * F_inverse_transpose - tau_full * dF_inverse_transpose;
+              for (unsigned int i = 0; i < 3; ++i)
+                for (unsigned int j = 0; j < 3; ++j)
+                  (*tangent)[i][j][k][l] = dP[i][j];
             }
       }
     return plastic;

@@ -14,7 +14,10 @@
 // - objectivity: rigid rotations up to 170 degrees of the plastically
 //   deformed point change tau to Q tau Q^T and nothing else;
 // - the small-strain limit: P and dP/dF at F = I + 1e-7 G are Lame's
-//   stress and elasticity tensor (3D and plane strain).
+//   stress and elasticity tensor (3D and plane strain);
+// - the closed-form consistent tangent equals central differences of the
+//   update in F (on the branch taken) at elastic and plastic points, with
+//   distinct, two equal and three equal eigenvalues of b_trial.
 
 #include <deal.II/base/tensor.h>
 
@@ -301,6 +304,81 @@ namespace
             << ", dP/dF vs Lame's tensor < 1e-6 E: "
             << (tangent_error < 1e-6 ? "yes" : "no") << std::endl;
   }
+
+
+  // The closed-form tangent against central differences of P: at F = I
+  // (three equal eigenvalues), a uniaxial stretch (two equal), a general
+  // F, that F rotated and a small general F (elastic from a virgin
+  // point), each from a virgin and from a plastically
+  // deformed point. The step 1e-6 leaves a difference error of about 1e-9
+  // relative; the bound is 1e-6 of the largest entry.
+  void
+  check_closed_form_tangent()
+  {
+    const FiniteStrainJ2Model<3> law(copper(), hardening());
+    std::vector<double>          virgin, deformed, scratch;
+    law.initialize(virgin);
+    Tensor<2, 3> P;
+    {
+      Tensor<2, 3> F;
+      F[0][0] = 1.3;
+      F[1][1] = F[2][2] = 1. / std::sqrt(1.3);
+      F[0][1]           = 0.2;
+      law.evaluate_3d(F, virgin, deformed, P, nullptr);
+    }
+    const double rotation = 0.7;
+    Tensor<2, 3> R;
+    R[0][0] = R[1][1] = std::cos(rotation);
+    R[0][1]           = -std::sin(rotation);
+    R[1][0]           = std::sin(rotation);
+    R[2][2]           = 1.;
+    std::vector<Tensor<2, 3>> gradients(5, unit_symmetric_tensor<3>());
+    gradients[1][0][0]     = 1.01;
+    gradients[2]           = gradients[1];
+    gradients[2][0][1]     = 0.003;
+    gradients[2][2][1]     = -0.004;
+    gradients[2][1][1]     = 0.998;
+    gradients[3]           = R * gradients[2];
+    unsigned int n_plastic = 0, n_elastic = 0;
+    double       worst = 0.;
+    for (const auto *internal : {&virgin, &deformed})
+      for (const Tensor<2, 3> &F : gradients)
+        {
+          Tensor<4, 3> tangent;
+          const bool   plastic =
+            law.evaluate_3d(F, *internal, scratch, P, &tangent);
+          ++(plastic ? n_plastic : n_elastic);
+          const auto branch  = plastic ?
+                                 FiniteStrainJ2Model<3>::Branch::plastic :
+                                 FiniteStrainJ2Model<3>::Branch::elastic;
+          double     largest = 0., difference = 0.;
+          for (unsigned int k = 0; k < 3; ++k)
+            for (unsigned int l = 0; l < 3; ++l)
+              {
+                Tensor<2, 3> F_plus = F, F_minus = F, P_plus, P_minus;
+                F_plus[k][l] += 1e-6;
+                F_minus[k][l] -= 1e-6;
+                law.evaluate_3d(
+                  F_plus, *internal, scratch, P_plus, nullptr, branch);
+                law.evaluate_3d(
+                  F_minus, *internal, scratch, P_minus, nullptr, branch);
+                for (unsigned int i = 0; i < 3; ++i)
+                  for (unsigned int j = 0; j < 3; ++j)
+                    {
+                      const double numerical =
+                        (P_plus[i][j] - P_minus[i][j]) / 2e-6;
+                      largest = std::max(largest, std::abs(numerical));
+                      difference =
+                        std::max(difference,
+                                 std::abs(numerical - tangent[i][j][k][l]));
+                    }
+              }
+          worst = std::max(worst, difference / largest);
+        }
+    deallog << "Closed-form tangent at " << n_elastic << " elastic and "
+            << n_plastic << " plastic points = central differences to 1e-6: "
+            << (worst < 1e-6 ? "yes" : "no") << std::endl;
+  }
 } // namespace
 
 int
@@ -311,6 +389,7 @@ main()
   check_objectivity();
   check_small_strain_limit<3>();
   check_small_strain_limit<2>();
+  check_closed_form_tangent();
   try
     {
       const FiniteStrainJ2Model<1> law(copper(), hardening());

@@ -60,10 +60,11 @@ namespace impactfe
    * objectivity under large rotations, and the small-strain limit.
    *
    * The tangent dP/dF is the derivative of this algorithmic update (the
-   * consistent tangent), computed by central differences of the update in
-   * the nine components of F with the same start-of-step variables (relative
-   * accuracy about 1e-9, enough for Newton's quadratic convergence down to
-   * that level). Simo's closed form is not implemented.
+   * consistent tangent), in closed form: the radial return's algorithmic
+   * modulus (Simo & Hughes 1998, box 3.2) composed with the derivative of
+   * the matrix logarithm in the eigenbasis of b_trial (divided differences
+   * of ln b_i, their limit for equal eigenvalues) and of tau F^{-T}.
+   * tests/bodies/finite_strain_j2 compares it with central differences.
    *
    * dim = 3 is the law itself; dim = 2 is plane strain (F_zz = 1); the
    * axisymmetric case uses evaluate_3d() with F = diag(F_rz, F_thth). dim = 1
