@@ -94,6 +94,12 @@ namespace impactfe
                       Patterns::Bool(),
                       "Use F-bar (false: plain Q1, which locks under the "
                       "isochoric plastic flow).");
+    prm.declare_entry("Tangent",
+                      "closed form",
+                      Patterns::Selection("closed form|finite differences"),
+                      "The consistent tangent of Newton's method: closed "
+                      "form, or central differences of the cell forces "
+                      "(16-48 cell evaluations per cell, for checking).");
     prm.declare_entry("Newton tolerance",
                       "1e-9",
                       Patterns::Double(),
@@ -137,6 +143,7 @@ namespace impactfe
     prm.leave_subsection();
     prm.enter_subsection("Discretisation");
     f_bar                 = prm.get_bool("F-bar");
+    closed_form_tangent   = prm.get("Tangent") == "closed form";
     newton_tolerance      = prm.get_double("Newton tolerance");
     max_newton_iterations = prm.get_integer("Maximum Newton iterations");
     prm.leave_subsection();
@@ -402,18 +409,53 @@ namespace impactfe
   // that of the Cauchy stress sigma = tau(Fbar)/J0 on the current
   // configuration: f_i = int (J/J0) tau : (dF_i F^{-1}) dV0.
   template <int dim>
+  Tensor<2, 3>
+  FiniteStrainCylinder<dim>::shape_gradient(const CellGeometry &g,
+                                            const unsigned int  q,
+                                            const unsigned int  i)
+  {
+    Tensor<2, 3>       D;
+    const unsigned int c = g.component[i];
+    for (unsigned int d = 0; d < dim; ++d)
+      D[c][d] = g.grad_N[q][i][d];
+    if (dim == 2 && c == 0)
+      D[2][2] = g.N[q][i] / g.radius[q];
+    return D;
+  }
+
+
+
+  // The closed-form tangent: with s = (J0/J)^{1/3}, the force density is
+  // G = (J/J0)^{2/3} Pbar(Fbar), so for the variation D_j = dF/du_j,
+  //   dG = (J/J0)^{2/3} (A : dFbar - (2/3) d Pbar),
+  //   dFbar = s D_j + (s/3) d F,  d = F0^{-T} : D0_j - F^{-T} : D_j,
+  // with A = dP/dF of the law at Fbar and D0_j at the centre (plain Q1:
+  // dG = A : D_j).
+  template <int dim>
   void
   FiniteStrainCylinder<dim>::cell_force(
     const unsigned int                cell,
     const CellVector                 &u,
     CellVector                       &force,
     std::vector<std::vector<double>> *history,
-    std::array<Branch, n_gauss>      &branches) const
+    std::array<Branch, n_gauss>      &branches,
+    FullMatrix<double>               *tangent) const
   {
     const CellGeometry &g  = cells[cell];
-    const double        J0 = determinant(deformation_gradient(g, u, n_gauss));
+    const Tensor<2, 3>  F0 = deformation_gradient(g, u, n_gauss);
+    const double        J0 = determinant(F0);
     force.fill(0.);
+    CellVector centre_variation;
+    if (tangent != nullptr)
+      {
+        *tangent                                = 0.;
+        const Tensor<2, 3> F0_inverse_transpose = transpose(invert(F0));
+        for (unsigned int j = 0; j < n_cell_dofs; ++j)
+          centre_variation[j] =
+            scalar_product(F0_inverse_transpose, shape_gradient(g, n_gauss, j));
+      }
     std::vector<double> updated;
+    Tensor<4, 3>        A;
     for (unsigned int q = 0; q < n_gauss; ++q)
       {
         const Tensor<2, 3> F = deformation_gradient(g, u, q);
@@ -429,7 +471,7 @@ namespace impactfe
                                              history_old[n_gauss * cell + q],
                                              updated,
                                              P_bar,
-                                             nullptr,
+                                             tangent != nullptr ? &A : nullptr,
                                              branches[q]);
         if (branches[q] == Branch::automatic)
           branches[q] = plastic ? Branch::plastic : Branch::elastic;
@@ -448,6 +490,42 @@ namespace impactfe
           }
         if (history != nullptr)
           (*history)[n_gauss * cell + q] = updated;
+        if (tangent == nullptr)
+          continue;
+
+        const Tensor<2, 3> F_inverse_transpose = transpose(invert(F));
+        const double       ratio = settings.f_bar ? 1. / (scale * scale) : 1.;
+        for (unsigned int j = 0; j < n_cell_dofs; ++j)
+          {
+            const Tensor<2, 3> D      = shape_gradient(g, q, j);
+            Tensor<2, 3>       dF_bar = D, dG;
+            double             d      = 0.;
+            if (settings.f_bar)
+              {
+                d =
+                  centre_variation[j] - scalar_product(F_inverse_transpose, D);
+                dF_bar = scale * D + (scale * d / 3.) * F;
+              }
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int b = 0; b < 3; ++b)
+                {
+                  double sum = -2. / 3. * d * P_bar[a][b];
+                  for (unsigned int k = 0; k < 3; ++k)
+                    for (unsigned int l = 0; l < 3; ++l)
+                      sum += A[a][b][k][l] * dF_bar[k][l];
+                  dG[a][b] = ratio * sum;
+                }
+            for (unsigned int i = 0; i < n_cell_dofs; ++i)
+              {
+                const unsigned int c     = g.component[i];
+                double             value = 0.;
+                for (unsigned int e = 0; e < dim; ++e)
+                  value += dG[c][e] * g.grad_N[q][i][e];
+                if (dim == 2 && c == 0)
+                  value += dG[2][2] * g.N[q][i] / g.radius[q];
+                (*tangent)(i, j) += value * g.weight[q];
+              }
+          }
       }
   }
 
@@ -463,11 +541,12 @@ namespace impactfe
     force = 0.;
     if (tangent != nullptr)
       *tangent = 0.;
-    // The consistent tangent by central differences of the cell force
-    // (F-bar's dependence on the centre included), each Gauss point on the
-    // branch of the return mapping it took: a difference across the yield
-    // surface would average the elastic and the plastic tangent, and
-    // Newton's method would converge only linearly.
+    // The consistent tangent in closed form (cell_force()), or by central
+    // differences of the cell force (F-bar's dependence on the centre
+    // included), each Gauss point on the branch of the return mapping it
+    // took: a difference across the yield surface would average the elastic
+    // and the plastic tangent, and Newton's method would converge only
+    // linearly.
     const double                         delta = 1e-6 * smallest_cell_size;
     CellVector                           u_cell, f_cell, f_plus, f_minus;
     FullMatrix<double>                   k_cell(n_cell_dofs, n_cell_dofs);
@@ -478,12 +557,21 @@ namespace impactfe
           u_cell[i] = u[cells[c].dofs[i]];
         std::array<Branch, n_gauss> branches;
         branches.fill(Branch::automatic);
-        cell_force(c, u_cell, f_cell, &history_new, branches);
+        cell_force(c,
+                   u_cell,
+                   f_cell,
+                   &history_new,
+                   branches,
+                   (tangent != nullptr && settings.closed_form_tangent) ?
+                     &k_cell :
+                     nullptr);
         for (unsigned int i = 0; i < n_cell_dofs; ++i)
           force[cells[c].dofs[i]] += f_cell[i];
         if (tangent == nullptr)
           continue;
-        for (unsigned int j = 0; j < n_cell_dofs; ++j)
+        for (unsigned int j = 0;
+             j < n_cell_dofs && !settings.closed_form_tangent;
+             ++j)
           {
             const double saved = u_cell[j];
             u_cell[j]          = saved + delta;

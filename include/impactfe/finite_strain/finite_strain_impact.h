@@ -14,6 +14,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
@@ -107,9 +108,11 @@ namespace impactfe
       double       radius = 3.2e-3, length = 32.4e-3, speed = 227.;
       unsigned int n_radial = 5, n_axial = 50;
       double       theta = 1., time_step = 2e-7, end_time = 80e-6;
-      double       friction_coefficient  = 0.;
-      bool         bilateral             = false;
-      bool         f_bar                 = true;
+      double       friction_coefficient = 0.;
+      bool         bilateral            = false;
+      bool         f_bar                = true;
+      /// Newton's tangent in closed form (false: by central differences).
+      bool         closed_form_tangent   = true;
       double       newton_tolerance      = 1e-9;
       unsigned int max_newton_iterations = 25;
 
@@ -296,7 +299,7 @@ namespace impactfe
     /// converge (the state is then partly updated: the caller restores it).
     bool
     try_step(const double h, FiniteStrainStepReport &report);
-    /** f_int(u) (and its tangent by element central differences). */
+    /** f_int(u) and, if @p tangent is not null, its tangent. */
     void
     assemble_internal_force(const Vector<double> &displacement,
                             Vector<double>       &force,
@@ -306,12 +309,20 @@ namespace impactfe
     /// (one vector per Gauss point) if not null. A Gauss point whose entry
     /// of @p branches is automatic gets the return-mapping branch it took;
     /// the others are evaluated on the branch given.
+    /// With @p tangent not null, also the cell's consistent tangent in
+    /// closed form.
     void
     cell_force(const unsigned int                cell,
                const CellVector                 &cell_displacement,
                CellVector                       &force,
                std::vector<std::vector<double>> *history,
-               std::array<Branch, n_gauss>      &branches) const;
+               std::array<Branch, n_gauss>      &branches,
+               FullMatrix<double>               *tangent = nullptr) const;
+    /// dF/du_i at point @p q of a cell (hoop term included).
+    static Tensor<2, 3>
+    shape_gradient(const CellGeometry &cell,
+                   const unsigned int  q,
+                   const unsigned int  i);
     /// Mean equivalent plastic strain of a cell.
     double
     cell_alpha(const unsigned int cell) const;
