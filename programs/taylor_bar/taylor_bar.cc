@@ -260,6 +260,7 @@ namespace TaylorBarProgram
       .add("energy_balance_relative_error", worst_balance)
       .add("newton_iterations_per_step", t.newton_iterations_per_step())
       .add("newton_convergence_order", t.median_convergence_order())
+      .add("newton_quadratic_fraction", t.quadratic_fraction())
       .add("newton_step_reductions", t.step_reductions)
       .add("late_contact_candidates", t.late_candidates)
       .add("max_contact_violation", t.worst_contact_violation)

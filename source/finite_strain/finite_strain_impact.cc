@@ -673,6 +673,8 @@ namespace impactfe
   FiniteStrainCylinder<dim>::try_step(const double            h,
                                       FiniteStrainStepReport &report)
   {
+    // A report of this try only (substeps reuse the caller's).
+    report                          = FiniteStrainStepReport();
     const double       theta        = settings.theta;
     const double       mu           = settings.friction_coefficient;
     const unsigned int n_directions = mu > 0. ? 2 : 1;
@@ -680,7 +682,6 @@ namespace impactfe
     // Candidates that can touch during the step: gap below twice the
     // distance they approach at their current speed.
     std::vector<unsigned int> active;
-    std::vector<double>       gap0;
     auto                      gap = [&](const unsigned int k) {
       return candidate_positions[k][axial] +
              displacement[candidate_dofs[k][axial]];
@@ -892,11 +893,18 @@ namespace impactfe
     t.scheme_dissipation += report.scheme_dissipation;
     t.worst_contact_violation =
       std::max(t.worst_contact_violation, report.contact_violation);
+    // Newton's rate near the solution: pairs of successive residuals with
+    // the first below 1e-3 and the second above the round-off floor.
     const auto &r = report.residuals;
-    for (unsigned int k = 2; k < r.size(); ++k)
-      if (r[k] > 1e-12 && r[k - 1] < 1e-2 && r[k - 1] < r[k - 2])
-        t.convergence_orders.push_back(std::log(r[k] / r[k - 1]) /
-                                       std::log(r[k - 1] / r[k - 2]));
+    for (unsigned int k = 1; k < r.size(); ++k)
+      if (r[k - 1] < 1e-3 && r[k] > 1e-12)
+        {
+          ++t.pairs_near_solution;
+          t.quadratic_pairs += (r[k] <= 10. * r[k - 1] * r[k - 1]) ? 1 : 0;
+          if (k >= 2 && r[k - 1] < r[k - 2])
+            t.convergence_orders.push_back(std::log(r[k] / r[k - 1]) /
+                                           std::log(r[k - 1] / r[k - 2]));
+        }
     velocity     = v1;
     displacement = u1;
     old_force    = force;
@@ -928,6 +936,16 @@ namespace impactfe
   FiniteStrainRunTotals::newton_iterations_per_step() const
   {
     return steps > 0 ? double(newton_iterations) / steps : 0.;
+  }
+
+
+
+  double
+  FiniteStrainRunTotals::quadratic_fraction() const
+  {
+    return pairs_near_solution > 0 ?
+             double(quadratic_pairs) / pairs_near_solution :
+             1.;
   }
 
 

@@ -66,13 +66,21 @@ namespace impactfe
     /// Energy taken out by the contact impulses and by the scheme [J].
     double contact_dissipation = 0., scheme_dissipation = 0.;
     double worst_contact_violation = 0.;
-    /// Newton's order log(r_k/r_k-1)/log(r_k-1/r_k-2) near the solution.
+    /// Newton's order log(r_k/r_k-1)/log(r_k-1/r_k-2) near the solution
+    /// (r_k-1 < 1e-3, r_k > 1e-12; relative residuals).
     std::vector<double> convergence_orders;
+    /// The pairs (r_k-1 < 1e-3, r_k > 1e-12) of successive residuals, and
+    /// those with r_k <= 10 r_k-1^2: quadratic convergence.
+    unsigned int pairs_near_solution = 0, quadratic_pairs = 0;
 
     double
     newton_iterations_per_step() const;
     double
     median_convergence_order() const;
+    /// quadratic_pairs / pairs_near_solution (1 if there are none). Below 1
+    /// where a Gauss point or a contact changes state between iterates.
+    double
+    quadratic_fraction() const;
   };
 
 
