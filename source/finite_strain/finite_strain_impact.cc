@@ -12,10 +12,10 @@
 #include <deal.II/grid/manifold_lib.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/sparse_direct.h>
 
 #include <deal.II/numerics/data_out.h>
 
+#include <impactfe/dynamics/sparse_lu.h>
 #include <impactfe/finite_strain/finite_strain_impact.h>
 #include <impactfe/utilities/program.h>
 
@@ -213,6 +213,7 @@ namespace impactfe
     , material(material)
     , law(material, plasticity)
     , fe(FE_Q<dim>(1), dim)
+    , step_solver(std::make_unique<SparseLU>())
   {
     settings.check();
     AssertThrow((dim == 3) == (settings.model == Model::three_dimensional),
@@ -220,6 +221,11 @@ namespace impactfe
                            "> does not make this Geometry/Model."));
     setup_system();
   }
+
+
+
+  template <int dim>
+  FiniteStrainCylinder<dim>::~FiniteStrainCylinder() = default;
 
 
 
@@ -686,25 +692,43 @@ namespace impactfe
       return candidate_positions[k][axial] +
              displacement[candidate_dofs[k][axial]];
     };
-    // Rows held at zero velocity: the symmetry rows (u_r on the axis), and
-    // all components of the nodes tied to the wall (bilateral contact).
+    // Rows held at a given velocity, their reaction being their residual:
+    // the symmetry rows (u_r on the axis) and all components of the nodes
+    // tied to the wall (bilateral contact), at zero; and, frictionless,
+    // the normal rows of the contacts closed at the end of the last step,
+    // "pinned" at the velocity that keeps them closed (w_N = 0). A pinned
+    // contact whose reaction turns negative is released to the LCP. So the
+    // LCP and its columns (one solve each) cover only the contacts that
+    // may change state, not the whole contact zone.
+    const Vector<double>                 v0 = velocity, u0 = displacement;
     std::vector<types::global_dof_index> fixed;
-    std::vector<bool> tied_normal; // per entry of fixed: a tied node's u_z
+    std::vector<double>                  held_velocity;
+    std::vector<bool> normal_row; // per entry of fixed: a contact's u_z
+    std::vector<int>  pinned;     // per entry of fixed: the candidate or -1
     std::vector<bool> in_lcp(candidate_dofs.size(), false);
+    const auto        hold = [&](const types::global_dof_index dof,
+                          const double                  value,
+                          const bool                    normal,
+                          const int                     candidate) {
+      fixed.push_back(dof);
+      held_velocity.push_back(value);
+      normal_row.push_back(normal);
+      pinned.push_back(candidate);
+    };
     for (const auto &line : constraints.get_lines())
-      fixed.push_back(line.index);
-    tied_normal.assign(fixed.size(), false);
+      hold(line.index, 0., false, -1);
     for (unsigned int k = 0; k < candidate_dofs.size(); ++k)
       {
-        const double g = gap(k), vn = velocity[candidate_dofs[k][axial]];
+        const auto   normal_dof = candidate_dofs[k][axial];
+        const double g = gap(k), vn = velocity[normal_dof];
         if (tied[k])
-          {
-            fixed.insert(fixed.end(),
-                         candidate_dofs[k].begin(),
-                         candidate_dofs[k].end());
-            for (unsigned int d = 0; d < dim; ++d)
-              tied_normal.push_back(d == axial);
-          }
+          for (unsigned int d = 0; d < dim; ++d)
+            hold(candidate_dofs[k][d], 0., d == axial, -1);
+        else if (mu == 0. && is_closed(contact_states[k]))
+          hold(normal_dof,
+               -(1. - theta) / theta * v0[normal_dof] - g / (h * theta),
+               true,
+               k);
         else if (g <= 2. * h * std::max(-vn, 0.) + 1e-12 * settings.length)
           {
             active.push_back(k);
@@ -716,14 +740,12 @@ namespace impactfe
     std::vector<bool> is_fixed(displacement.size(), false);
     for (const auto dof : fixed)
       is_fixed[dof] = true;
-    // Tied nodes stop at once; their reaction is their residual row.
     std::vector<double> tied_reaction(fixed.size());
 
-    const Vector<double> v0 = velocity, u0 = displacement;
-    Vector<double>       v1 = v0, u1(u0.size()), force(u0.size()),
+    Vector<double> v1 = v0, u1(u0.size()), force(u0.size()),
                    residual(u0.size()), dv_free(u0.size());
-    for (const auto dof : fixed)
-      v1[dof] = 0.;
+    for (unsigned int i = 0; i < fixed.size(); ++i)
+      v1[fixed[i]] = held_velocity[i];
     std::vector<Vector<double>> columns;
     std::vector<double>         P;
     lcp::ContactProblem         problem;
@@ -752,16 +774,30 @@ namespace impactfe
         if (it > 0 && report.residuals.back() < settings.newton_tolerance)
           {
             // A candidate left out as out of reach that has crossed the
-            // wall after all joins the LCP, and Newton's method goes on.
+            // wall after all joins the LCP (tied and pinned ones are held
+            // at their place), and Newton's method goes on.
             const std::size_t n_active = active.size();
             for (unsigned int k = 0; k < candidate_dofs.size(); ++k)
-              if (!tied[k] && !in_lcp[k] &&
+              if (!in_lcp[k] && !is_fixed[candidate_dofs[k][axial]] &&
                   candidate_positions[k][axial] + u1[candidate_dofs[k][axial]] <
                     0.)
                 {
                   active.push_back(k);
                   in_lcp[k] = true;
                   ++run_totals.late_candidates;
+                }
+            // A pinned contact pulling on the wall is released.
+            for (unsigned int i = fixed.size(); i-- > 0;)
+              if (pinned[i] >= 0 && tied_reaction[i] < 0.)
+                {
+                  active.push_back(pinned[i]);
+                  in_lcp[pinned[i]]  = true;
+                  is_fixed[fixed[i]] = false;
+                  for (auto *list : {&held_velocity, &tied_reaction})
+                    list->erase(list->begin() + i);
+                  fixed.erase(fixed.begin() + i);
+                  normal_row.erase(normal_row.begin() + i);
+                  pinned.erase(pinned.begin() + i);
                 }
             if (active.size() == n_active)
               break;
@@ -781,15 +817,14 @@ namespace impactfe
               entry->value() = 0.;
             step_matrix.set(dof, dof, lumped_mass[dof]);
           }
-        SparseDirectUMFPACK solver;
-        solver.initialize(step_matrix);
+        step_solver->factorize(step_matrix, "the Newton matrix");
         // The whole impulse is the unknown: free step from the residual
         // without the contact impulse.
         for (unsigned int c = 0; c < P.size(); ++c)
           residual[candidate_dofs[active[c / n_directions]]
                                  [c % n_directions == 0 ? axial : 0]] += P[c];
         residual *= -1.;
-        solver.vmult(dv_free, residual);
+        step_solver->solve(residual, dv_free);
         v1 += dv_free;
         if (active.empty())
           continue;
@@ -804,7 +839,7 @@ namespace impactfe
             unit      = 0.;
             unit[dof] = 1.;
             if (!is_fixed[dof])
-              solver.vmult(columns[c], unit);
+              step_solver->solve(unit, columns[c]);
           }
         problem.n_directions = n_directions;
         problem.n_contacts   = active.size();
@@ -862,14 +897,20 @@ namespace impactfe
             report.n_closed += P[c] > 0. ? 1 : 0;
           }
       }
-    // Tied nodes: their reaction (the axis rows' is zero by symmetry).
+    // Tied and pinned nodes: their reaction (the axis rows' is zero by
+    // symmetry).
     for (unsigned int i = constraints.n_constraints(); i < fixed.size(); ++i)
       {
         const auto dof = fixed[i];
         report.contact_work +=
           tied_reaction[i] * (theta * v1[dof] + (1. - theta) * v0[dof]);
-        if (tied_normal[i])
+        if (normal_row[i])
           report.normal_impulse += tied_reaction[i];
+        if (pinned[i] >= 0)
+          {
+            contact_states[pinned[i]] = ContactState::stick;
+            ++report.n_closed;
+          }
       }
     if (settings.bilateral)
       for (unsigned int c = 0; c < P.size(); c += n_directions)

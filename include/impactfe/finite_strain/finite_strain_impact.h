@@ -33,6 +33,8 @@ namespace impactfe
 {
   using namespace dealii;
 
+  class SparseLU;
+
   /** What one time step did. */
   struct FiniteStrainStepReport
   {
@@ -227,6 +229,7 @@ namespace impactfe
     FiniteStrainCylinder(const Settings             &settings,
                          const MaterialParameters   &material,
                          const PlasticityParameters &plasticity);
+    ~FiniteStrainCylinder() override;
 
     FiniteStrainStepReport
     do_time_step() override;
@@ -335,18 +338,20 @@ namespace impactfe
     double
     cell_alpha(const unsigned int cell) const;
 
-    Settings                         settings;
-    MaterialParameters               material;
-    FiniteStrainJ2Model<3>           law;
-    Triangulation<dim>               triangulation;
-    std::vector<CellGeometry>        cells;
-    double                           smallest_cell_size     = 0.;
-    double                           initial_kinetic_energy = 0.;
-    FESystem<dim>                    fe;
-    DoFHandler<dim>                  dof_handler;
-    AffineConstraints<double>        constraints;
-    SparsityPattern                  sparsity;
-    SparseMatrix<double>             step_matrix;
+    Settings                  settings;
+    MaterialParameters        material;
+    FiniteStrainJ2Model<3>    law;
+    Triangulation<dim>        triangulation;
+    std::vector<CellGeometry> cells;
+    double                    smallest_cell_size     = 0.;
+    double                    initial_kinetic_energy = 0.;
+    FESystem<dim>             fe;
+    DoFHandler<dim>           dof_handler;
+    AffineConstraints<double> constraints;
+    SparsityPattern           sparsity;
+    SparseMatrix<double>      step_matrix;
+    /// LU of the Newton matrix; the analysis is kept for all steps.
+    std::unique_ptr<SparseLU>        step_solver;
     Vector<double>                   lumped_mass;
     Vector<double>                   displacement, velocity, old_force;
     std::vector<std::vector<double>> history_old, history_new;
