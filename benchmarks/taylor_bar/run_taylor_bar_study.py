@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """The Taylor bar (issue 13, the paper's section 6.4): taylor_bar on three
-meshes (time step halved with the cell size), plain Q1 against F-bar, and
-Coulomb friction at the wall, against the published range of finite-element
+meshes (time step halved with the cell size), plain Q1 against F-bar,
+Coulomb friction and a bilateral wall, and the 3D quarter model on two
+meshes (the check of the axisymmetric one), against the published range of finite-element
 results (final length 21.42-21.7 mm, footprint radius 7.0-7.1 mm, largest
 equivalent plastic strain near 3, as collected in issue 13).
 
@@ -30,21 +31,26 @@ from matplotlib.collections import PolyCollection  # noqa: E402
 PRM = "parameter_files/taylor_bar.prm"
 PUBLISHED = {"final_length_mm": (21.42, 21.7),
              "footprint_radius_mm": (7.0, 7.1)}
-# name, radial cells, axial cells, time step, F-bar, mu, bilateral contact
-CASES = [("mesh 5x50", 5, 50, 2e-7, True, 0., False),
-         ("mesh 10x100", 10, 100, 1e-7, True, 0., False),
-         ("mesh 20x200", 20, 200, 5e-8, True, 0., False),
-         ("plain Q1 10x100", 10, 100, 1e-7, False, 0., False),
-         ("mu 0.1 10x100", 10, 100, 1e-7, True, 0.1, False),
-         ("mu 1 10x100", 10, 100, 1e-7, True, 1.0, False),
-         ("bilateral 10x100", 10, 100, 1e-7, True, 0., True)]
+# name, radial cells, axial cells, time step, F-bar, mu, bilateral contact,
+# model
+CASES = [("mesh 5x50", 5, 50, 2e-7, True, 0., False, "axisymmetric"),
+         ("mesh 10x100", 10, 100, 1e-7, True, 0., False, "axisymmetric"),
+         ("mesh 20x200", 20, 200, 5e-8, True, 0., False, "axisymmetric"),
+         ("plain Q1 10x100", 10, 100, 1e-7, False, 0., False, "axisymmetric"),
+         ("mu 0.1 10x100", 10, 100, 1e-7, True, 0.1, False, "axisymmetric"),
+         ("mu 1 10x100", 10, 100, 1e-7, True, 1.0, False, "axisymmetric"),
+         ("bilateral 10x100", 10, 100, 1e-7, True, 0., True, "axisymmetric"),
+         ("3D quarter 4x50", 4, 50, 2e-7, True, 0., False, "3d"),
+         ("3D quarter 8x100", 8, 100, 1e-7, True, 0., False, "3d")]
 KEYS = ["final_length_mm", "footprint_radius_mm", "contact_radius_mm",
         "max_equivalent_plastic_strain", "energy_balance_relative_error",
-        "newton_iterations_per_step", "max_contact_violation", "cpu_seconds"]
+        "newton_iterations_per_step", "newton_quadratic_fraction",
+        "max_contact_violation", "n_dofs", "cpu_seconds"]
 
 
-def overrides(nr, nz, h, fbar, mu, bilateral):
-    return (f"subsection Geometry\n  set Radial cells = {nr}\n"
+def overrides(nr, nz, h, fbar, mu, bilateral, model):
+    return (f"subsection Geometry\n  set Model = {model}\n"
+            f"  set Radial cells = {nr}\n"
             f"  set Axial cells = {nz}\nend\n"
             f"subsection Time\n  set Time step = {h}\nend\n"
             f"subsection Discretisation\n  set F-bar = {'true' if fbar else 'false'}\nend\n"
@@ -63,10 +69,12 @@ def read_cells(path):
 
 
 def figure(results, out):
-    fig, axes = plt.subplots(1, 3, figsize=(11, 6), sharey=True)
+    fig, axes = plt.subplots(1, 4, figsize=(14, 6), sharey=True)
     for ax, (title, name) in zip(axes, [("initial mesh (10x100)", "mesh 10x100"),
                                         ("t = 80 us, F-bar, frictionless", "mesh 20x200"),
-                                        ("t = 80 us, plain Q1 (locks)", "plain Q1 10x100")]):
+                                        ("t = 80 us, plain Q1 (locks)", "plain Q1 10x100"),
+                                        ("t = 80 us, 3D quarter 8x100,\nsection y = 0",
+                                         "3D quarter 8x100")]):
         kind = "cells_initial.csv" if title.startswith("initial") else "cells_final.csv"
         polygons, alpha = read_cells(os.path.join(results[name]["dir"], kind))
         mirrored = [[(-r, z) for r, z in p] for p in polygons]
@@ -96,11 +104,12 @@ def main():
     args = parser.parse_args()
     cases = CASES[:2] if args.quick else CASES
     results = {}
-    for name, nr, nz, h, fbar, mu, bilateral in cases:
+    for name, nr, nz, h, fbar, mu, bilateral, model in cases:
         directory = os.path.join("results", "taylor_bar_study",
                                  name.replace(" ", "_"))
         summary = runs.run(args.build, "taylor_bar", os.path.abspath(PRM),
-                           directory, overrides(nr, nz, h, fbar, mu, bilateral))
+                           directory,
+                           overrides(nr, nz, h, fbar, mu, bilateral, model))
         results[name] = {k: summary[k] for k in KEYS}
         results[name]["dir"] = directory
         print(f"{name:18s} " + " ".join(f"{k}={summary[k]:.4g}" for k in KEYS),
