@@ -1,9 +1,9 @@
 /* ---------------------------------------------------------------------
  * taylor_bar: a copper cylinder hits a rigid wall at 227 m/s and
  * mushrooms (the Taylor bar; the paper's section 6.4, Laursen & Simo
- * 1993). Finite-strain J2 plasticity, axisymmetric Q1 with F-bar, the
- * theta-method at velocity level with Newton's method, and the contact
- * LCP solved by Lemke's method at every Newton iterate.
+ * 1993). Finite-strain J2 plasticity, axisymmetric or 3D Q1 with F-bar,
+ * the theta-method with Newton's method, and the contact LCP solved by
+ * Lemke's method at every Newton iterate.
  * ---------------------------------------------------------------------
  */
 
@@ -18,13 +18,11 @@
 //   E_kin(0) = E_kin + E_stored + W_plastic + D_contact + D_scheme + error,
 // with D_contact the work the contact impulses take out and D_scheme =
 // (theta - 1/2) sum |v1 - v0|_M^2 the theta-scheme's dissipation, both
-// summed over the steps. The error is the gap between the internal forces'
-// discrete work and the increments of stored energy and plastic work.
-//
-// The model (impactfe::FiniteStrainImpact, axisymmetric or a 3D quarter of
-// the bar, and FiniteStrainJ2Model) is described in doc/taylor_bar.md.
+// summed over the steps. The model (impactfe::FiniteStrainImpact,
+// axisymmetric or a 3D quarter of the bar) is in doc/taylor_bar.md.
 
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
 
 #include <impactfe/finite_strain/finite_strain_impact.h>
 #include <impactfe/output/output.h>
@@ -146,19 +144,11 @@ namespace TaylorBarProgram
     create_output_directory(output.directory);
     history = std::make_unique<HistoryWriter>(
       output.directory + "/history.csv",
-      std::vector<std::string>{"time",
-                               "length_mm",
-                               "footprint_radius_mm",
-                               "kinetic_energy",
-                               "stored_energy",
-                               "plastic_work",
-                               "contact_dissipation",
-                               "scheme_dissipation",
-                               "energy_balance_error",
-                               "normal_force",
-                               "max_equivalent_plastic_strain",
-                               "newton_iterations",
-                               "lcp_rows"});
+      Utilities::split_string_list(
+        "time, length_mm, footprint_radius_mm, kinetic_energy, "
+        "stored_energy, plastic_work, contact_dissipation, "
+        "scheme_dissipation, energy_balance_error, normal_force, "
+        "max_equivalent_plastic_strain, newton_iterations, lcp_rows"));
     std::cout << "Taylor bar ("
               << (settings.model == FiniteStrainImpact::Model::axisymmetric ?
                     "axisymmetric" :
@@ -233,6 +223,9 @@ namespace TaylorBarProgram
               << format_figure(t.worst_contact_violation, 1e-12)
               << ", last contact force at t = " << t.last_contact_time
               << " s, peak force " << t.peak_contact_force << " N\n"
+              << "  deepest node below the wall (folded cells) "
+              << format_figure(1e3 * bar->deepest_node_below_wall(), 1e-9)
+              << " mm\n"
               << "  wall impulse " << t.wall_impulse
               << " N s, change of momentum " << momentum_change
               << " N s, relative difference "
@@ -246,8 +239,8 @@ namespace TaylorBarProgram
     if (output.print_performance)
       std::cout << "  Newton: " << t.newton_iterations_per_step()
                 << " iterations per step (at most " << t.most_newton_iterations
-                << "), median order near the solution "
-                << format_figure(t.median_convergence_order(), 1e-3)
+                << "), quadratic near the solution in "
+                << 100. * t.quadratic_fraction() << " %"
                 << "\n  CPU " << cpu_seconds << " s" << std::endl;
     JsonObject summary;
     summary.add("program", std::string("taylor_bar"))
@@ -263,6 +256,7 @@ namespace TaylorBarProgram
       .add("newton_quadratic_fraction", t.quadratic_fraction())
       .add("newton_step_reductions", t.step_reductions)
       .add("late_contact_candidates", t.late_candidates)
+      .add("deepest_node_below_wall_mm", 1e3 * bar->deepest_node_below_wall())
       .add("max_contact_violation", t.worst_contact_violation)
       .add("wall_impulse", t.wall_impulse)
       .add("momentum_change", momentum_change)

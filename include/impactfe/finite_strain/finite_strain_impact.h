@@ -171,6 +171,14 @@ namespace impactfe
     /** Largest z of the deformed body [m]. */
     virtual double
     current_length() const = 0;
+    /**
+     * Depth of the deepest node below the wall [m] (0 if none). Contact
+     * candidates stay above it; a node inside the body gets below it only
+     * where the cells between it and the wall have folded, so this measures
+     * the mesh's failure, not the contact's.
+     */
+    virtual double
+    deepest_node_below_wall() const = 0;
     /** Largest distance from the axis of the nodes of the lower end [m]. */
     virtual double
     footprint_radius() const = 0;
@@ -245,6 +253,8 @@ namespace impactfe
     plastic_work() const override;
     double
     current_length() const override;
+    double
+    deepest_node_below_wall() const override;
     double
     footprint_radius() const override;
     double
