@@ -234,14 +234,14 @@ namespace TaylorBarProgram
                                1e-9)
               << std::endl;
     if (t.step_reductions > 0)
-      std::cout << "  Steps redone as 2-8 smaller steps (Newton did not "
-                << "converge): " << t.step_reductions << std::endl;
+      std::cout << "  Steps redone as 2-8 substeps: " << t.step_reductions
+                << std::endl;
     if (output.print_performance)
       std::cout << "  Newton: " << t.newton_iterations_per_step()
                 << " iterations per step (at most " << t.most_newton_iterations
                 << "), quadratic near the solution in "
-                << 100. * t.quadratic_fraction() << " %"
-                << "\n  CPU " << cpu_seconds << " s" << std::endl;
+                << 100. * t.quadratic_fraction() << " %\n  CPU " << cpu_seconds
+                << " s" << std::endl;
     JsonObject summary;
     summary.add("program", std::string("taylor_bar"))
       .add("n_dofs", bar->n_dofs())
@@ -256,6 +256,7 @@ namespace TaylorBarProgram
       .add("newton_quadratic_fraction", t.quadratic_fraction())
       .add("newton_step_reductions", t.step_reductions)
       .add("late_contact_candidates", t.late_candidates)
+      .add("newton_contact_restarts", t.contact_restarts)
       .add("deepest_node_below_wall_mm", 1e3 * bar->deepest_node_below_wall())
       .add("max_contact_violation", t.worst_contact_violation)
       .add("wall_impulse", t.wall_impulse)
@@ -326,9 +327,8 @@ namespace TaylorBarProgram
           [&](const double value, const double low, const double high) {
             return std::max({0., low - value, value - high}) / low;
           };
-        std::cout << "  Published: final length 21.42-21.7 mm, footprint "
-                     "radius 7.0-7.1 mm"
-                  << std::endl;
+        std::cout
+          << "  Published: length 21.42-21.7 mm, footprint 7.0-7.1 mm\n";
         check("final length: relative distance to the published range",
               outside(1e3 * bar->current_length(), 21.42, 21.7),
               published_tolerance);

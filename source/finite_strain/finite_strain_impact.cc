@@ -825,6 +825,9 @@ namespace impactfe
             if (active.size() == n_active)
               break;
             P.resize(active.size() * n_directions, 0.);
+            // The problem changed: the next residual starts a new Newton
+            // sequence.
+            report.restarts.push_back(report.residuals.size());
           }
         report.newton_iterations = it + 1;
 
@@ -958,10 +961,14 @@ namespace impactfe
     t.worst_contact_violation =
       std::max(t.worst_contact_violation, report.contact_violation);
     // Newton's rate near the solution: pairs of successive residuals with
-    // the first below 1e-3 and the second above the round-off floor.
+    // the first below 1e-3 and the second above the round-off floor, not
+    // across a restart.
     const auto &r = report.residuals;
+    t.contact_restarts += report.restarts.size();
     for (unsigned int k = 1; k < r.size(); ++k)
-      if (r[k - 1] < 1e-3 && r[k] > 1e-12)
+      if (r[k - 1] < 1e-3 && r[k] > 1e-12 &&
+          std::find(report.restarts.begin(), report.restarts.end(), k) ==
+            report.restarts.end())
         {
           ++t.pairs_near_solution;
           t.quadratic_pairs += (r[k] <= 10. * r[k - 1] * r[k - 1]) ? 1 : 0;

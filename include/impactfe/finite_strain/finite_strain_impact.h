@@ -41,8 +41,12 @@ namespace impactfe
     unsigned int newton_iterations = 0;
     /// Relative residual of each Newton iterate (for the rate).
     std::vector<double> residuals;
-    unsigned int        n_candidates = 0;
-    unsigned int        n_closed     = 0;
+    /// Indices into residuals where Newton's method restarted on a changed
+    /// problem: a late candidate joined the LCP or a pinned contact was
+    /// released, after the iterates had converged.
+    std::vector<unsigned int> restarts;
+    unsigned int              n_candidates = 0;
+    unsigned int              n_closed     = 0;
     /// Sum of the normal ring impulses [N s] (2 pi r included).
     double normal_impulse = 0.;
     /// Largest relative violation reported by verify_contact_solution().
@@ -71,9 +75,11 @@ namespace impactfe
     /// Newton's order log(r_k/r_k-1)/log(r_k-1/r_k-2) near the solution
     /// (r_k-1 < 1e-3, r_k > 1e-12; relative residuals).
     std::vector<double> convergence_orders;
-    /// The pairs (r_k-1 < 1e-3, r_k > 1e-12) of successive residuals, and
-    /// those with r_k <= 10 r_k-1^2: quadratic convergence.
+    /// The pairs (r_k-1 < 1e-3, r_k > 1e-12) of successive residuals not
+    /// across a restart, and those with r_k <= 10 r_k-1^2: quadratic
+    /// convergence. Restarts of Newton's method (FiniteStrainStepReport).
     unsigned int pairs_near_solution = 0, quadratic_pairs = 0;
+    unsigned int contact_restarts = 0;
 
     double
     newton_iterations_per_step() const;
