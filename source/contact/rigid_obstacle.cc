@@ -91,6 +91,15 @@ namespace impactfe
   }
 
   template <int dim>
+  double
+  BallObstacle<dim>::ball_radius() const
+  {
+    return radius;
+  }
+
+
+
+  template <int dim>
   std::string
   BallObstacle<dim>::description() const
   {

@@ -73,6 +73,9 @@ namespace impactfe
     BallObstacle(const Point<dim> &center, const double radius);
     double
     signed_distance(const Point<dim> &x) const override;
+    /** The radius of the disc or ball [m]. */
+    double
+    ball_radius() const;
     Tensor<1, dim>
     normal(const Point<dim> &x) const override;
     std::string
