@@ -60,7 +60,7 @@ namespace TwoBars1D
     make_bar_meshes(Triangulation<1> &bar_1,
                     Triangulation<1> &bar_2) const override;
     void
-    add_contacts(ContactSet &contacts) override;
+    add_bar_contacts(ContactSet &contacts) override;
     double
     out_of_plane_measure() const override
     {
@@ -148,7 +148,7 @@ namespace TwoBars1D
 
 
   void
-  TwoBarsProblem::add_contacts(ContactSet &contacts)
+  TwoBarsProblem::add_bar_contacts(ContactSet &contacts)
   {
     contacts.add_node_to_node(system().bodies(),
                               /*body_a=*/0,

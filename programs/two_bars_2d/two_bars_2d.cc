@@ -63,7 +63,12 @@ namespace TwoBars2D
     make_bar_meshes(Triangulation<2> &bar_1,
                     Triangulation<2> &bar_2) const override;
     void
-    add_contacts(ContactSet &contacts) override;
+    add_bar_contacts(ContactSet &contacts) override;
+    types::boundary_id
+    bar_1_contact_boundary() const override
+    {
+      return mesh_1.contact_boundary_id;
+    }
     double
     out_of_plane_measure() const override
     {
@@ -225,7 +230,7 @@ namespace TwoBars2D
   // The contact normal points from bar 2 towards bar 1 (along -x).
   // Frictionless: one local direction per candidate.
   void
-  TwoBarsProblem::add_contacts(ContactSet &contacts)
+  TwoBarsProblem::add_bar_contacts(ContactSet &contacts)
   {
     if (node_to_segment)
       contacts.add_node_to_segment(system().bodies(),
@@ -265,10 +270,14 @@ namespace TwoBars2D
     const double nu             = m.poissons_ratio;
     const double bar_speed =
       std::sqrt(m.youngs_modulus / ((strain ? 1. - nu * nu : 1.) * m.density));
-    out << "  Mesh: " << body(0).triangulation().n_active_cells() << " + "
-        << body(1).triangulation().n_active_cells() << " Q1 cells, "
-        << system().contacts().n_candidates() << " "
-        << (node_to_segment ? "node-to-segment" : "node-to-node")
+    out << "  Mesh: " << body(0).triangulation().n_active_cells()
+        << (against_rigid_wall ?
+              "" :
+              " + " + std::to_string(body(1).triangulation().n_active_cells()))
+        << " Q1 cells, " << system().contacts().n_candidates() << " "
+        << (against_rigid_wall ? "node-to-plane" :
+            node_to_segment    ? "node-to-segment" :
+                                 "node-to-node")
         << " contact candidates" << std::endl;
     out << "  Wave speeds: bar (long waves) " << bar_speed
         << " m/s, dilatational " << m.longitudinal_wave_speed<2>()

@@ -52,7 +52,7 @@ namespace TwoBars3D
     make_bar_meshes(Triangulation<3> &bar_1,
                     Triangulation<3> &bar_2) const override;
     void
-    add_contacts(ContactSet &contacts) override;
+    add_bar_contacts(ContactSet &contacts) override;
     // In 3D the matrices need no out-of-plane factor.
     double
     out_of_plane_measure() const override
@@ -148,7 +148,7 @@ namespace TwoBars3D
 
 
   void
-  TwoBarsProblem::add_contacts(ContactSet &contacts)
+  TwoBarsProblem::add_bar_contacts(ContactSet &contacts)
   {
     contacts.add_node_to_node(
       system().bodies(), 0, 1, 1, 0, Tensor<1, 3>({-1., 0., 0.}));
@@ -160,10 +160,13 @@ namespace TwoBars3D
   void
   TwoBarsProblem::report_geometry(std::ostream &out, JsonObject &summary) const
   {
-    out << "  Mesh: " << body(0).triangulation().n_active_cells() << " + "
-        << body(1).triangulation().n_active_cells() << " Q1 hexahedra, "
-        << system().contacts().n_candidates()
-        << " node-to-node contact candidates" << std::endl;
+    out << "  Mesh: " << body(0).triangulation().n_active_cells()
+        << (against_rigid_wall ?
+              "" :
+              " + " + std::to_string(body(1).triangulation().n_active_cells()))
+        << " Q1 hexahedra, " << system().contacts().n_candidates()
+        << (against_rigid_wall ? " node-to-plane" : " node-to-node")
+        << " contact candidates" << std::endl;
     summary.add("poissons_ratio", material().poissons_ratio)
       .add("cells_per_bar", double(body(0).triangulation().n_active_cells()));
   }

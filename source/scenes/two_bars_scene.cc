@@ -24,6 +24,11 @@ namespace impactfe
                       "0",
                       Patterns::Double(),
                       "Distance between the bars at t = 0 [m]. Must be >= 0.");
+    prm.declare_entry("Target",
+                      "bar",
+                      Patterns::Selection("bar|rigid wall"),
+                      "What bar 1 hits: bar 2 (at rest on [0, L]) or a "
+                      "rigid frictionless wall at x = 0.");
     prm.leave_subsection();
     MaterialParameters::declare_parameters(prm, dim);
     prm.enter_subsection("Initial conditions");
@@ -54,8 +59,9 @@ namespace impactfe
   TwoBarsScene<dim>::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
-    bar_length  = prm.get_double("Bar length");
-    initial_gap = prm.get_double("Initial gap");
+    bar_length         = prm.get_double("Bar length");
+    initial_gap        = prm.get_double("Initial gap");
+    against_rigid_wall = prm.get("Target") == "rigid wall";
     prm.leave_subsection();
     require_positive(bar_length, "Geometry", "Bar length");
     require_non_negative(initial_gap, "Geometry", "Initial gap");
@@ -82,9 +88,46 @@ namespace impactfe
   {
     ElasticBody<dim> &bar_1 =
       this->add_body("bar_1", bar_material, out_of_plane_measure());
+    if (against_rigid_wall)
+      {
+        Triangulation<dim> unused_bar_2;
+        make_bar_meshes(bar_1.triangulation(), unused_bar_2);
+        return;
+      }
     ElasticBody<dim> &bar_2 =
       this->add_body("bar_2", bar_material, out_of_plane_measure());
     make_bar_meshes(bar_1.triangulation(), bar_2.triangulation());
+  }
+
+
+
+  // Against the wall: node-to-plane candidates on bar 1's end, the normal
+  // along -x (towards the bar).
+  template <int dim>
+  void
+  TwoBarsScene<dim>::add_contacts(ContactSet &contacts)
+  {
+    if (!against_rigid_wall)
+      {
+        add_bar_contacts(contacts);
+        return;
+      }
+    Tensor<1, dim> normal;
+    normal[0] = -1.;
+    contacts.add_node_to_plane(this->system().bodies(),
+                               0,
+                               bar_1_contact_boundary(),
+                               Point<dim>(),
+                               normal);
+  }
+
+
+
+  template <int dim>
+  types::boundary_id
+  TwoBarsScene<dim>::bar_1_contact_boundary() const
+  {
+    return 1;
   }
 
 
@@ -118,12 +161,19 @@ namespace impactfe
   {
     const double c =
       std::sqrt(bar_material.youngs_modulus / bar_material.density);
-    exact  = TwoBarsExactSolution(impact_velocity,
-                                 initial_gap,
-                                 bar_length,
-                                 c,
-                                 bar_material.density,
-                                 cross_section());
+    exact  = against_rigid_wall ?
+               TwoBarsExactSolution::against_rigid_wall(impact_velocity,
+                                                       initial_gap,
+                                                       bar_length,
+                                                       c,
+                                                       bar_material.density,
+                                                       cross_section()) :
+               TwoBarsExactSolution(impact_velocity,
+                                   initial_gap,
+                                   bar_length,
+                                   c,
+                                   bar_material.density,
+                                   cross_section());
     errors = std::make_unique<TwoBarsErrors>(exact);
 
     const auto &candidates = this->system().contacts().candidates();
@@ -144,6 +194,8 @@ namespace impactfe
       if (position(c).distance(centre) < position(*nearest).distance(centre))
         nearest = &c;
     contact_dof_1 = this->body(0).vertex_dof(nearest->vertex_a, 0);
+    if (against_rigid_wall)
+      return;
 
     const auto  &vertices_2 = this->body(1).triangulation().get_vertices();
     unsigned int facing     = 0;
@@ -174,7 +226,7 @@ namespace impactfe
   {
     const MechanicalState &state = this->system().state();
     return {state.velocity.block(0)(contact_dof_1),
-            state.velocity.block(1)(contact_dof_2),
+            against_rigid_wall ? 0. : state.velocity.block(1)(contact_dof_2),
             exact.contact_velocity(state.time),
             exact.normal_force(state.time)};
   }
@@ -209,6 +261,8 @@ namespace impactfe
     out << this->title() << ", " << this->scheme_description(" s")
         << header_details() << std::endl;
     report_geometry(out, summary);
+    if (against_rigid_wall)
+      out << "  Target: a rigid frictionless wall at x = 0" << std::endl;
     out << "  Exact solution (1D): contact from t = " << exact.t_contact
         << " s to " << exact.t_contact + exact.duration << " s, contact force "
         << exact.contact_force << " N" << std::endl;

@@ -28,6 +28,20 @@ namespace impactfe
                          const double density,
                          const double area);
 
+    /**
+     * Bar 1 at v0 hitting a rigid wall across the gap g0 instead: during
+     * t0 <= t < t0 + 2L/c the contact face rests and carries rho c v0 A;
+     * afterwards bar 1 moves back at -v0. It is the two bars' solution at
+     * 2 v0 seen from the frame moving at v0 (the symmetric impact), with
+     * the same error scales (the velocity jump v0 and the force).
+     */
+    static TwoBarsExactSolution
+    against_rigid_wall(const double impact_velocity,
+                       const double initial_gap,
+                       const double bar_length,
+                       const double wave_speed,
+                       const double density,
+                       const double area);
     /** Velocity of bar 1's contact node (lab frame). */
     double
     contact_velocity(const double t) const;
@@ -39,6 +53,10 @@ namespace impactfe
     normal_force(const double t) const;
 
     double v0 = 0., t_contact = 0., duration = 0., contact_force = 0.;
+    /// The jump of the contact velocity at the touch: v0/2 (bars), v0
+    /// (wall); the scale of err_v.
+    double velocity_jump = 0.;
+    bool   rigid_wall    = false;
   };
 
 
@@ -46,7 +64,8 @@ namespace impactfe
   /**
    * The errors of a two-bar run against the exact solution, as defined in
    * doc/two_bars_1d.md and used by every benchmark: with the interface
-   * velocity jump v0/2 and the contact force rho c v0 A/2 as scales,
+   * velocity jump v0/2 and the contact force rho c v0 A/2 as scales (v0
+   * and rho c v0 A against a rigid wall),
    *   err_v = mean over steps of |v_c(t_i) - v_c^ex(t_i)| / (v0/2),
    *   err_f = mean over steps of |F(t_i) - F^ex(t_i)| / (rho c v0 A/2),
    * at the end time t_i of every step (not at t = 0).

@@ -19,8 +19,12 @@ namespace impactfe
    * `contact_velocity`, `target_contact_velocity` (bar 2's facing node),
    * `exact_contact_velocity` and `exact_normal_force`.
    *
+   * With `Geometry/Target = rigid wall` bar 2 is replaced by the rigid
+   * wall x = 0 (node-to-plane candidates on bar 1's end), against
+   * TwoBarsExactSolution::against_rigid_wall().
+   *
    * Subsections `Material` and `Initial conditions`, the entries `Bar
-   * length` and `Initial gap` of `Geometry`, and the entries
+   * length`, `Initial gap` and `Target` of `Geometry`, and the entries
    * `Maximum err_v` and `Maximum err_f` of `Verification` are read here;
    * the program adds its geometry, meshes and contact candidates.
    */
@@ -40,6 +44,12 @@ namespace impactfe
     virtual void
     make_bar_meshes(Triangulation<dim> &bar_1,
                     Triangulation<dim> &bar_2) const = 0;
+    /** The bars' node-to-node (or node-to-segment) candidates. */
+    virtual void
+    add_bar_contacts(ContactSet &contacts) = 0;
+    /** The boundary id of bar 1's end facing bar 2 (or the wall). */
+    virtual types::boundary_id
+    bar_1_contact_boundary() const;
     /** Thickness (2D) or cross-section (1D) passed to the bodies. */
     virtual double
     out_of_plane_measure() const = 0;
@@ -59,6 +69,8 @@ namespace impactfe
     /// `Bar length` L and `Initial gap` g0 of subsection `Geometry`, read
     /// here for every dimension [m].
     double bar_length = 0.254, initial_gap = 0.;
+    /// `Target = rigid wall`: no bar 2, the wall x = 0.
+    bool against_rigid_wall = false;
     const TwoBarsExactSolution &
     exact_solution() const;
 
@@ -71,6 +83,8 @@ namespace impactfe
     make_bodies() override;
     bool
     frictional() const override;
+    void
+    add_contacts(ContactSet &contacts) override;
     void
     set_initial_state(MechanicalState &state) override;
     void
