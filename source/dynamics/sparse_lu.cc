@@ -43,7 +43,9 @@ namespace impactfe
   {
     const SparsityPattern &pattern = matrix.get_sparsity_pattern();
     const auto             n       = static_cast<std::int64_t>(matrix.m());
-    if (&pattern != analysed_pattern)
+    if (&pattern != analysed_pattern ||
+        column_starts.size() != static_cast<std::size_t>(n + 1) ||
+        destination.size() != pattern.n_nonzero_elements())
       {
         // deal.II stores rows with the diagonal first; UMFPACK wants sorted
         // indices. Row i of A is column i of A^T: factorise A^T, solve

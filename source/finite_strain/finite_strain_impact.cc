@@ -504,9 +504,9 @@ namespace impactfe
                                              branches[q]);
         if (branches[q] == Branch::automatic)
           branches[q] = plastic ? Branch::plastic : Branch::elastic;
-        const Tensor<2, 3> tau = P_bar * transpose(F_bar);
-        const Tensor<2, 3> G =
-          (J / determinant(F_bar)) * tau * transpose(invert(F));
+        // G = (J/J0) tau(Fbar) F^{-T} = (J/J0)^{2/3} Pbar, as det Fbar = J0.
+        const double       ratio = 1. / (scale * scale);
+        const Tensor<2, 3> G     = ratio * P_bar;
         for (unsigned int i = 0; i < n_cell_dofs; ++i)
           {
             const unsigned int c            = g.component[i];
@@ -523,7 +523,6 @@ namespace impactfe
           continue;
 
         const Tensor<2, 3> F_inverse_transpose = transpose(invert(F));
-        const double       ratio = settings.f_bar ? 1. / (scale * scale) : 1.;
         for (unsigned int j = 0; j < n_cell_dofs; ++j)
           {
             const Tensor<2, 3> D      = shape_gradient(g, q, j);
@@ -660,6 +659,8 @@ namespace impactfe
             converged = try_step(settings.time_step / n_sub, report);
             total.newton_iterations += report.newton_iterations;
             total.residuals = report.residuals;
+            total.restarts  = report.restarts;
+            total.late_candidates += report.late_candidates;
             total.n_candidates =
               std::max(total.n_candidates, report.n_candidates);
             total.n_closed = std::max(total.n_closed, report.n_closed);
@@ -771,7 +772,12 @@ namespace impactfe
       v1[fixed[i]] = held_velocity[i];
     std::vector<Vector<double>> columns;
     std::vector<double>         P;
-    lcp::ContactProblem         problem;
+    // The DoF of LCP row c: the normal (u_z) or the tangential (u_r) one.
+    const auto lcp_dof = [&](const unsigned int c) {
+      return candidate_dofs[active[c / n_directions]]
+                           [c % n_directions == 0 ? axial : 0];
+    };
+    lcp::ContactProblem problem;
     const double momentum_scale = lumped_mass.linfty_norm() * settings.speed;
 
     for (unsigned int it = 0;; ++it)
@@ -786,8 +792,7 @@ namespace impactfe
           residual[i] = lumped_mass[i] * (v1[i] - v0[i]) +
                         h * (theta * force[i] + (1. - theta) * old_force[i]);
         for (unsigned int c = 0; c < P.size(); ++c)
-          residual[candidate_dofs[active[c / n_directions]]
-                                 [c % n_directions == 0 ? axial : 0]] -= P[c];
+          residual[lcp_dof(c)] -= P[c];
         for (unsigned int i = 0; i < fixed.size(); ++i)
           {
             tied_reaction[i]   = residual[fixed[i]];
@@ -807,15 +812,20 @@ namespace impactfe
                 {
                   active.push_back(k);
                   in_lcp[k] = true;
-                  ++run_totals.late_candidates;
+                  ++report.late_candidates;
                 }
-            // A pinned contact pulling on the wall is released.
+            // A pinned contact pulling on the wall is released, its row
+            // getting back its residual. (Reactions are as accurate as the
+            // residual: a negative one within the tolerance is round-off.)
             for (unsigned int i = fixed.size(); i-- > 0;)
-              if (pinned[i] >= 0 && tied_reaction[i] < 0.)
+              if (pinned[i] >= 0 &&
+                  tied_reaction[i] <
+                    -settings.newton_tolerance * momentum_scale)
                 {
                   active.push_back(pinned[i]);
                   in_lcp[pinned[i]]  = true;
                   is_fixed[fixed[i]] = false;
+                  residual[fixed[i]] = tied_reaction[i];
                   for (auto *list : {&held_velocity, &tied_reaction})
                     list->erase(list->begin() + i);
                   fixed.erase(fixed.begin() + i);
@@ -831,7 +841,8 @@ namespace impactfe
           }
         report.newton_iterations = it + 1;
 
-        // A = M + h^2 theta^2 K_t; rows of the axis DoFs: identity (times M).
+        // A = M + h^2 theta^2 K_t; the held rows (symmetry, tied, pinned):
+        // identity (times M).
         step_matrix *= h * h * theta * theta;
         for (unsigned int i = 0; i < u0.size(); ++i)
           step_matrix.add(i, i, lumped_mass[i]);
@@ -847,8 +858,7 @@ namespace impactfe
         // The whole impulse is the unknown: free step from the residual
         // without the contact impulse.
         for (unsigned int c = 0; c < P.size(); ++c)
-          residual[candidate_dofs[active[c / n_directions]]
-                                 [c % n_directions == 0 ? axial : 0]] += P[c];
+          residual[lcp_dof(c)] += P[c];
         residual *= -1.;
         step_solver->solve(residual, dv_free);
         v1 += dv_free;
@@ -860,10 +870,9 @@ namespace impactfe
         Vector<double> unit(u0.size());
         for (unsigned int c = 0; c < n; ++c)
           {
-            const auto dof = candidate_dofs[active[c / n_directions]]
-                                           [c % n_directions == 0 ? axial : 0];
-            unit      = 0.;
-            unit[dof] = 1.;
+            const auto dof = lcp_dof(c);
+            unit           = 0.;
+            unit[dof]      = 1.;
             if (!is_fixed[dof])
               step_solver->solve(unit, columns[c]);
           }
@@ -875,8 +884,7 @@ namespace impactfe
         problem.mu.assign(active.size(), mu);
         for (unsigned int a = 0; a < n; ++a)
           {
-            const auto dof = candidate_dofs[active[a / n_directions]]
-                                           [a % n_directions == 0 ? axial : 0];
+            const auto dof           = lcp_dof(a);
             problem.free_velocity[a] = v1[dof];
             for (unsigned int b = 0; b < n; ++b)
               problem.W(a, b) = columns[b][dof];
@@ -913,8 +921,7 @@ namespace impactfe
       }
     for (unsigned int c = 0; c < P.size(); ++c)
       {
-        const auto dof = candidate_dofs[active[c / n_directions]]
-                                       [c % n_directions == 0 ? axial : 0];
+        const auto dof = lcp_dof(c);
         report.contact_work +=
           P[c] * (theta * v1[dof] + (1. - theta) * v0[dof]);
         if (c % n_directions == 0)
@@ -936,6 +943,9 @@ namespace impactfe
           {
             contact_states[pinned[i]] = ContactState::stick;
             ++report.n_closed;
+            report.contact_violation =
+              std::max(report.contact_violation,
+                       -tied_reaction[i] / momentum_scale);
           }
       }
     if (settings.bilateral)
@@ -965,6 +975,7 @@ namespace impactfe
     // across a restart.
     const auto &r = report.residuals;
     t.contact_restarts += report.restarts.size();
+    t.late_candidates += report.late_candidates;
     for (unsigned int k = 1; k < r.size(); ++k)
       if (r[k - 1] < 1e-3 && r[k] > 1e-12 &&
           std::find(report.restarts.begin(), report.restarts.end(), k) ==

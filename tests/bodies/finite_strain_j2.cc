@@ -339,6 +339,9 @@ namespace
     gradients[2][2][1]     = -0.004;
     gradients[2][1][1]     = 0.998;
     gradients[3]           = R * gradients[2];
+    gradients[4][0][0]     = 1.0005;
+    gradients[4][0][1]     = 0.0003;
+    gradients[4][2][2]     = 0.9998;
     unsigned int n_plastic = 0, n_elastic = 0;
     double       worst = 0.;
     for (const auto *internal : {&virgin, &deformed})

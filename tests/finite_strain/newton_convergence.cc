@@ -7,8 +7,9 @@
 // a Newton tolerance of 1e-12 so that each step shows several iterates
 // near the solution: at least 80 % of the pairs must be quadratic, in the
 // axisymmetric and in the 3D model, and every step must converge without
-// substeps. The counts themselves are not printed (they are iteration
-// counts).
+// substeps; and the closed-form tangent must take, step by step, the
+// iterations that the tangent by central differences takes. The counts
+// themselves are not printed (they are iteration counts).
 
 #include <impactfe/finite_strain/finite_strain_impact.h>
 
@@ -41,8 +42,22 @@ main()
       settings.newton_tolerance = 1e-12;
       auto bar =
         FiniteStrainImpact::create(settings, material, PlasticityParameters());
+      // The same run with the tangent by central differences of the cell
+      // forces (accurate to about 1e-9), in lockstep: a wrong closed form
+      // would change Newton's path, so every step must take the same
+      // number of iterations.
+      FiniteStrainImpact::Settings differences = settings;
+      differences.closed_form_tangent          = false;
+      auto         reference = FiniteStrainImpact::create(differences,
+                                                  material,
+                                                  PlasticityParameters());
+      unsigned int steps_with_other_iterations = 0;
       for (unsigned int step = 0; step < settings.n_steps(); ++step)
-        bar->do_time_step();
+        steps_with_other_iterations +=
+          bar->do_time_step().newton_iterations !=
+              reference->do_time_step().newton_iterations ?
+            1 :
+            0;
       const FiniteStrainRunTotals &t = bar->totals();
       const std::string name         = three_d ? "3D quarter" : "axisymmetric";
       check(t.pairs_near_solution >= settings.n_steps(),
@@ -52,6 +67,10 @@ main()
             name + ": at least 80 % of them quadratic",
             std::to_string(t.quadratic_fraction()));
       check(t.step_reductions == 0, name + ": no step needed substeps");
+      check(steps_with_other_iterations == 0,
+            name + ": the tangent by central differences takes the same "
+                   "iterations in every step",
+            std::to_string(steps_with_other_iterations));
     }
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
 }

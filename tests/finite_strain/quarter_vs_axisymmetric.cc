@@ -7,9 +7,9 @@
 //    node's internal force and lumped mass are then the same multiple of
 //    its share of the cross-section, whatever that cross-section's mesh.
 //    The two models must give the same length and the same wall force per
-//    unit initial momentum at every step, to the Newton tolerance. The
-//    quarter disc's polygonal area differs from pi r0^2, which is why the
-//    force is compared per unit momentum.
+//    unit initial momentum at every step, to the Newton tolerance (per unit
+//    momentum, as the quarter disc's area, integrated on cells mapped to the
+//    cylinder, is pi r0^2 only to quadrature accuracy).
 // 2. Finite strain (copper at 227 m/s, 10 us): the models differ only by
 //    their cross-section meshes (the refined quarter disc against uniform
 //    rings). The final length must agree to 0.5 %, the footprint radius to

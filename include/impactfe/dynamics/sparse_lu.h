@@ -37,7 +37,9 @@ namespace impactfe
 
     /**
      * Factorise @p matrix. The analysis of the first call is reused while
-     * the matrix keeps the same SparsityPattern object. Throws with a
+     * the matrix keeps the same SparsityPattern object with the same size
+     * and number of entries (a pattern rebuilt in place with the same
+     * entries in the same places is not noticed). Throws with a
      * message naming @p name if the matrix is singular.
      */
     void

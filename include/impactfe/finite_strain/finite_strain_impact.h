@@ -45,9 +45,11 @@ namespace impactfe
     /// problem: a late candidate joined the LCP or a pinned contact was
     /// released, after the iterates had converged.
     std::vector<unsigned int> restarts;
-    unsigned int              n_candidates = 0;
-    unsigned int              n_closed     = 0;
-    /// Sum of the normal ring impulses [N s] (2 pi r included).
+    /// Candidates left out of the LCP that crossed the wall and joined it.
+    unsigned int late_candidates = 0;
+    unsigned int n_candidates    = 0;
+    unsigned int n_closed        = 0;
+    /// Sum of the normal impulses on the wall [N s] (the whole bar's).
     double normal_impulse = 0.;
     /// Largest relative violation reported by verify_contact_solution().
     double contact_violation = 0.;
