@@ -12,10 +12,16 @@
 //    cylinder, is pi r0^2 only to quadrature accuracy).
 // 2. Finite strain (copper at 227 m/s, 10 us): the models differ only by
 //    their cross-section meshes (the refined quarter disc against uniform
-//    rings). The final length must agree to 0.5 %, the footprint radius to
-//    5 % and the plastic work to 2 % of E_kin(0); each run must pass its own
-//    balances: wall impulse = change of momentum, no energy created by the
-//    contact, an energy balance error below 2 %.
+//    rings), 2 cells across the radius here. Refined across the radius
+//    (25 cells along), the 3D footprints are 5.126, 5.098, 5.087 mm at 2,
+//    4, 8 cells and the axisymmetric ones 5.043, 5.054 mm at 2, 4: the
+//    models approach each other from both sides, 1.6 % apart at 2 cells;
+//    the plastic work differs by 0.04 % of E_kin(0) and the length by less
+//    than 0.01 mm. The bounds are twice those or more: the footprint radii
+//    agree to 3 %, the plastic work to 0.5 % of E_kin(0), the lengths to
+//    0.5 %. Each run must pass its own balances: wall impulse = change of
+//    momentum, no energy created by the contact, an energy balance error
+//    below 2 %.
 
 #include <impactfe/finite_strain/finite_strain_impact.h>
 
@@ -160,10 +166,10 @@ namespace
       }
     check(std::abs(length[1] - length[0]) < 5e-3 * length[0],
           "finite strain: lengths agree to 0.5 %");
-    check(std::abs(footprint[1] - footprint[0]) < 0.05 * footprint[0],
-          "finite strain: footprint radii agree to 5 %");
-    check(std::abs(plastic[1] - plastic[0]) < 0.02,
-          "finite strain: plastic work agrees to 2 % of E_kin(0)");
+    check(std::abs(footprint[1] - footprint[0]) < 0.03 * footprint[0],
+          "finite strain: footprint radii agree to 3 %");
+    check(std::abs(plastic[1] - plastic[0]) < 0.005,
+          "finite strain: plastic work agrees to 0.5 % of E_kin(0)");
   }
 } // namespace
 
