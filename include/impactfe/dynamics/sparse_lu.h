@@ -21,8 +21,9 @@ namespace impactfe
    *
    * Why not deal.II's SparseDirectUMFPACK: it redoes the analysis at every
    * factorisation, and its solves run UMFPACK's iterative refinement (up to
-   * two more substitution pairs plus residuals per solve), which tripled
-   * the cost of the contact columns of the 3D Taylor bar. The step matrices
+   * two more substitution pairs plus residuals per solve): in a profile of
+   * the 3D Taylor bar that took more time than the substitutions
+   * themselves. The step matrices
    * here are well conditioned (mass plus h^2 times the tangent), so one
    * substitution pair is accurate to rounding.
    */
