@@ -74,7 +74,8 @@ namespace TwoBars3D
     report_geometry(std::ostream &out, JsonObject &summary) const override;
 
     double       side    = 0.0254;
-    unsigned int n_along = 20, n_across = 2;
+    unsigned int n_along = 20, n_across = 2, n_across_2 = 2;
+    bool         node_to_face = false;
   };
 
 
@@ -98,6 +99,18 @@ namespace TwoBars3D
                       "Q1 hexahedra across each side of the section [-]. "
                       "Even, so that a node sits at the centre of the "
                       "contact face.");
+    prm.declare_entry("Number of cells across bar 2",
+                      "0",
+                      Patterns::Integer(0),
+                      "Q1 hexahedra across each side of bar 2's section; 0: "
+                      "as bar 1's. A different number makes the interface "
+                      "meshes non-matching (node-to-face) [-].");
+    prm.declare_entry("Contact discretization",
+                      "node-to-node",
+                      Patterns::Selection("node-to-node|node-to-face"),
+                      "node-to-node: pairs of facing nodes (matching "
+                      "meshes); node-to-face: each node of bar 1's end "
+                      "against the bilinear faces of bar 2's end.");
     prm.leave_subsection();
   }
 
@@ -107,10 +120,19 @@ namespace TwoBars3D
   TwoBarsProblem::parse_geometry(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
-    side     = prm.get_double("Side of the section");
-    n_along  = prm.get_integer("Number of cells along");
-    n_across = prm.get_integer("Number of cells across");
+    side         = prm.get_double("Side of the section");
+    n_along      = prm.get_integer("Number of cells along");
+    n_across     = prm.get_integer("Number of cells across");
+    n_across_2   = prm.get_integer("Number of cells across bar 2");
+    node_to_face = prm.get("Contact discretization") == "node-to-face";
     prm.leave_subsection();
+    if (n_across_2 == 0)
+      n_across_2 = n_across;
+    AssertThrow(n_across_2 == n_across || node_to_face,
+                ExcMessage("Geometry: 'Number of cells across bar 2' = " +
+                           std::to_string(n_across_2) +
+                           " makes the interface meshes non-matching: set "
+                           "'Contact discretization' to node-to-face."));
     AssertThrow(side > 0.,
                 ExcMessage("Geometry: 'Side of the section' "
                            "must be > 0."));
@@ -139,7 +161,7 @@ namespace TwoBars3D
       Point<3>(-initial_gap, side, side),
       /*colorize=*/true);
     GridGenerator::subdivided_hyper_rectangle(bar_2,
-                                              cells,
+                                              {n_along, n_across_2, n_across_2},
                                               Point<3>(0., 0., 0.),
                                               Point<3>(bar_length, side, side),
                                               /*colorize=*/true);
@@ -150,8 +172,11 @@ namespace TwoBars3D
   void
   TwoBarsProblem::add_bar_contacts(ContactSet &contacts)
   {
-    contacts.add_node_to_node(
-      system().bodies(), 0, 1, 1, 0, Tensor<1, 3>({-1., 0., 0.}));
+    if (node_to_face)
+      contacts.add_node_to_face(system().bodies(), 0, 1, 1, 0);
+    else
+      contacts.add_node_to_node(
+        system().bodies(), 0, 1, 1, 0, Tensor<1, 3>({-1., 0., 0.}));
   }
 
 
@@ -165,7 +190,9 @@ namespace TwoBars3D
               "" :
               " + " + std::to_string(body(1).triangulation().n_active_cells()))
         << " Q1 hexahedra, " << system().contacts().n_candidates()
-        << (against_rigid_wall ? " node-to-plane" : " node-to-node")
+        << (against_rigid_wall ? " node-to-plane" :
+            node_to_face       ? " node-to-face" :
+                                 " node-to-node")
         << " contact candidates" << std::endl;
     summary.add("poissons_ratio", material().poissons_ratio)
       .add("cells_per_bar", double(body(0).triangulation().n_active_cells()));

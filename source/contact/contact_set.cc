@@ -1,6 +1,11 @@
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/exceptions.h>
 
+#include <deal.II/numerics/rtree.h>
+
 #include <impactfe/contact/contact_set.h>
+
+#include <deal.II/boost_adaptors/bounding_box.h>
 
 #include <algorithm>
 #include <cmath>
@@ -262,12 +267,15 @@ namespace impactfe
                       " projects on no segment of body '" + B.name() +
                       "' (boundary id " + std::to_string(boundary_b) + ")."));
         ContactCandidate candidate;
-        candidate.body_a    = body_a;
-        candidate.vertex_a  = va;
-        candidate.body_b    = body_b;
-        candidate.vertex_b  = best->v1;
-        candidate.vertex_b2 = best->v2;
-        candidate.weight_b2 = best_xi;
+        candidate.body_a       = body_a;
+        candidate.vertex_a     = va;
+        candidate.body_b       = body_b;
+        candidate.n_vertices_b = 2;
+        candidate.vertices_b   = {{best->v1,
+                                   best->v2,
+                                   numbers::invalid_unsigned_int,
+                                   numbers::invalid_unsigned_int}};
+        candidate.weights_b    = {{1. - best_xi, best_xi, 0., 0.}};
         for (unsigned int d = 0; d < dim; ++d)
           candidate.position[d] = x[d];
         set_frame(candidate, best->normal);
@@ -276,6 +284,176 @@ namespace impactfe
         candidate.initial_gap          = (x - projection) * best->normal;
         candidate.friction_coefficient = friction_coefficient;
         candidate_list.push_back(candidate);
+      }
+    return vertices_a.size();
+  }
+
+
+
+  // @sect3{Node-to-face candidates (3D)}
+  //
+  // B's faces with the boundary id, their vertices in deal.II's face order
+  // (bilinear shape functions N0 = (1 - xi)(1 - eta), N1 = xi (1 - eta),
+  // N2 = (1 - xi) eta, N3 = xi eta), an R-tree of their bounding boxes
+  // widened by the face's size, and for each node of A the closest point
+  // on the faces the tree returns.
+  template <int dim>
+  unsigned int
+  ContactSet::add_node_to_face(
+    const std::vector<const ElasticBody<dim> *> &bodies,
+    const unsigned int                           body_a,
+    const types::boundary_id                     boundary_a,
+    const unsigned int                           body_b,
+    const types::boundary_id                     boundary_b,
+    const double                                 friction_coefficient)
+  {
+    AssertThrow(dim == 3,
+                ExcMessage("Contact: node-to-face candidates are 3D only "
+                           "(node-to-segment in 2D)."));
+    AssertThrow(body_a < bodies.size() && body_b < bodies.size() &&
+                  body_a != body_b,
+                ExcMessage("Contact: node-to-face needs two distinct bodies."));
+    AssertThrow(friction_coefficient >= 0.,
+                ExcMessage("Contact: the friction coefficient must be >= 0."));
+    const auto &A          = *bodies[body_a];
+    const auto &B          = *bodies[body_b];
+    const auto  vertices_a = boundary_vertices(A, boundary_a);
+    AssertThrow(!vertices_a.empty(),
+                ExcMessage("Contact: body '" + A.name() +
+                           "' has no vertex on boundary id " +
+                           std::to_string(boundary_a) + "."));
+    if constexpr (dim == 3)
+      {
+        struct Face
+        {
+          std::array<unsigned int, 4> v;
+          std::array<Point<3>, 4>     p;
+        };
+        std::vector<Face>                                    faces;
+        std::map<unsigned int, Tensor<1, 3>>                 nodal_normals;
+        std::vector<std::pair<BoundingBox<3>, unsigned int>> boxes;
+        for (const auto &cell : B.dof_handler().active_cell_iterators())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                cell->face(f)->boundary_id() == boundary_b)
+              {
+                Face face;
+                for (unsigned int k = 0; k < 4; ++k)
+                  {
+                    face.v[k] = cell->face(f)->vertex_index(k);
+                    face.p[k] = vertex_position(B, face.v[k]);
+                  }
+                // Outward (away from B's cell): twice the area times the
+                // unit normal for a flat face.
+                Tensor<1, 3> normal = cross_product_3d(face.p[3] - face.p[0],
+                                                       face.p[2] - face.p[1]);
+                if ((cell->center() - face.p[0]) * normal > 0.)
+                  normal *= -1.;
+                for (const unsigned int v : face.v)
+                  nodal_normals[v] += normal;
+                BoundingBox<3> box(
+                  std::vector<Point<3>>(face.p.begin(), face.p.end()));
+                box.extend(box.side_length(0) + box.side_length(1) +
+                           box.side_length(2));
+                boxes.emplace_back(box, faces.size());
+                faces.push_back(face);
+              }
+        AssertThrow(!faces.empty(),
+                    ExcMessage("Contact: body '" + B.name() +
+                               "' has no boundary face with id " +
+                               std::to_string(boundary_b) + "."));
+        const auto tree = pack_rtree(boxes);
+
+        for (const unsigned int va : vertices_a)
+          {
+            const Point<3> x = vertex_position(A, va);
+            std::vector<std::pair<BoundingBox<3>, unsigned int>> near;
+            tree.query(boost::geometry::index::intersects(
+                         BoundingBox<3>(std::make_pair(x, x))),
+                       std::back_inserter(near));
+            double                best_distance = -1.;
+            const Face           *best          = nullptr;
+            std::array<double, 4> best_weights{};
+            for (const auto &hit : near)
+              {
+                const Face &face = faces[hit.second];
+                // Closest point: Newton's method on (xi, eta) for
+                // (y - x) . dy/dxi = (y - x) . dy/deta = 0.
+                double             xi = 0.5, eta = 0.5;
+                const Tensor<1, 3> y_xi_eta =
+                  face.p[0] - face.p[1] - face.p[2] + face.p[3];
+                for (unsigned int it = 0; it < 30; ++it)
+                  {
+                    const Point<3> y =
+                      face.p[0] + xi * (face.p[1] - face.p[0]) +
+                      eta * (face.p[2] - face.p[0]) + xi * eta * y_xi_eta;
+                    const Tensor<1, 3> y_xi =
+                      face.p[1] - face.p[0] + eta * y_xi_eta;
+                    const Tensor<1, 3> y_eta =
+                      face.p[2] - face.p[0] + xi * y_xi_eta;
+                    const Tensor<1, 3> r  = y - x;
+                    const double       g1 = r * y_xi, g2 = r * y_eta;
+                    const double       a11 = y_xi * y_xi,
+                                 a12       = y_xi * y_eta + r * y_xi_eta,
+                                 a22       = y_eta * y_eta;
+                    const double det       = a11 * a22 - a12 * a12;
+                    const double d_xi      = (a22 * g1 - a12 * g2) / det,
+                                 d_eta     = (a11 * g2 - a12 * g1) / det;
+                    xi -= d_xi;
+                    eta -= d_eta;
+                    if (std::abs(d_xi) + std::abs(d_eta) < 1e-14)
+                      break;
+                  }
+                if (xi < -1e-8 || xi > 1. + 1e-8 || eta < -1e-8 ||
+                    eta > 1. + 1e-8)
+                  continue;
+                xi  = std::clamp(xi, 0., 1.);
+                eta = std::clamp(eta, 0., 1.);
+                const std::array<double, 4> w{{(1. - xi) * (1. - eta),
+                                               xi * (1. - eta),
+                                               (1. - xi) * eta,
+                                               xi * eta}};
+                Point<3>                    y;
+                for (unsigned int k = 0; k < 4; ++k)
+                  y += w[k] * Tensor<1, 3>(face.p[k]);
+                const double distance = x.distance(y);
+                if (best == nullptr || distance < best_distance)
+                  {
+                    best          = &face;
+                    best_distance = distance;
+                    best_weights  = w;
+                  }
+              }
+            AssertThrow(best != nullptr,
+                        ExcMessage("Contact: the node of body '" + A.name() +
+                                   "' at boundary id " +
+                                   std::to_string(boundary_a) +
+                                   " projects on no face of body '" + B.name() +
+                                   "' (boundary id " +
+                                   std::to_string(boundary_b) + ")."));
+            ContactCandidate candidate;
+            candidate.body_a       = body_a;
+            candidate.vertex_a     = va;
+            candidate.body_b       = body_b;
+            candidate.n_vertices_b = 4;
+            Tensor<1, 3> normal;
+            Point<3>     y;
+            for (unsigned int k = 0; k < 4; ++k)
+              {
+                candidate.vertices_b[k] = best->v[k];
+                candidate.weights_b[k]  = best_weights[k];
+                normal += best_weights[k] * nodal_normals[best->v[k]] /
+                          nodal_normals[best->v[k]].norm();
+                y += best_weights[k] * Tensor<1, 3>(best->p[k]);
+              }
+            normal /= normal.norm();
+            for (unsigned int d = 0; d < 3; ++d)
+              candidate.position[d] = x[d];
+            set_frame(candidate, Tensor<1, dim>(normal));
+            candidate.initial_gap          = (x - y) * normal;
+            candidate.friction_coefficient = friction_coefficient;
+            candidate_list.push_back(candidate);
+          }
       }
     return vertices_a.size();
   }
@@ -339,10 +517,12 @@ namespace impactfe
                                "'. Node-to-node contact needs matching "
                                "interface meshes."));
         ContactCandidate candidate;
-        candidate.body_a   = body_a;
-        candidate.vertex_a = va;
-        candidate.body_b   = body_b;
-        candidate.vertex_b = partner;
+        candidate.body_a        = body_a;
+        candidate.vertex_a      = va;
+        candidate.body_b        = body_b;
+        candidate.n_vertices_b  = 1;
+        candidate.vertices_b[0] = partner;
+        candidate.weights_b[0]  = 1.;
         for (unsigned int d = 0; d < dim; ++d)
           candidate.position[d] = xa[d];
         set_frame(candidate, n);
@@ -357,8 +537,9 @@ namespace impactfe
 
   // @sect3{The H operator}
   // Column (c, k) of H holds +e_k on the DoFs of node A and -e_k on those of
-  // node B (split as -(1 - xi) e_k, -xi e_k over a master segment's two
-  // nodes), e_k being direction k of the candidate's frame.
+  // node B (split as -w_j e_k over a master segment's or face's nodes, w_j
+  // the contact point's weights), e_k being direction k of the candidate's
+  // frame.
   template <int dim>
   void
   ContactSet::build_operator(
@@ -385,17 +566,12 @@ namespace impactfe
                    e});
                 if (cand.against_rigid_obstacle())
                   continue;
-                const double w2 = cand.weight_b2;
-                if (w2 < 1.)
-                  column.push_back(
-                    {cand.body_b,
-                     bodies[cand.body_b]->vertex_dof(cand.vertex_b, d),
-                     -(1. - w2) * e});
-                if (w2 > 0.)
-                  column.push_back(
-                    {cand.body_b,
-                     bodies[cand.body_b]->vertex_dof(cand.vertex_b2, d),
-                     -w2 * e});
+                for (unsigned int j = 0; j < cand.n_vertices_b; ++j)
+                  if (cand.weights_b[j] != 0.)
+                    column.push_back(
+                      {cand.body_b,
+                       bodies[cand.body_b]->vertex_dof(cand.vertices_b[j], d),
+                       -cand.weights_b[j] * e});
               }
           }
       }
@@ -527,6 +703,13 @@ namespace impactfe
     const RigidObstacle<dim> &,                                \
     const double);                                             \
   template unsigned int ContactSet::add_node_to_segment<dim>(  \
+    const std::vector<const ElasticBody<dim> *> &,             \
+    const unsigned int,                                        \
+    const types::boundary_id,                                  \
+    const unsigned int,                                        \
+    const types::boundary_id,                                  \
+    const double);                                             \
+  template unsigned int ContactSet::add_node_to_face<dim>(     \
     const std::vector<const ElasticBody<dim> *> &,             \
     const unsigned int,                                        \
     const types::boundary_id,                                  \

@@ -236,7 +236,7 @@ namespace impactfe
             if (cand.body_a == b)
               vertex = cand.vertex_a;
             else if (cand.body_b == b)
-              vertex = cand.vertex_b;
+              vertex = cand.vertices_b[0];
             if (vertex == numbers::invalid_unsigned_int)
               continue;
             gap(vertex_to_scalar[vertex])    = gaps[c];

@@ -176,9 +176,8 @@ namespace impactfe
         massless[c.body_a].push_back(c.vertex_a);
         if (!c.against_rigid_obstacle())
           {
-            massless[c.body_b].push_back(c.vertex_b);
-            if (c.vertex_b2 != numbers::invalid_unsigned_int)
-              massless[c.body_b].push_back(c.vertex_b2);
+            for (unsigned int j = 0; j < c.n_vertices_b; ++j)
+              massless[c.body_b].push_back(c.vertices_b[j]);
           }
       }
     for (unsigned int b = 0; b < body_list.size(); ++b)

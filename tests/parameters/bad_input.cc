@@ -220,5 +220,9 @@ main()
            with("Geometry", "Model = 3d") +
              "subsection Geometry\n  set Radial cells = 3\nend\n",
            taylor);
+  // two_bars_3d: non-matching interface meshes need node-to-face.
+  run_case("two_bars_3d_nonmatching_node_to_node",
+           with("Geometry", "Number of cells across bar 2 = 3"),
+           TWO_BARS_3D_EXECUTABLE);
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
 }

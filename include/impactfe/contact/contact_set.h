@@ -33,12 +33,16 @@ namespace impactfe
     unsigned int body_a   = 0;
     unsigned int vertex_a = 0;
     /// numbers::invalid_unsigned_int for a rigid obstacle.
-    unsigned int body_b   = numbers::invalid_unsigned_int;
-    unsigned int vertex_b = numbers::invalid_unsigned_int;
-    /// Node-to-segment only: the segment's second node and its weight
-    /// (vertex_b has weight 1 - weight_b2).
-    unsigned int vertex_b2 = numbers::invalid_unsigned_int;
-    double       weight_b2 = 0.;
+    unsigned int body_b = numbers::invalid_unsigned_int;
+    /// Side B's nodes around the contact point (one for node-to-node, a
+    /// segment's two, a face's four) and the point's weights among them
+    /// (the shape functions there; they sum to 1).
+    unsigned int                n_vertices_b = 0;
+    std::array<unsigned int, 4> vertices_b{{numbers::invalid_unsigned_int,
+                                            numbers::invalid_unsigned_int,
+                                            numbers::invalid_unsigned_int,
+                                            numbers::invalid_unsigned_int}};
+    std::array<double, 4>       weights_b{{0., 0., 0., 0.}};
     /// Reference position of the node of side A (3 coordinates, padded).
     std::array<double, 3> position{{0., 0., 0.}};
     /// Frame: direction 0 is the normal, then the tangents.
@@ -131,6 +135,28 @@ namespace impactfe
                         const unsigned int                           body_b,
                         const types::boundary_id                     boundary_b,
                         const double friction_coefficient = 0.);
+
+    /**
+     * Node-to-face candidates (3D) between two bodies whose interface
+     * meshes need not match: each vertex of body A on @p boundary_a is
+     * projected (closest point, Newton's method on the bilinear face) on
+     * the boundary faces of body B with id @p boundary_b that a bounding-box
+     * search (deal.II's R-tree) finds near it; the nearest projection
+     * inside a face wins. The contact point moves with the face's four
+     * nodes weighted by the bilinear shape functions there. The normal is
+     * the bilinear interpolation of B's nodal normals (the average of the
+     * normals of the faces around each node), pointing from B towards A,
+     * so that a node sliding across a face edge meets the same normal from
+     * both faces. Throws if a node projects on no face.
+     */
+    template <int dim>
+    unsigned int
+    add_node_to_face(const std::vector<const ElasticBody<dim> *> &bodies,
+                     const unsigned int                           body_a,
+                     const types::boundary_id                     boundary_a,
+                     const unsigned int                           body_b,
+                     const types::boundary_id                     boundary_b,
+                     const double friction_coefficient = 0.);
 
     /**
      * Node-to-node candidates between two bodies with matching interface
