@@ -2,7 +2,8 @@
  *
  * two_bars_3d: the impact of two identical elastic bars of square section,
  * meshed with Q1 hexahedra (the 1D bars of Vola, Pratt, Jean, Raous,
- * section 6.1, in three dimensions), node-to-node contact.
+ * section 6.1, in three dimensions), node-to-node or node-to-face
+ * contact, or one bar against a rigid wall.
  *
  * ---------------------------------------------------------------------
  */
@@ -11,7 +12,9 @@
 //
 // Two prisms of length L and square section H x H, bar 1 moving at v0
 // along x onto bar 2 at rest. Each node of bar 1's end face is paired
-// with the node of bar 2's end face on the same line along x.
+// with the node of bar 2's end face on the same line along x, or with the
+// closest point of bar 2's end faces (node-to-face: the meshes need not
+// match).
 //
 // With Poisson's ratio 0, a state that is uniform over the section is an
 // exact solution of the 3D discrete problem (nothing couples the axial

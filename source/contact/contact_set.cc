@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 
 namespace impactfe
@@ -364,6 +365,52 @@ namespace impactfe
                                std::to_string(boundary_b) + "."));
         const auto tree = pack_rtree(boxes);
 
+        // The closest point of a face to x: Newton's method on (xi, eta)
+        // for (y - x) . dy/dxi = (y - x) . dy/deta = 0. Its weights, or
+        // nothing if Newton's method does not converge to a minimum
+        // (det > 0) inside the face.
+        const auto project =
+          [](const Face     &face,
+             const Point<3> &x) -> std::optional<std::array<double, 4>> {
+          double             xi = 0.5, eta = 0.5;
+          bool               converged = false;
+          const Tensor<1, 3> y_xi_eta =
+            face.p[0] - face.p[1] - face.p[2] + face.p[3];
+          for (unsigned int it = 0; it < 30 && !converged; ++it)
+            {
+              const Point<3> y = face.p[0] + xi * (face.p[1] - face.p[0]) +
+                                 eta * (face.p[2] - face.p[0]) +
+                                 xi * eta * y_xi_eta;
+              const Tensor<1, 3> y_xi  = face.p[1] - face.p[0] + eta * y_xi_eta;
+              const Tensor<1, 3> y_eta = face.p[2] - face.p[0] + xi * y_xi_eta;
+              const Tensor<1, 3> r     = y - x;
+              const double       g1 = r * y_xi, g2 = r * y_eta;
+              const double a11 = y_xi * y_xi, a12 = y_xi * y_eta + r * y_xi_eta,
+                           a22 = y_eta * y_eta;
+              const double det = a11 * a22 - a12 * a12;
+              if (!(det > 0.))
+                return std::nullopt;
+              const double d_xi  = (a22 * g1 - a12 * g2) / det,
+                           d_eta = (a11 * g2 - a12 * g1) / det;
+              xi -= d_xi;
+              eta -= d_eta;
+              converged = std::abs(d_xi) + std::abs(d_eta) < 1e-14;
+            }
+          if (!converged || !std::isfinite(xi) || !std::isfinite(eta) ||
+              xi < -1e-8 || xi > 1. + 1e-8 || eta < -1e-8 || eta > 1. + 1e-8)
+            return std::nullopt;
+          // On an edge or a corner: exactly there.
+          const auto snap = [](const double t) {
+            return t < 1e-8 ? 0. : (t > 1. - 1e-8 ? 1. : t);
+          };
+          xi  = snap(xi);
+          eta = snap(eta);
+          return std::array<double, 4>{{(1. - xi) * (1. - eta),
+                                        xi * (1. - eta),
+                                        (1. - xi) * eta,
+                                        xi * eta}};
+        };
+
         for (const unsigned int va : vertices_a)
           {
             const Point<3> x = vertex_position(A, va);
@@ -374,56 +421,27 @@ namespace impactfe
             double                best_distance = -1.;
             const Face           *best          = nullptr;
             std::array<double, 4> best_weights{};
+            const auto            try_face = [&](const Face &face) {
+              const auto w = project(face, x);
+              if (!w)
+                return;
+              Point<3> y;
+              for (unsigned int k = 0; k < 4; ++k)
+                y += (*w)[k] * Tensor<1, 3>(face.p[k]);
+              if (best == nullptr || x.distance(y) < best_distance)
+                {
+                  best          = &face;
+                  best_distance = x.distance(y);
+                  best_weights  = *w;
+                }
+            };
             for (const auto &hit : near)
-              {
-                const Face &face = faces[hit.second];
-                // Closest point: Newton's method on (xi, eta) for
-                // (y - x) . dy/dxi = (y - x) . dy/deta = 0.
-                double             xi = 0.5, eta = 0.5;
-                const Tensor<1, 3> y_xi_eta =
-                  face.p[0] - face.p[1] - face.p[2] + face.p[3];
-                for (unsigned int it = 0; it < 30; ++it)
-                  {
-                    const Point<3> y =
-                      face.p[0] + xi * (face.p[1] - face.p[0]) +
-                      eta * (face.p[2] - face.p[0]) + xi * eta * y_xi_eta;
-                    const Tensor<1, 3> y_xi =
-                      face.p[1] - face.p[0] + eta * y_xi_eta;
-                    const Tensor<1, 3> y_eta =
-                      face.p[2] - face.p[0] + xi * y_xi_eta;
-                    const Tensor<1, 3> r  = y - x;
-                    const double       g1 = r * y_xi, g2 = r * y_eta;
-                    const double       a11 = y_xi * y_xi,
-                                 a12       = y_xi * y_eta + r * y_xi_eta,
-                                 a22       = y_eta * y_eta;
-                    const double det       = a11 * a22 - a12 * a12;
-                    const double d_xi      = (a22 * g1 - a12 * g2) / det,
-                                 d_eta     = (a11 * g2 - a12 * g1) / det;
-                    xi -= d_xi;
-                    eta -= d_eta;
-                    if (std::abs(d_xi) + std::abs(d_eta) < 1e-14)
-                      break;
-                  }
-                if (xi < -1e-8 || xi > 1. + 1e-8 || eta < -1e-8 ||
-                    eta > 1. + 1e-8)
-                  continue;
-                xi  = std::clamp(xi, 0., 1.);
-                eta = std::clamp(eta, 0., 1.);
-                const std::array<double, 4> w{{(1. - xi) * (1. - eta),
-                                               xi * (1. - eta),
-                                               (1. - xi) * eta,
-                                               xi * eta}};
-                Point<3>                    y;
-                for (unsigned int k = 0; k < 4; ++k)
-                  y += w[k] * Tensor<1, 3>(face.p[k]);
-                const double distance = x.distance(y);
-                if (best == nullptr || distance < best_distance)
-                  {
-                    best          = &face;
-                    best_distance = distance;
-                    best_weights  = w;
-                  }
-              }
+              try_face(faces[hit.second]);
+            // Farther than the widened boxes (a large initial gap): all
+            // the faces.
+            if (best == nullptr)
+              for (const Face &face : faces)
+                try_face(face);
             AssertThrow(best != nullptr,
                         ExcMessage("Contact: the node of body '" + A.name() +
                                    "' at boundary id " +
@@ -440,10 +458,16 @@ namespace impactfe
             Point<3>     y;
             for (unsigned int k = 0; k < 4; ++k)
               {
-                candidate.vertices_b[k] = best->v[k];
-                candidate.weights_b[k]  = best_weights[k];
-                normal += best_weights[k] * nodal_normals[best->v[k]] /
-                          nodal_normals[best->v[k]].norm();
+                candidate.vertices_b[k]   = best->v[k];
+                candidate.weights_b[k]    = best_weights[k];
+                const Tensor<1, 3> &nodal = nodal_normals[best->v[k]];
+                AssertThrow(nodal.norm() > 0.,
+                            ExcMessage("Contact: the faces of body '" +
+                                       B.name() + "' with boundary id " +
+                                       std::to_string(boundary_b) +
+                                       " around a node have opposite "
+                                       "normals (a thin part?)."));
+                normal += best_weights[k] * nodal / nodal.norm();
                 y += best_weights[k] * Tensor<1, 3>(best->p[k]);
               }
             normal /= normal.norm();

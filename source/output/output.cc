@@ -236,7 +236,10 @@ namespace impactfe
             if (cand.body_a == b)
               vertex = cand.vertex_a;
             else if (cand.body_b == b)
-              vertex = cand.vertices_b[0];
+              vertex = cand.vertices_b[std::distance(
+                cand.weights_b.begin(),
+                std::max_element(cand.weights_b.begin(),
+                                 cand.weights_b.begin() + cand.n_vertices_b))];
             if (vertex == numbers::invalid_unsigned_int)
               continue;
             gap(vertex_to_scalar[vertex])    = gaps[c];

@@ -21,9 +21,10 @@ namespace impactfe
 
   /**
    * One contact candidate: a node of a body (side A) against a node of
-   * another body (node-to-node), a point of a boundary segment of another
-   * body (node-to-segment: two nodes of side B with linear interpolation
-   * weights), or a rigid obstacle. The local frame is
+   * another body (node-to-node), a point of a boundary segment or face of
+   * another body (node-to-segment, node-to-face: two or four nodes of side
+   * B with the interpolation weights there), or a rigid obstacle. The
+   * local frame is
    * (n, t1, t2) with n pointing from side B towards side A, so that
    *   g = (x_A - x_B) . n >= 0 when open,
    *   V_N = (v_A - v_B) . n, and the impulse P_N n acts on A, -P_N n on B.
@@ -145,9 +146,10 @@ namespace impactfe
      * inside a face wins. The contact point moves with the face's four
      * nodes weighted by the bilinear shape functions there. The normal is
      * the bilinear interpolation of B's nodal normals (the average of the
-     * normals of the faces around each node), pointing from B towards A,
-     * so that a node sliding across a face edge meets the same normal from
-     * both faces. Throws if a node projects on no face.
+     * normals of the faces around each node), pointing from B towards A:
+     * continuous across face edges, so a node on an edge gets the same
+     * normal from either face. A node farther from B than the widened boxes
+     * is projected on all the faces. Throws if a node projects on no face.
      */
     template <int dim>
     unsigned int
