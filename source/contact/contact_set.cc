@@ -77,6 +77,31 @@ namespace impactfe
     {
       return body.dof_handler().get_triangulation().get_vertices()[vertex];
     }
+
+    // The checks of every candidate set between two bodies, and the nodes
+    // of side A (@p kind names the set in the messages).
+    template <int dim>
+    std::set<unsigned int>
+    side_a_vertices(const std::vector<const ElasticBody<dim> *> &bodies,
+                    const unsigned int                           body_a,
+                    const types::boundary_id                     boundary_a,
+                    const unsigned int                           body_b,
+                    const double       friction_coefficient,
+                    const std::string &kind)
+    {
+      AssertThrow(
+        body_a < bodies.size() && body_b < bodies.size() && body_a != body_b,
+        ExcMessage("Contact: " + kind + " needs two distinct bodies."));
+      AssertThrow(friction_coefficient >= 0.,
+                  ExcMessage(
+                    "Contact: the friction coefficient must be >= 0."));
+      const auto vertices = boundary_vertices(*bodies[body_a], boundary_a);
+      AssertThrow(!vertices.empty(),
+                  ExcMessage("Contact: body '" + bodies[body_a]->name() +
+                             "' has no vertex on boundary id " +
+                             std::to_string(boundary_a) + "."));
+      return vertices;
+    }
   } // namespace
 
 
@@ -200,18 +225,14 @@ namespace impactfe
     AssertThrow(dim == 2,
                 ExcMessage("Contact: node-to-segment candidates are "
                            "implemented in 2D only."));
-    AssertThrow(
-      body_a < bodies.size() && body_b < bodies.size() && body_a != body_b,
-      ExcMessage("Contact: node-to-segment needs two distinct bodies."));
-    AssertThrow(friction_coefficient >= 0.,
-                ExcMessage("Contact: the friction coefficient must be >= 0."));
+    const auto  vertices_a = side_a_vertices(bodies,
+                                            body_a,
+                                            boundary_a,
+                                            body_b,
+                                            friction_coefficient,
+                                            "node-to-segment");
     const auto &A          = *bodies[body_a];
     const auto &B          = *bodies[body_b];
-    const auto  vertices_a = boundary_vertices(A, boundary_a);
-    AssertThrow(!vertices_a.empty(),
-                ExcMessage("Contact: body '" + A.name() +
-                           "' has no vertex on boundary id " +
-                           std::to_string(boundary_a) + "."));
 
     struct Segment
     {
@@ -311,18 +332,10 @@ namespace impactfe
     AssertThrow(dim == 3,
                 ExcMessage("Contact: node-to-face candidates are 3D only "
                            "(node-to-segment in 2D)."));
-    AssertThrow(body_a < bodies.size() && body_b < bodies.size() &&
-                  body_a != body_b,
-                ExcMessage("Contact: node-to-face needs two distinct bodies."));
-    AssertThrow(friction_coefficient >= 0.,
-                ExcMessage("Contact: the friction coefficient must be >= 0."));
-    const auto &A          = *bodies[body_a];
-    const auto &B          = *bodies[body_b];
-    const auto  vertices_a = boundary_vertices(A, boundary_a);
-    AssertThrow(!vertices_a.empty(),
-                ExcMessage("Contact: body '" + A.name() +
-                           "' has no vertex on boundary id " +
-                           std::to_string(boundary_a) + "."));
+    const auto vertices_a = side_a_vertices(
+      bodies, body_a, boundary_a, body_b, friction_coefficient, "node-to-face");
+    const auto &A = *bodies[body_a];
+    const auto &B = *bodies[body_b];
     if constexpr (dim == 3)
       {
         struct Face
@@ -495,19 +508,11 @@ namespace impactfe
     const Tensor<1, dim>                        &normal,
     const double                                 friction_coefficient)
   {
-    AssertThrow(body_a < bodies.size() && body_b < bodies.size() &&
-                  body_a != body_b,
-                ExcMessage("Contact: node-to-node needs two distinct bodies."));
-    AssertThrow(friction_coefficient >= 0.,
-                ExcMessage("Contact: the friction coefficient must be >= 0."));
+    const auto vertices_a = side_a_vertices(
+      bodies, body_a, boundary_a, body_b, friction_coefficient, "node-to-node");
     const auto &A          = *bodies[body_a];
     const auto &B          = *bodies[body_b];
-    const auto  vertices_a = boundary_vertices(A, boundary_a);
     const auto  vertices_b = boundary_vertices(B, boundary_b);
-    AssertThrow(!vertices_a.empty(),
-                ExcMessage("Contact: body '" + A.name() +
-                           "' has no vertex on boundary id " +
-                           std::to_string(boundary_a) + "."));
     AssertThrow(!vertices_b.empty(),
                 ExcMessage("Contact: body '" + B.name() +
                            "' has no vertex on boundary id " +
