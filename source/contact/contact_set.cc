@@ -195,14 +195,31 @@ namespace impactfe
         candidate.body_a   = body_index;
         candidate.vertex_a = v;
         const Point<dim> x = vertex_position(body, v);
-        for (unsigned int d = 0; d < dim; ++d)
-          candidate.position[d] = x[d];
-        set_frame(candidate, obstacle.normal(x));
-        candidate.initial_gap          = obstacle.signed_distance(x);
-        candidate.friction_coefficient = friction_coefficient;
-        candidate_list.push_back(candidate);
+        add_candidate(candidate,
+                      x,
+                      obstacle.normal(x),
+                      obstacle.signed_distance(x),
+                      friction_coefficient);
       }
     return vertices.size();
+  }
+
+
+
+  template <int dim>
+  void
+  ContactSet::add_candidate(ContactCandidate      candidate,
+                            const Point<dim>     &x,
+                            const Tensor<1, dim> &normal,
+                            const double          initial_gap,
+                            const double          friction_coefficient)
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      candidate.position[d] = x[d];
+    set_frame(candidate, normal);
+    candidate.initial_gap          = initial_gap;
+    candidate.friction_coefficient = friction_coefficient;
+    candidate_list.push_back(candidate);
   }
 
 
@@ -298,14 +315,13 @@ namespace impactfe
                                    numbers::invalid_unsigned_int,
                                    numbers::invalid_unsigned_int}};
         candidate.weights_b    = {{1. - best_xi, best_xi, 0., 0.}};
-        for (unsigned int d = 0; d < dim; ++d)
-          candidate.position[d] = x[d];
-        set_frame(candidate, best->normal);
         const Point<dim> projection =
           best->p1 + best_xi * (best->p2 - best->p1);
-        candidate.initial_gap          = (x - projection) * best->normal;
-        candidate.friction_coefficient = friction_coefficient;
-        candidate_list.push_back(candidate);
+        add_candidate(candidate,
+                      x,
+                      best->normal,
+                      (x - projection) * best->normal,
+                      friction_coefficient);
       }
     return vertices_a.size();
   }
@@ -484,12 +500,11 @@ namespace impactfe
                 y += best_weights[k] * Tensor<1, 3>(best->p[k]);
               }
             normal /= normal.norm();
-            for (unsigned int d = 0; d < 3; ++d)
-              candidate.position[d] = x[d];
-            set_frame(candidate, Tensor<1, dim>(normal));
-            candidate.initial_gap          = (x - y) * normal;
-            candidate.friction_coefficient = friction_coefficient;
-            candidate_list.push_back(candidate);
+            add_candidate(candidate,
+                          Point<dim>(x),
+                          Tensor<1, dim>(normal),
+                          (x - y) * normal,
+                          friction_coefficient);
           }
       }
     return vertices_a.size();
@@ -552,12 +567,11 @@ namespace impactfe
         candidate.n_vertices_b  = 1;
         candidate.vertices_b[0] = partner;
         candidate.weights_b[0]  = 1.;
-        for (unsigned int d = 0; d < dim; ++d)
-          candidate.position[d] = xa[d];
-        set_frame(candidate, n);
-        candidate.initial_gap          = (xa - vertex_position(B, partner)) * n;
-        candidate.friction_coefficient = friction_coefficient;
-        candidate_list.push_back(candidate);
+        add_candidate(candidate,
+                      xa,
+                      n,
+                      (xa - vertex_position(B, partner)) * n,
+                      friction_coefficient);
       }
     return vertices_a.size();
   }

@@ -243,6 +243,16 @@ namespace impactfe
     template <int dim>
     void
     set_frame(ContactCandidate &candidate, const Tensor<1, dim> &normal) const;
+    /// Complete @p candidate (its bodies, side A's node and side B's nodes
+    /// set) with side A's reference position @p x, the frame of @p normal,
+    /// the initial gap and the friction coefficient, and add it.
+    template <int dim>
+    void
+    add_candidate(ContactCandidate      candidate,
+                  const Point<dim>     &x,
+                  const Tensor<1, dim> &normal,
+                  const double          initial_gap,
+                  const double          friction_coefficient);
   };
 } // namespace impactfe
 
