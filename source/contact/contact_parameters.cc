@@ -21,8 +21,9 @@ namespace impactfe
       "the pivoting O(n^3)). 'active set': a primal-dual active set "
       "(semismooth Newton) method whose linear systems are solved by "
       "GMRES with products W x = H^T M~^{-1} H x (one solve pair each), "
-      "so W is never formed; frictionless and 2D problems (3D friction "
-      "always uses Lemke's method); its answer passes the same "
+      "so W is never formed; frictionless, 2D, and 3D problems with the "
+      "exact cone (the 3D polygonal cone always uses Lemke's method); its "
+      "answer passes the same "
       "verification, and when it does not converge the step falls back to "
       "Lemke's method and says so (doc/lcp.md, 'Large contact sets'). "
       "'automatic': the active set method when at least 'Active set "
@@ -33,6 +34,17 @@ namespace impactfe
                       "With 'Method = automatic': the number of contact "
                       "candidates in a step's problem from which the active "
                       "set method is used [-].");
+    prm.declare_entry(
+      "Dense Schur complement",
+      "true",
+      Patterns::Bool(),
+      "With the active set method, when every candidate is against a "
+      "rigid obstacle: compute the Schur complement S of M~ on the contact "
+      "DoFs and its inverse as dense matrices, from one factorisation that "
+      "eliminates those DoFs last, so that W x and the preconditioner are "
+      "dense products instead of sparse solve pairs. Used only where that "
+      "is the cheaper product (|C|^2 < 4 nnz(L), at most 1 GiB; typically "
+      "3D) (doc/lcp.md, 'Large contact sets').");
     prm.declare_entry("Active set iterations",
                       "50",
                       Patterns::Integer(1),
@@ -99,6 +111,7 @@ namespace impactfe
                                                                   Method::automatic;
     active_set_threshold          = prm.get_integer("Active set threshold");
     active_set_iterations         = prm.get_integer("Active set iterations");
+    dense_schur_complement        = prm.get_bool("Dense Schur complement");
     largest_lemke_fallback        = prm.get_integer("Largest Lemke fallback");
     warm_start                    = prm.get_bool("Warm start");
     dump_step                     = prm.get_integer("Dump LCP of step");

@@ -225,6 +225,8 @@ namespace impactfe
     run.active_set_solves     = system.active_set_statistics().solves;
     run.active_set_iterations = system.active_set_statistics().iterations;
     run.active_set_fallbacks  = system.active_set_statistics().fallbacks;
+    run.active_set_dense_schur_complement =
+      system.active_set_statistics().dense_schur_complement;
 
     // Impulse balance, body by body.
     for (unsigned int b = 0; b < system.bodies().size(); ++b)
@@ -536,7 +538,11 @@ namespace impactfe
           << " contact problems, "
           << s.active_set_solves - s.active_set_fallbacks
           << " solved and verified, " << s.active_set_fallbacks
-          << " fell back to Lemke's method" << std::endl;
+          << " fell back to Lemke's method"
+          << (s.active_set_dense_schur_complement ?
+                "; W x by the dense Schur complement of M~" :
+                "")
+          << std::endl;
     bool ok = true;
     if (s.exact_cone_solves > 0)
       {

@@ -309,6 +309,7 @@ namespace impactfe
       step_matrix_list.push_back(matrix.get());
     interior_solvers.clear();
     interior_matrices.clear();
+    dense_schur.clear();
     active_set_stats = ActiveSetStatistics();
     last_impulses.assign(n_columns, 0.);
     local_impulses.assign(n_columns, 0.);
@@ -545,7 +546,7 @@ namespace impactfe
   {
     const unsigned int nd = contact_set.n_directions();
     const unsigned int n  = lcp_candidates.size();
-    if (interior_solvers.empty())
+    if (interior_solvers.empty() && dense_schur.empty())
       setup_schur_preconditioner();
     contact_set.inverse_delassus_diagonal(step_matrix_list,
                                           lcp_candidates,
@@ -572,6 +573,11 @@ namespace impactfe
       }
     const lcp::DelassusProduct product = [&](const std::vector<double> &x,
                                              std::vector<double>       &y) {
+      if (!dense_schur.empty())
+        {
+          dense_schur_product(x, y, false);
+          return;
+        }
       impulse_velocity = 0.;
       for (unsigned int j = 0; j < n * nd; ++j)
         if (x[j] != 0.)
@@ -588,6 +594,11 @@ namespace impactfe
     // candidates between two bodies get c_j x_j.
     const lcp::DelassusProduct preconditioner =
       [&](const std::vector<double> &x, std::vector<double> &y) {
+        if (!dense_schur.empty())
+          {
+            dense_schur_product(x, y, true);
+            return;
+          }
         const unsigned int n_bodies = body_list.size();
         schur_nodal                 = 0.;
         for (unsigned int j = 0; j < n * nd; ++j)
@@ -680,8 +691,64 @@ namespace impactfe
       }
     if (!any_impulse) // the solver made no product with P = 0
       impulse_velocity = 0.;
+    else if (!dense_schur.empty())
+      {
+        // The dense products give W P on the contact DoFs only: M~^{-1} H P
+        // (the velocity correction, and the excluded candidates' check) is
+        // one solve pair.
+        impulse_velocity = 0.;
+        for (unsigned int j = 0; j < n * nd; ++j)
+          if (P[j] != 0.)
+            contact_set.add_column(lcp_candidates[j / nd] * nd + j % nd,
+                                   P[j],
+                                   impulse_velocity);
+        solve_step_matrix(impulse_velocity);
+      }
     impulse_velocity_ready = true;
     return true;
+  }
+
+
+
+  // H^T S^{-1} H x (W x) or H^T S H x (the preconditioner) with the dense
+  // Schur complements of the bodies: H x on each body's contact DoFs, one
+  // dense product, and H^T back. Every candidate is against a rigid
+  // obstacle (setup_schur_preconditioner()), so C holds all DoFs of H.
+  template <int dim>
+  void
+  MultibodySystem<dim>::dense_schur_product(const std::vector<double> &x,
+                                            std::vector<double>       &y,
+                                            const bool use_schur) const
+  {
+    const unsigned int nd = contact_set.n_directions();
+    const unsigned int n  = lcp_candidates.size();
+    for (unsigned int b = 0; b < dense_schur.size(); ++b)
+      for (const auto d : dense_schur[b].dofs())
+        schur_nodal.block(b)(d) = 0.;
+    for (unsigned int j = 0; j < n * nd; ++j)
+      if (x[j] != 0.)
+        contact_set.add_column(lcp_candidates[j / nd] * nd + j % nd,
+                               x[j],
+                               schur_nodal);
+    for (unsigned int b = 0; b < dense_schur.size(); ++b)
+      {
+        const DenseSchurComplement &schur = dense_schur[b];
+        const auto                 &dofs  = schur.dofs();
+        dense_in.resize(dofs.size());
+        dense_out.resize(dofs.size());
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+          dense_in[i] = schur_nodal.block(b)(dofs[i]);
+        if (use_schur)
+          schur.vmult(dense_in.data(), dense_out.data());
+        else
+          schur.vmult_inverse(dense_in.data(), dense_out.data());
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+          schur_product.block(b)(dofs[i]) = dense_out[i];
+      }
+    y.resize(n * nd);
+    for (unsigned int j = 0; j < n * nd; ++j)
+      y[j] = contact_set.column_dot(lcp_candidates[j / nd] * nd + j % nd,
+                                    schur_product);
   }
 
 
@@ -702,6 +769,30 @@ namespace impactfe
     schur_interior              = make_block_vector();
     interior_matrices.clear();
     interior_solvers.clear();
+    dense_schur.clear();
+    // The dense Schur complements, if every candidate is against a rigid
+    // obstacle (so that C holds every DoF of H) and they are the cheaper
+    // products (typically in 3D).
+    bool dense = true;
+    for (unsigned int c = 0; c < contact_set.n_candidates(); ++c)
+      dense = dense && contact_set.candidate(c).against_rigid_obstacle();
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      dense =
+        dense &&
+        (schur_contact_dofs[b].empty() ||
+         DenseSchurComplement::pays_off(schur_contact_dofs[b].size(),
+                                        step_solvers[b]->n_factor_entries()));
+    if (dense && solver_parameters.dense_schur_complement)
+      {
+        active_set_stats.dense_schur_complement = true;
+        dense_schur.resize(n_bodies);
+        for (unsigned int b = 0; b < n_bodies; ++b)
+          dense_schur[b].compute(*step_matrices[b],
+                                 schur_contact_dofs[b],
+                                 "the step matrix of body '" +
+                                   body_list[b]->name() + "'");
+        return;
+      }
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
         auto matrix = std::make_unique<SparseMatrix<double>>(
@@ -908,6 +999,13 @@ namespace impactfe
         // The active set method (large sets): no W, its answer verified;
         // Lemke's method otherwise, and when it does not converge.
         impulse_velocity_ready = false;
+        if (use_active_set(lcp_candidates.size()) && interior_solvers.empty() &&
+            dense_schur.empty())
+          {
+            clock.charge(costs.lcp);
+            setup_schur_preconditioner();
+            clock.charge(costs.delassus);
+          }
         if (use_active_set(lcp_candidates.size()) &&
             solve_contact_active_set(report))
           {

@@ -74,6 +74,54 @@ namespace impactfe
 
 
 
+  namespace
+  {
+    // The upper triangle (i <= j) of a symmetric matrix in compressed
+    // columns, as CHOLMOD reads it: row j of the CSR storage is column j of
+    // A^T = A. The arrays live as long as the object.
+    struct UpperTriangle
+    {
+      std::vector<int>    column_start;
+      std::vector<int>    row_index;
+      std::vector<double> values;
+      cholmod_sparse      view;
+
+      explicit UpperTriangle(const SparseMatrix<double> &matrix)
+        : column_start(matrix.m() + 1, 0)
+      {
+        const unsigned int n = matrix.m();
+        row_index.reserve(matrix.n_nonzero_elements() / 2 + n);
+        values.reserve(matrix.n_nonzero_elements() / 2 + n);
+        for (unsigned int j = 0; j < n; ++j)
+          {
+            for (auto entry = matrix.begin(j); entry != matrix.end(j); ++entry)
+              if (entry->column() <= j)
+                {
+                  row_index.push_back(entry->column());
+                  values.push_back(entry->value());
+                }
+            column_start[j + 1] = row_index.size();
+          }
+        view.nrow   = n;
+        view.ncol   = n;
+        view.nzmax  = values.size();
+        view.p      = column_start.data();
+        view.i      = row_index.data();
+        view.nz     = nullptr;
+        view.x      = values.data();
+        view.z      = nullptr;
+        view.stype  = 1; // symmetric, upper triangle stored
+        view.itype  = CHOLMOD_INT;
+        view.xtype  = CHOLMOD_REAL;
+        view.dtype  = CHOLMOD_DOUBLE;
+        view.sorted = false; // deal.II stores the diagonal first
+        view.packed = true;
+      }
+    };
+  } // namespace
+
+
+
   void
   SparseCholesky::factorize(const SparseMatrix<double> &matrix,
                             const std::string          &name)
@@ -82,47 +130,21 @@ namespace impactfe
                 ExcMessage("Cholesky factorisation of " + name +
                            ": the matrix is not square."));
     data->free_all();
-    const unsigned int n = matrix.m();
-
-    // The upper triangle (i <= j) of the symmetric matrix in compressed
-    // columns: row j of the CSR storage is column j of A^T = A.
-    std::vector<int>    column_start(n + 1, 0);
-    std::vector<int>    row_index;
-    std::vector<double> values;
-    row_index.reserve(matrix.n_nonzero_elements() / 2 + n);
-    values.reserve(matrix.n_nonzero_elements() / 2 + n);
-    for (unsigned int j = 0; j < n; ++j)
-      {
-        for (auto entry = matrix.begin(j); entry != matrix.end(j); ++entry)
-          if (entry->column() <= j)
-            {
-              row_index.push_back(entry->column());
-              values.push_back(entry->value());
-            }
-        column_start[j + 1] = row_index.size();
-      }
-
-    cholmod_sparse upper;
-    upper.nrow   = n;
-    upper.ncol   = n;
-    upper.nzmax  = values.size();
-    upper.p      = column_start.data();
-    upper.i      = row_index.data();
-    upper.nz     = nullptr;
-    upper.x      = values.data();
-    upper.z      = nullptr;
-    upper.stype  = 1; // symmetric, upper triangle stored
-    upper.itype  = CHOLMOD_INT;
-    upper.xtype  = CHOLMOD_REAL;
-    upper.dtype  = CHOLMOD_DOUBLE;
-    upper.sorted = false; // deal.II stores the diagonal first
-    upper.packed = true;
-
-    data->factor = cholmod_analyze(&upper, &data->common);
+    UpperTriangle upper(matrix);
+    data->factor = cholmod_analyze(&upper.view, &data->common);
     AssertThrow(data->factor != nullptr,
                 ExcMessage("Cholesky factorisation of " + name +
                            ": the analysis failed (CHOLMOD status " +
                            std::to_string(data->common.status) + ")."));
+    factorize_analysed(upper.view, name);
+  }
+
+
+
+  void
+  SparseCholesky::factorize_analysed(cholmod_sparse_struct &upper,
+                                     const std::string     &name)
+  {
     cholmod_factorize(&upper, data->factor, &data->common);
     AssertThrow(data->common.status == CHOLMOD_OK,
                 ExcMessage(
@@ -133,10 +155,146 @@ namespace impactfe
                                  "step).") :
                      ": CHOLMOD status " + std::to_string(data->common.status) +
                        ".")));
-    data->rhs = cholmod_zeros(n, 1, CHOLMOD_REAL, &data->common);
+    data->rhs = cholmod_zeros(upper.nrow, 1, CHOLMOD_REAL, &data->common);
     data->column_start.clear();
     if (!data->factor->is_super)
       copy_simplicial_factor();
+  }
+
+
+
+  // The ordering: CHOLMOD's own fill-reducing ordering of the other
+  // unknowns (its analysis of that block), then the trailing ones. With
+  // them last, the trailing block of L is the Cholesky factor of their
+  // Schur complement: A = [A_II A_IC; A_CI A_CC] = L L^T with
+  // L = [L_II 0; X L_CC] gives A_CC = X X^T + L_CC L_CC^T and
+  // X = A_CI L_II^{-T}, so L_CC L_CC^T = A_CC - A_CI A_II^{-1} A_IC. Its
+  // cost is about that of one factorisation (the trailing unknowns of a
+  // contact surface are a separator like the top ones of nested
+  // dissection), where computing the Schur complement by solves would take
+  // one solve per trailing unknown.
+  std::vector<double>
+  SparseCholesky::factorize_with_trailing_block(
+    const SparseMatrix<double>           &matrix,
+    std::vector<types::global_dof_index> &trailing,
+    const std::string                    &name)
+  {
+    AssertThrow(matrix.m() == matrix.n(),
+                ExcMessage("Cholesky factorisation of " + name +
+                           ": the matrix is not square."));
+    const unsigned int n   = matrix.m();
+    const unsigned int n_c = trailing.size();
+    std::vector<int>   position(n, -1);
+    for (unsigned int i = 0; i < n_c; ++i)
+      {
+        AssertThrow(trailing[i] < n && position[trailing[i]] < 0,
+                    ExcMessage("Cholesky factorisation of " + name +
+                               ": the trailing unknowns must be distinct "
+                               "rows of the matrix."));
+        position[trailing[i]] = i;
+      }
+    std::vector<int> ordering;
+    ordering.reserve(n);
+    {
+      // The block of the other unknowns, analysed alone.
+      std::vector<types::global_dof_index> others;
+      for (unsigned int i = 0; i < n; ++i)
+        if (position[i] < 0)
+          others.push_back(i);
+      std::vector<int> other_index(n, -1);
+      for (unsigned int k = 0; k < others.size(); ++k)
+        other_index[others[k]] = k;
+      UpperTriangle       upper(matrix);
+      std::vector<int>    start(1, 0), rows;
+      std::vector<double> values;
+      for (const auto j : others)
+        {
+          for (int p = upper.column_start[j]; p < upper.column_start[j + 1];
+               ++p)
+            if (other_index[upper.row_index[p]] >= 0)
+              {
+                rows.push_back(other_index[upper.row_index[p]]);
+                values.push_back(upper.values[p]);
+              }
+          start.push_back(rows.size());
+        }
+      cholmod_sparse block = upper.view;
+      block.nrow = block.ncol = others.size();
+      block.nzmax             = values.size();
+      block.p                 = start.data();
+      block.i                 = rows.data();
+      block.x                 = values.data();
+      cholmod_factor *symbolic =
+        others.empty() ? nullptr : cholmod_analyze(&block, &data->common);
+      AssertThrow(others.empty() || symbolic != nullptr,
+                  ExcMessage("Cholesky factorisation of " + name +
+                             ": the analysis failed (CHOLMOD status " +
+                             std::to_string(data->common.status) + ")."));
+      if (symbolic != nullptr)
+        {
+          const int *perm = static_cast<const int *>(symbolic->Perm);
+          for (unsigned int k = 0; k < others.size(); ++k)
+            ordering.push_back(others[perm[k]]);
+          cholmod_free_factor(&symbolic, &data->common);
+        }
+    }
+    for (const auto d : trailing)
+      ordering.push_back(d);
+
+    data->free_all();
+    UpperTriangle   upper(matrix);
+    cholmod_common &common       = data->common;
+    const int       nmethods     = common.nmethods;
+    const int       first_method = common.method[0].ordering;
+    const int       postorder    = common.postorder;
+    const int       supernodal   = common.supernodal;
+    common.nmethods              = 1;
+    common.method[0].ordering    = CHOLMOD_GIVEN;
+    common.postorder             = false; // keeps the trailing block last
+    common.supernodal            = CHOLMOD_SUPERNODAL;
+    data->factor =
+      cholmod_analyze_p(&upper.view, ordering.data(), nullptr, 0, &common);
+    common.nmethods           = nmethods;
+    common.method[0].ordering = first_method;
+    common.postorder          = postorder;
+    common.supernodal         = supernodal;
+    AssertThrow(data->factor != nullptr,
+                ExcMessage("Cholesky factorisation of " + name +
+                           ": the analysis failed (CHOLMOD status " +
+                           std::to_string(common.status) + ")."));
+    factorize_analysed(upper.view, name);
+
+    // Copy L_CC out of the supernodes that hold the last n_c columns;
+    // their rows are all trailing ones. The order of the trailing unknowns
+    // is the factor's (returned in trailing).
+    const cholmod_factor *L    = data->factor;
+    const int            *perm = static_cast<const int *>(L->Perm);
+    for (unsigned int i = 0; i < n_c; ++i)
+      trailing[i] = perm[n - n_c + i];
+    AssertThrow(std::all_of(trailing.begin(),
+                            trailing.end(),
+                            [&](const auto d) { return position[d] >= 0; }),
+                ExcMessage("Cholesky factorisation of " + name +
+                           ": CHOLMOD did not keep the given ordering."));
+    std::vector<double> block(static_cast<std::size_t>(n_c) * n_c, 0.);
+    const int          *super = static_cast<const int *>(L->super);
+    const int          *pi    = static_cast<const int *>(L->pi);
+    const int          *px    = static_cast<const int *>(L->px);
+    const int          *s     = static_cast<const int *>(L->s);
+    const double       *x     = static_cast<const double *>(L->x);
+    const int           first = n - n_c;
+    for (std::size_t k = 0; k < L->nsuper; ++k)
+      if (super[k + 1] > first)
+        {
+          const int n_rows = pi[k + 1] - pi[k];
+          for (int j = std::max(super[k], first); j < super[k + 1]; ++j)
+            for (int r = 0; r < n_rows; ++r)
+              if (const int row = s[pi[k] + r]; row >= j)
+                block[static_cast<std::size_t>(j - first) * n_c + row - first] =
+                  x[px[k] + static_cast<std::size_t>(j - super[k]) * n_rows +
+                    r];
+        }
+    return block;
   }
 
 

@@ -90,7 +90,9 @@ namespace impactfe
              double(active_set.linear_iterations))
         .add("active_set_products", double(active_set.operator_applications))
         .add("active_set_largest_violation", active_set.largest_violation)
-        .add("active_set_fallbacks", double(active_set.fallbacks));
+        .add("active_set_fallbacks", double(active_set.fallbacks))
+        .add("active_set_dense_schur_complement",
+             double(active_set.dense_schur_complement));
     JsonObject checks;
     checks.add("impulse_balance_error", s.impulse_balance_error)
       .add("max_penetration", s.max_penetration)

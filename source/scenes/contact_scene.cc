@@ -154,6 +154,9 @@ namespace impactfe
 
     create_output_directory(parameters.output.directory);
     multibody_system->set_dump_directory(parameters.output.directory);
+    // Where the time goes (a few clock reads per step, so only when asked).
+    multibody_system->enable_cost_breakdown(
+      parameters.output.print_performance);
     multibody_system->setup();
     prepare_run();
     recorder = std::make_unique<SceneRecorder<dim>>(*multibody_system,
@@ -215,6 +218,18 @@ namespace impactfe
       .add("time_step", ts.time_step)
       .add("setup_cpu_seconds", setup_cpu_seconds)
       .add("loop_cpu_seconds", loop_cpu_seconds);
+    const CostBreakdown &costs = multibody_system->cost_breakdown();
+    const double n_steps = std::max(1u, parameters.time_stepping.n_steps());
+    if (parameters.output.print_performance)
+      summary.add("cost",
+                  JsonObject()
+                    .add("factorization_seconds", costs.factorization)
+                    .add("delassus_seconds", costs.delassus)
+                    .add("free_velocity_per_step",
+                         costs.free_velocity / n_steps)
+                    .add("lcp_per_step", costs.lcp / n_steps)
+                    .add("update_per_step", costs.update / n_steps)
+                    .add("steps", n_steps));
     const bool ok = report(out, summary);
     recorder->add_summary(summary);
     summary.write(parameters.output.directory + "/summary.json");
@@ -230,7 +245,12 @@ namespace impactfe
           out << "; exact cone: " << cone.facet_lcps << " facet LCPs for "
               << cone.solves << " problems (at most " << cone.most_facet_lcps
               << "), largest residual " << cone.largest_residual;
-        out << std::endl;
+        out << std::endl
+            << "  CPU seconds per step: free velocity "
+            << costs.free_velocity / n_steps << ", contact problem "
+            << costs.lcp / n_steps << ", update " << costs.update / n_steps
+            << "; once: factorisation of M~ " << costs.factorization
+            << ", Delassus operator " << costs.delassus << std::endl;
       }
     recorder->report_files(out,
                            plot_columns(),

@@ -31,6 +31,9 @@ namespace impactfe
     Method       method                = Method::automatic;
     unsigned int active_set_threshold  = 300;
     unsigned int active_set_iterations = 50;
+    /// Active set products with the dense Schur complement of M~ on the
+    /// contact DoFs where that is cheaper (dynamics/schur_complement.h).
+    bool dense_schur_complement = true;
     /// Largest problem (candidates) that may fall back to Lemke's method
     /// when the active set method does not converge; larger ones stop the
     /// run with a message instead of a dense W of that size.

@@ -65,9 +65,10 @@ namespace impactfe
     double       exact_cone_tolerance     = 0.;
     /// Contact problems solved by the active set method, its iterations,
     /// and the solves that fell back to Lemke's method.
-    unsigned int       active_set_solves     = 0;
-    unsigned long long active_set_iterations = 0;
-    unsigned int       active_set_fallbacks  = 0;
+    unsigned int       active_set_solves                 = 0;
+    unsigned long long active_set_iterations             = 0;
+    unsigned int       active_set_fallbacks              = 0;
+    bool               active_set_dense_schur_complement = false;
   };
 
 

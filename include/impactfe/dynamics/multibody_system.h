@@ -8,6 +8,7 @@
 #include <impactfe/bodies/elastic_body.h>
 #include <impactfe/contact/contact_parameters.h>
 #include <impactfe/contact/contact_set.h>
+#include <impactfe/dynamics/schur_complement.h>
 #include <impactfe/dynamics/sparse_cholesky.h>
 #include <impactfe/lcp/active_set.h>
 #include <impactfe/lcp/contact_problem.h>
@@ -61,7 +62,8 @@ namespace impactfe
     /// Building and factorising M~ (once, in setup()).
     double factorization = 0.;
     /// Solves for the Delassus columns M~^{-1} H_j and W = H^T M~^{-1} H,
-    /// done when a candidate first enters an LCP.
+    /// done when a candidate first enters an LCP; or the active set
+    /// method's Schur complement on the contact DoFs (once).
     double delassus = 0.;
     /// Right-hand side and solve of the free velocity, local velocities and
     /// gap terms.
@@ -264,7 +266,9 @@ namespace impactfe
       unsigned long long operator_applications = 0;
       double             largest_violation     = 0.;
       unsigned int       fallbacks             = 0;
-      std::string        last_fallback_reason;
+      /// Whether the products used the dense Schur complements.
+      bool        dense_schur_complement = false;
+      std::string last_fallback_reason;
     };
     const ActiveSetStatistics &
     active_set_statistics() const;
@@ -365,7 +369,12 @@ namespace impactfe
     std::vector<std::vector<types::global_dof_index>>  schur_contact_dofs;
     std::vector<std::unique_ptr<SparseMatrix<double>>> interior_matrices;
     std::vector<std::unique_ptr<SparseCholesky>>       interior_solvers;
-    BlockVector<double> schur_nodal, schur_product, schur_interior;
+    /// Or, when they are the cheaper products, the dense Schur complements
+    /// S and S^{-1} of each body on C (then W = H^T S^{-1} H exactly), with
+    /// their work vectors.
+    std::vector<DenseSchurComplement> dense_schur;
+    mutable std::vector<double>       dense_in, dense_out;
+    mutable BlockVector<double> schur_nodal, schur_product, schur_interior;
     std::vector<const SparseMatrix<double> *> step_matrix_list;
     BlockVector<double>                       impulse_velocity;
     bool                                      impulse_velocity_ready = false;
@@ -373,7 +382,12 @@ namespace impactfe
     std::vector<double> lcp_free_velocity, lcp_gap_terms, lcp_mu,
       lcp_impulse_guess, lcp_penalty;
     void
-                        setup_schur_preconditioner();
+    setup_schur_preconditioner();
+    /// y = H^T S^{-1} H x, or H^T S H x if @p use_schur, with dense_schur.
+    void
+                        dense_schur_product(const std::vector<double> &x,
+                                            std::vector<double>       &y,
+                                            const bool                 use_schur) const;
     ActiveSetStatistics active_set_stats;
     /// Whether the step's problem on @p n candidates goes to the active set
     /// method.

@@ -6,6 +6,10 @@
 
 #include <cstddef>
 #include <memory>
+#include <string>
+#include <vector>
+
+struct cholmod_sparse_struct;
 
 namespace impactfe
 {
@@ -41,6 +45,20 @@ namespace impactfe
     factorize(const SparseMatrix<double> &matrix,
               const std::string          &name = "matrix");
 
+    /**
+     * Factorise @p matrix with the unknowns @p trailing eliminated last and
+     * return the trailing block L_CC of the factor: dense, lower
+     * triangular, column-major, trailing.size() squared. L_CC L_CC^T is the
+     * Schur complement A_CC - A_CI A_II^{-1} A_IC of the other unknowns I.
+     * On return @p trailing holds the same unknowns in the order of L_CC's
+     * rows. The factorisation serves solve() as well.
+     */
+    std::vector<double>
+    factorize_with_trailing_block(
+      const SparseMatrix<double>           &matrix,
+      std::vector<types::global_dof_index> &trailing,
+      const std::string                    &name = "matrix");
+
     /** x <- M~^{-1} x. */
     void
     solve(Vector<double> &rhs_and_solution) const;
@@ -71,6 +89,10 @@ namespace impactfe
     n_factor_entries() const;
 
   private:
+    /// Factorise after an analysis (data->factor), and check the result.
+    void
+    factorize_analysed(cholmod_sparse_struct &upper, const std::string &name);
+
     /// Keep a simplicial factor as L D L^T in our own arrays (solve()).
     void
     copy_simplicial_factor();

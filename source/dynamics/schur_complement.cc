@@ -1,0 +1,119 @@
+#include <deal.II/base/exceptions.h>
+
+#include <deal.II/lac/lapack_templates.h>
+
+#include <impactfe/dynamics/schur_complement.h>
+#include <impactfe/dynamics/sparse_cholesky.h>
+
+// y = alpha A x + beta y for a symmetric A of which one triangle is read
+// (BLAS level 2; deal.II's lapack_templates.h has no symv).
+extern "C" void
+dsymv_(const char   *uplo,
+       const int    *n,
+       const double *alpha,
+       const double *a,
+       const int    *lda,
+       const double *x,
+       const int    *incx,
+       const double *beta,
+       double       *y,
+       const int    *incy);
+
+namespace impactfe
+{
+  void
+  DenseSchurComplement::compute(
+    const SparseMatrix<double>                 &matrix,
+    const std::vector<types::global_dof_index> &dofs,
+    const std::string                          &name)
+  {
+    contact_dofs = dofs;
+    SparseCholesky factor;
+    inverse = factor.factorize_with_trailing_block(matrix, contact_dofs, name);
+    const int n = contact_dofs.size();
+    schur.assign(inverse.size(), 0.);
+    if (n == 0)
+      return;
+    // S = L_CC L_CC^T (lower triangle).
+    const double one = 1., zero = 0.;
+    syrk("L", "N", &n, &n, &one, inverse.data(), &n, &zero, schur.data(), &n);
+    // S^{-1} from the Cholesky factor L_CC (lower triangle, in place).
+    int info = 0;
+    potri("L", &n, inverse.data(), &n, &info);
+    AssertThrow(info == 0,
+                ExcMessage("The inverse of the Schur complement of " + name +
+                           " on its contact DoFs failed (LAPACK dpotri info " +
+                           std::to_string(info) + ")."));
+  }
+
+
+
+  const std::vector<types::global_dof_index> &
+  DenseSchurComplement::dofs() const
+  {
+    return contact_dofs;
+  }
+
+
+
+  unsigned int
+  DenseSchurComplement::size() const
+  {
+    return contact_dofs.size();
+  }
+
+
+
+  namespace
+  {
+    void
+    symmetric_product(const std::vector<double> &matrix,
+                      const int                  n,
+                      const double              *x,
+                      double                    *y)
+    {
+      if (n == 0)
+        return;
+      const double one = 1., zero = 0.;
+      const int    step = 1;
+      dsymv_("L", &n, &one, matrix.data(), &n, x, &step, &zero, y, &step);
+    }
+  } // namespace
+
+
+
+  void
+  DenseSchurComplement::vmult(const double *x, double *y) const
+  {
+    symmetric_product(schur, size(), x, y);
+  }
+
+
+
+  void
+  DenseSchurComplement::vmult_inverse(const double *x, double *y) const
+  {
+    symmetric_product(inverse, size(), x, y);
+  }
+
+
+
+  std::size_t
+  DenseSchurComplement::memory_consumption() const
+  {
+    return (schur.capacity() + inverse.capacity()) * sizeof(double) +
+           contact_dofs.capacity() * sizeof(types::global_dof_index);
+  }
+
+
+
+  bool
+  DenseSchurComplement::pays_off(const std::size_t n_contact_dofs,
+                                 const std::size_t n_factor_entries,
+                                 const std::size_t memory_limit)
+  {
+    const std::size_t squared = n_contact_dofs * n_contact_dofs;
+    return n_contact_dofs > 0 && 2 * squared * sizeof(double) <= memory_limit &&
+           squared < 4 * n_factor_entries;
+  }
+} // namespace impactfe

@@ -1,0 +1,167 @@
+// DenseSchurComplement: S = A_CC - A_CI A_II^{-1} A_IC and S^{-1} of a
+// sparse symmetric positive definite A (a 7-point operator plus a mass-like
+// shift on a 10 x 10 x 10 grid, big enough for CHOLMOD's supernodes), on C =
+// the bottom face given in a scrambled order, against independent
+// computations:
+// - S^{-1} y = (A^{-1} y)_C with y zero off C, by a solve with an ordinary
+//   Cholesky factorisation of A;
+// - S y from its definition, with A_II^{-1} by a solve with A whose rows and
+//   columns of C are the identity's;
+// - S S^{-1} y = y;
+// and the unknowns returned are C, and a repeated unknown is refused with a
+// message naming the matrix.
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <impactfe/dynamics/schur_complement.h>
+#include <impactfe/dynamics/sparse_cholesky.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "../tests.h"
+
+using namespace dealii;
+using namespace impactfe;
+using impactfe_tests::check;
+
+namespace
+{
+  const unsigned int m = 10; // grid points per direction
+
+  unsigned int
+  index(const unsigned int i, const unsigned int j, const unsigned int k)
+  {
+    return i + m * (j + m * k);
+  }
+} // namespace
+
+
+
+int
+main()
+{
+  impactfe_tests::initlog();
+  const unsigned int     n = m * m * m;
+  DynamicSparsityPattern dsp(n, n);
+  for (unsigned int k = 0; k < m; ++k)
+    for (unsigned int j = 0; j < m; ++j)
+      for (unsigned int i = 0; i < m; ++i)
+        {
+          const unsigned int p = index(i, j, k);
+          dsp.add(p, p);
+          if (i + 1 < m)
+            dsp.add(p, index(i + 1, j, k)), dsp.add(index(i + 1, j, k), p);
+          if (j + 1 < m)
+            dsp.add(p, index(i, j + 1, k)), dsp.add(index(i, j + 1, k), p);
+          if (k + 1 < m)
+            dsp.add(p, index(i, j, k + 1)), dsp.add(index(i, j, k + 1), p);
+        }
+  SparsityPattern pattern;
+  pattern.copy_from(dsp);
+  SparseMatrix<double> A(pattern);
+  for (unsigned int p = 0; p < n; ++p)
+    for (auto it = pattern.begin(p); it != pattern.end(p); ++it)
+      A.set(p,
+            it->column(),
+            it->column() == p ? 6.1 + 0.01 * (p % 7) :
+                                -1. - 0.001 * ((p + it->column()) % 5));
+
+  // C: the face k = 0, scrambled.
+  std::vector<types::global_dof_index> contact_dofs;
+  for (unsigned int j = 0; j < m; ++j)
+    for (unsigned int i = 0; i < m; ++i)
+      contact_dofs.push_back(index((3 * i + j) % m, j, 0));
+  std::reverse(contact_dofs.begin() + 10, contact_dofs.end());
+
+  DenseSchurComplement schur;
+  schur.compute(A, contact_dofs, "the test matrix");
+  std::vector<types::global_dof_index> sorted_in(contact_dofs),
+    sorted_out(schur.dofs());
+  std::sort(sorted_in.begin(), sorted_in.end());
+  std::sort(sorted_out.begin(), sorted_out.end());
+  check(sorted_in == sorted_out && schur.size() == m * m,
+        "dofs() are the given unknowns");
+
+  const auto         &C   = schur.dofs();
+  const unsigned int  n_c = C.size();
+  std::vector<double> y(n_c), Sinv_y(n_c), S_y(n_c), back(n_c);
+  for (unsigned int a = 0; a < n_c; ++a)
+    y[a] = std::sin(1. + 3. * a);
+  schur.vmult_inverse(y.data(), Sinv_y.data());
+  schur.vmult(y.data(), S_y.data());
+
+  // (A^{-1} y)_C
+  SparseCholesky full;
+  full.factorize(A, "A");
+  Vector<double> x(n);
+  for (unsigned int a = 0; a < n_c; ++a)
+    x[C[a]] = y[a];
+  full.solve(x);
+  double error = 0., scale = 0.;
+  for (unsigned int a = 0; a < n_c; ++a)
+    {
+      error = std::max(error, std::abs(Sinv_y[a] - x[C[a]]));
+      scale = std::max(scale, std::abs(x[C[a]]));
+    }
+  check(error <= 1e-13 * scale, "S^{-1} y = (A^{-1} y)_C");
+
+  // S y = A_CC y - A_CI A_II^{-1} A_IC y
+  SparseMatrix<double> interior(pattern);
+  interior.copy_from(A);
+  std::vector<bool> in_c(n, false);
+  for (const auto d : C)
+    in_c[d] = true;
+  for (unsigned int p = 0; p < n; ++p)
+    for (auto it = interior.begin(p); it != interior.end(p); ++it)
+      if (in_c[p] || in_c[it->column()])
+        it->value() = it->column() == p ? 1. : 0.;
+  SparseCholesky interior_factor;
+  interior_factor.factorize(interior, "A with C made identity");
+  Vector<double> y_full(n), t(n), u(n);
+  for (unsigned int a = 0; a < n_c; ++a)
+    y_full[C[a]] = y[a];
+  A.vmult(t, y_full);
+  u = t;
+  for (const auto d : C)
+    u[d] = 0.;
+  interior_factor.solve(u);
+  Vector<double> Au(n);
+  A.vmult(Au, u);
+  error = scale = 0.;
+  for (unsigned int a = 0; a < n_c; ++a)
+    {
+      const double expected = t[C[a]] - Au[C[a]];
+      error                 = std::max(error, std::abs(S_y[a] - expected));
+      scale                 = std::max(scale, std::abs(expected));
+    }
+  check(error <= 1e-13 * scale, "S y = A_CC y - A_CI A_II^{-1} A_IC y");
+
+  schur.vmult(Sinv_y.data(), back.data());
+  error = 0.;
+  for (unsigned int a = 0; a < n_c; ++a)
+    error = std::max(error, std::abs(back[a] - y[a]));
+  check(error <= 1e-13, "S (S^{-1} y) = y");
+
+  check(DenseSchurComplement::pays_off(3267, 60000000) &&
+          !DenseSchurComplement::pays_off(3267, 1000000) &&
+          !DenseSchurComplement::pays_off(20000, 1000000000),
+        "pays_off: 3D cube yes, 2D-like fill no, 2.9 GiB no");
+
+  try
+    {
+      std::vector<types::global_dof_index> repeated{3, 7, 3};
+      schur.compute(A, repeated, "the test matrix");
+      check(false, "a repeated unknown throws");
+    }
+  catch (const std::exception &e)
+    {
+      check(std::string(e.what()).find("the test matrix") != std::string::npos,
+            "a repeated unknown throws, naming the matrix");
+    }
+  return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
+}
