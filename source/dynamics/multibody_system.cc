@@ -668,6 +668,8 @@ namespace impactfe
         report.active_set_fallback = true;
         return false;
       }
+    stats.largest_cone_error =
+      std::max(stats.largest_cone_error, result.cone_error);
     stats.largest_violation =
       std::max({stats.largest_violation,
                 result.verification.max_signorini_violation,

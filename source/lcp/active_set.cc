@@ -524,6 +524,15 @@ namespace impactfe
               last_report.verification = verify_contact_velocities(
                 nd, q, b, mu, P, V, norm_W, options.tolerance);
               last_report.converged = last_report.verification.ok;
+              {
+                std::vector<double> q_b(q), u_b(V);
+                for (unsigned int a = 0; a < n; ++a)
+                  {
+                    q_b[a * nd] += b[a];
+                    u_b[a * nd] += b[a];
+                  }
+                last_report.cone_error = exact_cone_error(nd, q_b, u_b, P, mu);
+              }
               if (!last_report.converged)
                 last_report.message =
                   "the contact states settled but (P, V) failed the "

@@ -594,18 +594,35 @@ namespace impactfe
       for (unsigned int c = 0; c < p.n_contacts; ++c)
         q[c * d] += p.gap_term[c];
       p.W.vmult(u, P);
+      for (std::size_t k = 0; k < m; ++k)
+        u[k] += q[k];
+      return exact_cone_error(d, q, u, P, p.mu);
+    }
+
+
+
+    double
+    exact_cone_error(const unsigned int         d,
+                     const std::vector<double> &q,
+                     const std::vector<double> &u,
+                     const std::vector<double> &P,
+                     const std::vector<double> &mu_of_contact)
+    {
+      const std::size_t  m          = P.size();
+      const unsigned int n_contacts = m / d;
+      if (q.size() != m || u.size() != m || mu_of_contact.size() < n_contacts)
+        throw std::invalid_argument("exact_cone_error: inconsistent sizes");
       double q2 = 0., P2 = 0., u2 = 0., e2 = 0.;
       for (std::size_t k = 0; k < m; ++k)
         {
-          u[k] += q[k];
           q2 += q[k] * q[k];
           P2 += P[k] * P[k];
           u2 += u[k] * u[k];
         }
-      for (unsigned int c = 0; c < p.n_contacts; ++c)
+      for (unsigned int c = 0; c < n_contacts; ++c)
         {
           const double *Pc = &P[c * d], *uc = &u[c * d];
-          const double  mu = d > 1 ? p.mu[c] : 0.;
+          const double  mu = d > 1 ? mu_of_contact[c] : 0.;
           double        uT = 0.;
           for (unsigned int j = 1; j < d; ++j)
             uT += uc[j] * uc[j];

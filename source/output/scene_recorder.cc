@@ -90,6 +90,7 @@ namespace impactfe
              double(active_set.linear_iterations))
         .add("active_set_products", double(active_set.operator_applications))
         .add("active_set_largest_violation", active_set.largest_violation)
+        .add("active_set_largest_cone_error", active_set.largest_cone_error)
         .add("active_set_fallbacks", double(active_set.fallbacks))
         .add("active_set_dense_schur_complement",
              double(active_set.dense_schur_complement));

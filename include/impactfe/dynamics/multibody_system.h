@@ -265,7 +265,9 @@ namespace impactfe
       unsigned long long linear_iterations     = 0;
       unsigned long long operator_applications = 0;
       double             largest_violation     = 0.;
-      unsigned int       fallbacks             = 0;
+      /// The largest exact_cone_error() of the verified answers.
+      double       largest_cone_error = 0.;
+      unsigned int fallbacks          = 0;
       /// Whether the products used the dense Schur complements.
       bool        dense_schur_complement = false;
       std::string last_fallback_reason;

@@ -52,6 +52,8 @@ namespace impactfe
       unsigned int        linear_iterations     = 0;
       unsigned int        operator_applications = 0;
       ContactVerification verification;
+      /// exact_cone_error() of the answer (the standard measure, issue 12).
+      double cone_error = 0.;
       /// Why it did not converge (empty if it did).
       std::string message;
     };

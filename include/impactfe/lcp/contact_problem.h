@@ -245,6 +245,18 @@ namespace impactfe
     exact_cone_error(const ContactProblem      &problem,
                      const std::vector<double> &P);
 
+    /**
+     * The same measure from @p q (V_free, b_N added to the normal rows) and
+     * @p u = q + W P, for solvers that have W P but not W
+     * (ActiveSetSolver); @p n_directions numbers per contact.
+     */
+    double
+    exact_cone_error(const unsigned int         n_directions,
+                     const std::vector<double> &q,
+                     const std::vector<double> &u,
+                     const std::vector<double> &P,
+                     const std::vector<double> &mu);
+
 
 
     /**
