@@ -4,11 +4,13 @@
 #include <deal.II/numerics/rtree.h>
 
 #include <impactfe/contact/contact_set.h>
+#include <impactfe/utilities/program.h>
 
 #include <deal.II/boost_adaptors/bounding_box.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -440,6 +442,30 @@ namespace impactfe
                                         xi * eta}};
         };
 
+        // The closest point of the face's edges (p0 p1, p2 p3, p0 p2,
+        // p1 p3, straight on a bilinear face) to x, as bilinear weights.
+        const auto closest_edge_point = [](const Face     &face,
+                                           const Point<3> &x) {
+          constexpr unsigned int edges[4][2] = {{0, 1}, {2, 3}, {0, 2}, {1, 3}};
+          std::array<double, 4>  best_w{};
+          double                 best_d = std::numeric_limits<double>::max();
+          for (const auto &e : edges)
+            {
+              const Tensor<1, 3> ab = face.p[e[1]] - face.p[e[0]];
+              const double       t =
+                std::clamp((x - face.p[e[0]]) * ab / (ab * ab), 0., 1.);
+              const double d = x.distance(face.p[e[0]] + t * ab);
+              if (d < best_d)
+                {
+                  best_d       = d;
+                  best_w       = {{0., 0., 0., 0.}};
+                  best_w[e[0]] = 1. - t;
+                  best_w[e[1]] = t;
+                }
+            }
+          return std::optional<std::array<double, 4>>(best_w);
+        };
+
         for (const unsigned int va : vertices_a)
           {
             const Point<3> x = vertex_position(A, va);
@@ -451,9 +477,29 @@ namespace impactfe
             const Face           *best          = nullptr;
             std::array<double, 4> best_weights{};
             const auto            try_face = [&](const Face &face) {
-              const auto w = project(face, x);
+              auto w = project(face, x);
+              // No minimum inside the face: the face's closest point is on
+              // its boundary (its four straight edges). Over a convex edge
+              // of the master surface, e.g. a ball's, a node at some
+              // distance has its closest point there, and no face's
+              // interior projection exists. Such a point counts only if the
+              // node lies along the surface's interpolated normal there
+              // (within 60 degrees), not beside the master surface.
               if (!w)
-                return;
+                {
+                  w = closest_edge_point(face, x);
+                  Tensor<1, 3> n;
+                  Point<3>     y;
+                  for (unsigned int k = 0; k < 4; ++k)
+                    {
+                      const Tensor<1, 3> &nodal = nodal_normals[face.v[k]];
+                      if (nodal.norm() > 0.)
+                        n += (*w)[k] * nodal / nodal.norm();
+                      y += (*w)[k] * Tensor<1, 3>(face.p[k]);
+                    }
+                  if (!((x - y) * n >= 0.5 * n.norm() * x.distance(y)))
+                    return;
+                }
               Point<3> y;
               for (unsigned int k = 0; k < 4; ++k)
                 y += (*w)[k] * Tensor<1, 3>(face.p[k]);
@@ -473,7 +519,9 @@ namespace impactfe
                 try_face(face);
             AssertThrow(best != nullptr,
                         ExcMessage("Contact: the node of body '" + A.name() +
-                                   "' at boundary id " +
+                                   "' at (" + format_number(x[0]) + ", " +
+                                   format_number(x[1]) + ", " +
+                                   format_number(x[2]) + ") on boundary id " +
                                    std::to_string(boundary_a) +
                                    " projects on no face of body '" + B.name() +
                                    "' (boundary id " +
