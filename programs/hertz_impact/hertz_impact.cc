@@ -80,12 +80,12 @@ namespace HertzImpactProgram
     double
     length_scale() const override
     {
-      return radius;
+      return ball.radius;
     }
     Tensor<1, 3>
     initial_velocity() const override
     {
-      return Tensor<1, 3>({0., 0., -impact_velocity});
+      return Tensor<1, 3>({0., 0., -ball.impact_velocity});
     }
     std::string
     title() const override
@@ -122,13 +122,8 @@ namespace HertzImpactProgram
     HertzImpact
     hertz() const;
 
-    // Geometry and initial conditions.
-    double       radius           = 0.01;
-    unsigned int n_refinements    = 2;
-    double       pole_cell_factor = 0.3, fine_angle = 0.15;
-    double       impact_velocity = 5., initial_gap = 0.;
-    // Verification bounds (-1: not checked).
-    double max_peak_force_error = -1., max_duration_error = -1.;
+    // Geometry, initial conditions and the Verification bounds.
+    HertzBallParameters ball;
 
     MassWeightedMean<3> centre_of_mass;
     double              largest_approach = 0.;
@@ -137,57 +132,12 @@ namespace HertzImpactProgram
 
 
   // @sect3{Parameters}
+  // The ball's entries are the library's (HertzBallParameters), shared
+  // with hertz_on_block.
   void
   HertzImpactProblem::declare_scene_parameters(ParameterHandler &prm)
   {
-    prm.enter_subsection("Geometry");
-    prm.declare_entry("Radius",
-                      "0.01",
-                      Patterns::Double(),
-                      "Radius R of the ball [m]. Must be > 0.");
-    prm.declare_entry("Number of refinements",
-                      "2",
-                      Patterns::Integer(0, 6),
-                      "Global refinements of deal.II's 7-cell ball before "
-                      "the grading: 7 * 8^n cells [-].");
-    prm.declare_entry("Pole cell factor",
-                      "0.3",
-                      Patterns::Double(),
-                      "Size of the cells at the lowest point of the ball "
-                      "relative to the uniform mesh's [-]; in (0, 1], 1: no "
-                      "grading.");
-    prm.declare_entry("Fine zone angle",
-                      "0.15",
-                      Patterns::Double(),
-                      "Polar angle from the lowest point of the cap whose "
-                      "cells are smaller by the pole cell factor [rad]; "
-                      "Hertz's contact radius a_max must fit in it. The "
-                      "angle over the factor must be below 0.9 pi.");
-    prm.leave_subsection();
-    prm.enter_subsection("Initial conditions");
-    prm.declare_entry("Impact velocity",
-                      "5",
-                      Patterns::Double(),
-                      "Downward velocity of the ball at t = 0 [m/s]. Must be "
-                      "> 0.");
-    prm.declare_entry("Initial gap",
-                      "0",
-                      Patterns::Double(),
-                      "Distance from the lowest point of the built-in ball "
-                      "to the plane at t = 0 [m]. Must be >= 0.");
-    prm.leave_subsection();
-    prm.enter_subsection("Verification");
-    prm.declare_entry("Maximum peak force error",
-                      "-1",
-                      Patterns::Double(),
-                      "Fail the run if |F_max - Hertz| / Hertz exceeds this "
-                      "[-]. -1: no check.");
-    prm.declare_entry("Maximum duration error",
-                      "-1",
-                      Patterns::Double(),
-                      "Fail the run if |t_c - Hertz| / Hertz exceeds this "
-                      "[-]. -1: no check.");
-    prm.leave_subsection();
+    HertzBallParameters::declare_parameters(prm);
   }
 
 
@@ -195,37 +145,7 @@ namespace HertzImpactProgram
   void
   HertzImpactProblem::parse_scene_parameters(ParameterHandler &prm)
   {
-    prm.enter_subsection("Geometry");
-    radius           = prm.get_double("Radius");
-    n_refinements    = prm.get_integer("Number of refinements");
-    pole_cell_factor = prm.get_double("Pole cell factor");
-    fine_angle       = prm.get_double("Fine zone angle");
-    prm.leave_subsection();
-    require_positive(radius, "Geometry", "Radius");
-    AssertThrow(pole_cell_factor > 0. && pole_cell_factor <= 1.,
-                ExcMessage("Geometry: 'Pole cell factor' must be in (0, 1], "
-                           "got " +
-                           format_number(pole_cell_factor) + "."));
-    AssertThrow(fine_angle > 0. &&
-                  fine_angle / pole_cell_factor < 0.9 * numbers::PI,
-                ExcMessage("Geometry: 'Fine zone angle' / 'Pole cell factor' "
-                           "must be in (0, 0.9 pi) (the fine zone cannot "
-                           "take the whole sphere), got " +
-                           format_number(fine_angle) + " / " +
-                           format_number(pole_cell_factor) + "."));
-    prm.enter_subsection("Initial conditions");
-    impact_velocity = prm.get_double("Impact velocity");
-    initial_gap     = prm.get_double("Initial gap");
-    prm.leave_subsection();
-    AssertThrow(impact_velocity > 0.,
-                ExcMessage("Initial conditions: 'Impact velocity' must be > "
-                           "0, got " +
-                           format_number(impact_velocity) + "."));
-    require_non_negative(initial_gap, "Initial conditions", "Initial gap");
-    prm.enter_subsection("Verification");
-    max_peak_force_error = prm.get_double("Maximum peak force error");
-    max_duration_error   = prm.get_double("Maximum duration error");
-    prm.leave_subsection();
+    ball.parse_parameters(prm);
   }
 
 
@@ -236,12 +156,7 @@ namespace HertzImpactProgram
   void
   HertzImpactProblem::make_built_in_mesh(Triangulation<3> &tria) const
   {
-    Geometry::graded_ball(tria,
-                          Point<3>(0., 0., radius + initial_gap),
-                          radius,
-                          n_refinements,
-                          pole_cell_factor,
-                          fine_angle);
+    ball.make_ball(tria);
   }
 
 
@@ -261,7 +176,7 @@ namespace HertzImpactProgram
   HertzImpactProblem::approach() const
   {
     return -centre_of_mass(system().state().displacement.block(0))[2] -
-           initial_gap;
+           ball.initial_gap;
   }
 
 
@@ -269,8 +184,7 @@ namespace HertzImpactProgram
   double
   HertzImpactProblem::measured_duration() const
   {
-    const double last = run_summary().last_contact;
-    return last >= 0. ? last - initial_gap / impact_velocity : 0.;
+    return ball.contact_duration(run_summary().last_contact);
   }
 
 
@@ -297,15 +211,18 @@ namespace HertzImpactProgram
   HertzImpactProblem::hertz() const
   {
     const MaterialParameters &material = deformable_body().material();
-    const auto *ball = dynamic_cast<const BallObstacle<3> *>(&obstacle());
-    HertzImpact reference;
-    reference.radius         = ball == nullptr ? radius :
-                                                 radius * ball->ball_radius() /
-                                           (radius + ball->ball_radius());
+    const auto               *obstacle_ball =
+      dynamic_cast<const BallObstacle<3> *>(&obstacle());
+    const double R = ball.radius;
+    HertzImpact  reference;
+    reference.radius =
+      obstacle_ball == nullptr ?
+        R :
+        R * obstacle_ball->ball_radius() / (R + obstacle_ball->ball_radius());
     reference.mass           = deformable_body().total_mass();
     reference.youngs_modulus = material.youngs_modulus;
     reference.poissons_ratio = material.poissons_ratio;
-    reference.velocity       = impact_velocity;
+    reference.velocity       = ball.impact_velocity;
     return reference;
   }
 
@@ -316,45 +233,26 @@ namespace HertzImpactProgram
   HertzImpactProblem::report_motion(std::ostream &out,
                                     JsonObject   &summary) const
   {
-    const HertzImpact        reference = hertz();
-    const ContactRunSummary &run       = run_summary();
-    const double             duration  = measured_duration();
-    const double sphere_mass = 4. / 3. * numbers::PI * std::pow(radius, 3) *
+    const HertzImpact        reference   = hertz();
+    const ContactRunSummary &run         = run_summary();
+    const double             duration    = measured_duration();
+    const double             sphere_mass = 4. / 3. * numbers::PI *
+                               std::pow(ball.radius, 3) *
                                deformable_body().material().density;
     const double wave_speed =
       std::sqrt(deformable_body().material().youngs_modulus /
                 deformable_body().material().density);
     out << "  Mass " << reference.mass << " kg (sphere: " << sphere_mass
-        << "); v / sqrt(E/rho) = " << impact_velocity / wave_speed
-        << ", a_max / R = " << reference.max_contact_radius() / radius
+        << "); v / sqrt(E/rho) = " << ball.impact_velocity / wave_speed
+        << ", a_max / R = " << reference.max_contact_radius() / ball.radius
         << std::endl;
-    const auto line = [&](const std::string &what,
-                          const double       measured,
-                          const double       exact,
-                          const std::string &unit) {
-      out << "  " << what << ": " << measured << " " << unit << ", Hertz "
-          << exact << " " << unit << ", relative error "
-          << (measured - exact) / exact << std::endl;
-    };
-    line("Peak force", run.peak_normal_force, reference.peak_force(), "N");
-    line("Contact duration", duration, reference.contact_duration(), "s");
-    line("Largest approach", largest_approach, reference.max_approach(), "m");
-    summary.add("mass", reference.mass)
-      .add("hertz_peak_force", reference.peak_force())
-      .add("hertz_contact_duration", reference.contact_duration())
-      .add("hertz_max_approach", reference.max_approach())
-      .add("hertz_max_contact_radius", reference.max_contact_radius())
-      .add("contact_duration", duration)
-      .add("max_approach", largest_approach)
-      .add("peak_force_error",
-           (run.peak_normal_force - reference.peak_force()) /
-             reference.peak_force())
-      .add("contact_duration_error",
-           (duration - reference.contact_duration()) /
-             reference.contact_duration())
-      .add("max_approach_error",
-           (largest_approach - reference.max_approach()) /
-             reference.max_approach());
+    summary.add("mass", reference.mass);
+    report_against_hertz(reference,
+                         run.peak_normal_force,
+                         duration,
+                         largest_approach,
+                         out,
+                         summary);
   }
 
 
@@ -362,23 +260,12 @@ namespace HertzImpactProgram
   bool
   HertzImpactProblem::report_checks(std::ostream &out, JsonObject &) const
   {
-    const HertzImpact        reference = hertz();
-    const ContactRunSummary &run       = run_summary();
-    const double             duration  = measured_duration();
-    bool                     ok =
-      print_check(out,
-                  "Hertz peak force error",
-                  std::abs(run.peak_normal_force - reference.peak_force()) /
-                    reference.peak_force(),
-                  "<=",
-                  max_peak_force_error);
-    ok &= print_check(out,
-                      "Hertz contact duration error",
-                      std::abs(duration - reference.contact_duration()) /
-                        reference.contact_duration(),
-                      "<=",
-                      max_duration_error);
-    return ok;
+    return check_against_hertz(hertz(),
+                               run_summary().peak_normal_force,
+                               measured_duration(),
+                               ball.max_peak_force_error,
+                               ball.max_duration_error,
+                               out);
   }
 } // namespace HertzImpactProgram
 

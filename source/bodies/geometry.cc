@@ -247,6 +247,70 @@ namespace impactfe
 
 
 
+    namespace
+    {
+      // Cell sizes h, h g, h g^2, ... that fill @p length, the last one
+      // taking what is left (merged into the one before if less than half
+      // of it).
+      std::vector<double>
+      growing_steps(const double length, const double h, const double g)
+      {
+        std::vector<double> steps;
+        double              filled = 0., next = h;
+        while (filled + next < length)
+          {
+            steps.push_back(next);
+            filled += next;
+            next *= g;
+          }
+        const double rest = length - filled;
+        if (!steps.empty() && rest < 0.5 * steps.back())
+          steps.back() += rest;
+        else
+          steps.push_back(rest);
+        return steps;
+      }
+    } // namespace
+
+
+
+    void
+    graded_block(Triangulation<3> &triangulation,
+                 const double      half_width,
+                 const double      depth,
+                 const double      centre_cell_size,
+                 const double      growth)
+    {
+      AssertThrow(half_width > 0. && depth > 0.,
+                  ExcMessage("graded_block: the half width and the depth "
+                             "must be > 0, got " +
+                             std::to_string(half_width) + " and " +
+                             std::to_string(depth) + "."));
+      AssertThrow(centre_cell_size > 0. && centre_cell_size <= half_width &&
+                    centre_cell_size <= depth,
+                  ExcMessage("graded_block: the centre cell size must be in "
+                             "(0, min(half width, depth)], got " +
+                             std::to_string(centre_cell_size) + "."));
+      AssertThrow(growth >= 1.,
+                  ExcMessage("graded_block: the growth factor must be >= 1, "
+                             "got " +
+                             std::to_string(growth) + "."));
+      const std::vector<double> half =
+        growing_steps(half_width, centre_cell_size, growth);
+      std::vector<double> across(half.rbegin(), half.rend());
+      across.insert(across.end(), half.begin(), half.end());
+      std::vector<double> down = growing_steps(depth, centre_cell_size, growth);
+      std::reverse(down.begin(), down.end()); // from z = -d up to z = 0
+      GridGenerator::subdivided_hyper_rectangle(
+        triangulation,
+        {across, across, down},
+        Point<3>(-half_width, -half_width, -depth),
+        Point<3>(half_width, half_width, 0.),
+        /*colorize=*/true);
+    }
+
+
+
     void
     graded_ball(Triangulation<3>  &triangulation,
                 const Point<3>    &center,

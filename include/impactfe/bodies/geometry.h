@@ -79,6 +79,24 @@ namespace impactfe
                 const double       fine_angle);
 
     /**
+     * The box [-a, a]^2 x [-d, 0] (a = @p half_width, d = @p depth) of Q1
+     * hexahedra graded towards the centre of its top face z = 0: the cells
+     * there have sides @p centre_cell_size, and each next cell is larger by
+     * @p growth, in x and y away from the axis and in z downwards; the last
+     * cell of a row takes what is left (merged into its neighbour if less
+     * than half of it). A tensor-product mesh, so it is conforming. Boundary
+     * ids as deal.II's colorize: 0, 1 (x = -a, a), 2, 3 (y), 4 (bottom), 5
+     * (top). Throws a message naming the argument if a size is not > 0, the
+     * centre cells are larger than the box, or @p growth < 1.
+     */
+    void
+    graded_block(Triangulation<3> &triangulation,
+                 const double      half_width,
+                 const double      depth,
+                 const double      centre_cell_size,
+                 const double      growth);
+
+    /**
      * The map of graded_ball() on one point, relative to the centre and in
      * units of the radius (|p| <= 1): exposed so that tests can check that
      * it is one-to-one and keeps the sphere.

@@ -1,7 +1,14 @@
 #ifndef impactfe_scenes_hertz_impact_h
 #define impactfe_scenes_hertz_impact_h
 
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/grid/tria.h>
+
+#include <impactfe/output/output.h>
+
 #include <limits>
+#include <ostream>
 
 namespace impactfe
 {
@@ -51,6 +58,74 @@ namespace impactfe
     double
     force(const double approach) const;
   };
+
+
+
+  /**
+   * The ball of the Hertz scenes (hertz_impact, hertz_on_block) and its
+   * entries: `Geometry` (Radius, Number of refinements, Pole cell factor,
+   * Fine zone angle), `Initial conditions` (Impact velocity, Initial gap)
+   * and `Verification` (Maximum peak force error, Maximum duration error).
+   */
+  struct HertzBallParameters
+  {
+    double       radius           = 0.01;
+    unsigned int n_refinements    = 2;
+    double       pole_cell_factor = 0.3, fine_angle = 0.15;
+    double       impact_velocity = 5., initial_gap = 0.;
+    /// -1: not checked.
+    double max_peak_force_error = -1., max_duration_error = -1.;
+
+    static void
+    declare_parameters(dealii::ParameterHandler &prm);
+    /** Throws a message naming the entry for a value out of range. */
+    void
+    parse_parameters(dealii::ParameterHandler &prm);
+
+    /**
+     * Geometry::graded_ball() with the lowest point at height initial_gap
+     * above z = 0.
+     */
+    void
+    make_ball(dealii::Triangulation<3> &triangulation) const;
+
+    /** Side of the cells at the lowest point, (pi/2) 2^-n gamma R [m]. */
+    double
+    pole_cell_size() const;
+
+    /** From the touch (initial gap / v) to @p last_contact (-1: none). */
+    double
+    contact_duration(const double last_contact) const;
+  };
+
+
+
+  /**
+   * A run's peak force, contact duration and largest approach against
+   * @p reference: one line each on @p out ("Peak force: F N, Hertz F_H N,
+   * relative error e") and the entries hertz_*, contact_duration,
+   * max_approach and *_error of summary.json.
+   */
+  void
+  report_against_hertz(const HertzImpact &reference,
+                       const double       peak_force,
+                       const double       duration,
+                       const double       approach,
+                       std::ostream      &out,
+                       JsonObject        &summary);
+
+  /**
+   * The checks of `Verification/Maximum peak force error` and `Maximum
+   * duration error` (-1: not checked), printed on @p out. Returns false if
+   * one fails.
+   */
+  bool
+  check_against_hertz(const HertzImpact &reference,
+                      const double       peak_force,
+                      const double       duration,
+                      const double       max_peak_force_error,
+                      const double       max_duration_error,
+                      std::ostream      &out);
 } // namespace impactfe
 
 #endif
