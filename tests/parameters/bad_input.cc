@@ -191,6 +191,15 @@ main()
                 "Number of refinements = 3\n  set Pole cell factor = 0.2"),
            hertz);
 
+  // hertz_on_block: a block narrower than the ball, a shrinking grading.
+  const std::string hertz_on_block = HERTZ_ON_BLOCK_EXECUTABLE;
+  run_case("hertz_on_block_narrow_block",
+           with("Geometry", "Block half width = 0.005"),
+           hertz_on_block);
+  run_case("hertz_on_block_growth_below_one",
+           with("Geometry", "Block growth factor = 0.8"),
+           hertz_on_block);
+
   // taylor_bar: the finite-strain program's own entries.
   const std::string taylor = TAYLOR_BAR_EXECUTABLE;
   run_case("taylor_theta_below_half", with("Time", "Theta = 0.3"), taylor);
