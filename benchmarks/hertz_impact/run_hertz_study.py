@@ -11,9 +11,10 @@ e(0) ~ 2 e(h) - e(2h) is printed too: it estimates what is left at h -> 0
 
 With --block the same meshes of the ball fall on an elastic block
 (hertz_on_block, node-to-face contact, the block's cells under the ball as
-small as the ball's), once with the block's top face as the master surface
-and once with the ball's curved lower half, against Hertz's theory for two
-elastic bodies; it writes hertz_on_block_convergence.* instead.
+small as the ball's), with the block's top face as the master surface, with
+the ball's curved lower half, and with both (two passes), against Hertz's
+theory for two elastic bodies; it writes hertz_on_block_convergence.*
+instead.
 
 usage (from the repository top, after building):
     /usr/bin/python3 benchmarks/hertz_impact/run_hertz_study.py \
@@ -53,7 +54,7 @@ def main():
     a = ap.parse_args()
     program = "hertz_on_block" if a.block else "hertz_impact"
     prm = "parameter_files/hertz_on_block.prm" if a.block else PRM
-    masters = ["block", "ball"] if a.block else [None]
+    masters = ["block", "ball", "both"] if a.block else [None]
     work = tempfile.mkdtemp(prefix="hertz_")
     rows = []
     for (n, gamma), master in [(m, s) for m in MESHES for s in masters]:
@@ -95,7 +96,7 @@ def main():
         w.writeheader()
         w.writerows(rows)
     fig, ax = plt.subplots(figsize=(6, 4.2))
-    for master, style in zip(masters, ["-", "--"]):
+    for master, style in zip(masters, ["-", "--", ":"]):
         sel = [r for r in rows if r.get("master") == master]
         h = [r["h_over_a"] for r in sel]
         for k, label, m in zip(KEYS, ["peak force", "contact duration",

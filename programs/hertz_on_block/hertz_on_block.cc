@@ -20,9 +20,13 @@
 //   top face;
 // - `ball`: the nodes of the block's top face near the axis against the
 //   ball's curved lower half, whose faces and normals then carry the
-//   contact points.
-// Both must converge to the same answer: the second is the time-stepping
-// test of node-to-face contact on a curved master surface.
+//   contact points;
+// - `both`: the two sets (two passes), which constrain the motion near the
+//   axis twice (a rank-deficient W; Lemke's method solves it).
+// All must converge to the same answer; the second is the time-stepping
+// test of node-to-face contact on a curved master surface. Only the slave
+// nodes are kept out of the master surface, so the finer side should be
+// the slave (doc/hertz_impact.md).
 //
 // Hertz's theory (Johnson, Contact Mechanics, sections 4.2 and 11.4;
 // impactfe::HertzImpact) takes both bodies' elasticity through
@@ -114,7 +118,7 @@ namespace HertzOnBlockProgram
     HertzBallParameters ball;
     double              half_width = 0.02, depth = 0.02;
     double              centre_cell_size = 0., growth = 1.25;
-    bool                ball_is_master       = false;
+    std::string         master_surface       = "block";
     double              friction_coefficient = 0.;
     MaterialParameters  ball_material, block_material;
 
@@ -149,10 +153,11 @@ namespace HertzOnBlockProgram
                       "centre of the top face [-], >= 1.");
     prm.declare_entry("Master surface",
                       "block",
-                      Patterns::Selection("block|ball"),
+                      Patterns::Selection("block|ball|both"),
                       "block: the ball's lower-half nodes against the "
                       "block's top faces; ball: the block's top nodes within "
-                      "R/2 of the axis against the ball's lower-half faces.");
+                      "R/2 of the axis against the ball's lower-half faces; "
+                      "both: the two sets of candidates (two-pass).");
     prm.leave_subsection();
     prm.enter_subsection("Contact");
     prm.declare_entry("Friction coefficient",
@@ -175,7 +180,7 @@ namespace HertzOnBlockProgram
     depth            = prm.get_double("Block depth");
     centre_cell_size = prm.get_double("Block centre cell size");
     growth           = prm.get_double("Block growth factor");
-    ball_is_master   = prm.get("Master surface") == "ball";
+    master_surface   = prm.get("Master surface");
     prm.leave_subsection();
     require_positive(half_width, "Geometry", "Block half width");
     require_positive(depth, "Geometry", "Block depth");
@@ -217,7 +222,7 @@ namespace HertzOnBlockProgram
     Geometry::graded_block(block, half_width, depth, centre_cell_size, growth);
     // With the ball as master, the block's slave nodes are those of its top
     // faces within R/2 of the axis (id 6): a_max is about 0.08 R.
-    if (ball_is_master)
+    if (master_surface == "ball")
       for (const auto &cell : block.active_cell_iterators())
         for (const auto &face : cell->face_iterators())
           if (face->at_boundary() && face->boundary_id() == 5 &&
@@ -229,16 +234,23 @@ namespace HertzOnBlockProgram
 
 
   // Ball: boundary id 1 on its lower half (graded_ball). Block: 5 on its
-  // top face, or 6 on the part of it near the axis when the ball is master.
+  // top face, or 6 on the part of it near the axis when the ball is the
+  // master. With both (two passes) every node of the block's top is a
+  // candidate against the ball, and every node of the ball's lower half
+  // one against the block.
   void
   HertzOnBlockProblem::add_contacts(ContactSet &contacts)
   {
-    if (ball_is_master)
-      contacts.add_node_to_face(
-        system().bodies(), 1, 6, 0, 1, friction_coefficient);
-    else
+    if (master_surface != "ball")
       contacts.add_node_to_face(
         system().bodies(), 0, 1, 1, 5, friction_coefficient);
+    if (master_surface != "block")
+      contacts.add_node_to_face(system().bodies(),
+                                1,
+                                master_surface == "ball" ? 6 : 5,
+                                0,
+                                1,
+                                friction_coefficient);
   }
 
 
@@ -302,8 +314,8 @@ namespace HertzOnBlockProgram
         << "  Mesh: ball " << body(0).triangulation().n_active_cells()
         << " + block " << body(1).triangulation().n_active_cells()
         << " Q1 hexahedra, " << system().contacts().n_candidates()
-        << " node-to-face candidates, master surface: "
-        << (ball_is_master ? "ball" : "block") << std::endl
+        << " node-to-face candidates, master surface: " << master_surface
+        << std::endl
         << "  Reduced mass " << reference.mass << " kg, E* "
         << reference.effective_modulus()
         << " Pa, a_max / R = " << reference.max_contact_radius() / ball.radius
@@ -312,7 +324,7 @@ namespace HertzOnBlockProgram
         << reference.max_contact_radius() / centre_cell_size << std::endl;
     summary.add("ball_cells", double(body(0).triangulation().n_active_cells()))
       .add("block_cells", double(body(1).triangulation().n_active_cells()))
-      .add("master_surface", ball_is_master ? "ball" : "block")
+      .add("master_surface", master_surface)
       .add("mass", reference.mass);
     report_against_hertz(reference,
                          run.peak_normal_force,
