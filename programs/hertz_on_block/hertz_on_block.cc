@@ -198,6 +198,11 @@ namespace HertzOnBlockProgram
                            format_number(growth) + "."));
     if (centre_cell_size == 0.)
       centre_cell_size = ball.pole_cell_size();
+    AssertThrow(centre_cell_size <= std::min(half_width, depth),
+                ExcMessage("Geometry: 'Block centre cell size' (" +
+                           format_number(centre_cell_size) +
+                           " m; 0 means the ball's pole cells) must not "
+                           "exceed the block's half width and depth."));
     prm.enter_subsection("Contact");
     friction_coefficient = prm.get_double("Friction coefficient");
     prm.leave_subsection();

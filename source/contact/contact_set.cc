@@ -442,6 +442,21 @@ namespace impactfe
                                         xi * eta}};
         };
 
+        // The point of a face with bilinear weights w, and there the
+        // interpolated nodal normal (not normalised).
+        const auto interpolate =
+          [&nodal_normals](const Face &face, const std::array<double, 4> &w) {
+            std::pair<Point<3>, Tensor<1, 3>> point_and_normal;
+            for (unsigned int k = 0; k < 4; ++k)
+              {
+                const Tensor<1, 3> &nodal = nodal_normals[face.v[k]];
+                if (nodal.norm() > 0.)
+                  point_and_normal.second += w[k] * nodal / nodal.norm();
+                point_and_normal.first += w[k] * Tensor<1, 3>(face.p[k]);
+              }
+            return point_and_normal;
+          };
+
         // The closest point of the face's edges (p0 p1, p2 p3, p0 p2,
         // p1 p3, straight on a bilinear face) to x, as bilinear weights.
         const auto closest_edge_point = [](const Face     &face,
@@ -463,7 +478,7 @@ namespace impactfe
                   best_w[e[1]] = t;
                 }
             }
-          return std::optional<std::array<double, 4>>(best_w);
+          return best_w;
         };
 
         for (const unsigned int va : vertices_a)
@@ -485,24 +500,12 @@ namespace impactfe
               // interior projection exists. Such a point counts only if the
               // node lies along the surface's interpolated normal there
               // (within 60 degrees), not beside the master surface.
-              if (!w)
-                {
-                  w = closest_edge_point(face, x);
-                  Tensor<1, 3> n;
-                  Point<3>     y;
-                  for (unsigned int k = 0; k < 4; ++k)
-                    {
-                      const Tensor<1, 3> &nodal = nodal_normals[face.v[k]];
-                      if (nodal.norm() > 0.)
-                        n += (*w)[k] * nodal / nodal.norm();
-                      y += (*w)[k] * Tensor<1, 3>(face.p[k]);
-                    }
-                  if (!((x - y) * n >= 0.5 * n.norm() * x.distance(y)))
-                    return;
-                }
-              Point<3> y;
-              for (unsigned int k = 0; k < 4; ++k)
-                y += (*w)[k] * Tensor<1, 3>(face.p[k]);
+              const bool on_edge = !w;
+              if (on_edge)
+                w = closest_edge_point(face, x);
+              const auto [y, n] = interpolate(face, *w);
+              if (on_edge && !((x - y) * n >= 0.5 * n.norm() * x.distance(y)))
+                return;
               if (best == nullptr || x.distance(y) < best_distance)
                 {
                   best          = &face;
@@ -531,22 +534,18 @@ namespace impactfe
             candidate.vertex_a     = va;
             candidate.body_b       = body_b;
             candidate.n_vertices_b = 4;
-            Tensor<1, 3> normal;
-            Point<3>     y;
             for (unsigned int k = 0; k < 4; ++k)
               {
-                candidate.vertices_b[k]   = best->v[k];
-                candidate.weights_b[k]    = best_weights[k];
-                const Tensor<1, 3> &nodal = nodal_normals[best->v[k]];
-                AssertThrow(nodal.norm() > 0.,
+                candidate.vertices_b[k] = best->v[k];
+                candidate.weights_b[k]  = best_weights[k];
+                AssertThrow(nodal_normals[best->v[k]].norm() > 0.,
                             ExcMessage("Contact: the faces of body '" +
                                        B.name() + "' with boundary id " +
                                        std::to_string(boundary_b) +
                                        " around a node have opposite "
                                        "normals (a thin part?)."));
-                normal += best_weights[k] * nodal / nodal.norm();
-                y += best_weights[k] * Tensor<1, 3>(best->p[k]);
               }
+            auto [y, normal] = interpolate(*best, best_weights);
             normal /= normal.norm();
             add_candidate(candidate,
                           Point<dim>(x),

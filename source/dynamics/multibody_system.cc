@@ -546,8 +546,9 @@ namespace impactfe
   {
     const unsigned int nd = contact_set.n_directions();
     const unsigned int n  = lcp_candidates.size();
-    if (interior_solvers.empty() && dense_schur.empty())
-      setup_schur_preconditioner();
+    // set up by do_time_step(), where its cost is counted
+    Assert(!interior_solvers.empty() || !dense_schur.empty(),
+           ExcInternalError());
     contact_set.inverse_delassus_diagonal(step_matrix_list,
                                           lcp_candidates,
                                           lcp_penalty);
@@ -789,10 +790,11 @@ namespace impactfe
         active_set_stats.dense_schur_complement = true;
         dense_schur.resize(n_bodies);
         for (unsigned int b = 0; b < n_bodies; ++b)
-          dense_schur[b].compute(*step_matrices[b],
-                                 schur_contact_dofs[b],
-                                 "the step matrix of body '" +
-                                   body_list[b]->name() + "'");
+          if (!schur_contact_dofs[b].empty())
+            dense_schur[b].compute(*step_matrices[b],
+                                   schur_contact_dofs[b],
+                                   "the step matrix of body '" +
+                                     body_list[b]->name() + "'");
         return;
       }
     for (unsigned int b = 0; b < n_bodies; ++b)

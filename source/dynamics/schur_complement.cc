@@ -8,16 +8,16 @@
 // y = alpha A x + beta y for a symmetric A of which one triangle is read
 // (BLAS level 2; deal.II's lapack_templates.h has no symv).
 extern "C" void
-dsymv_(const char   *uplo,
-       const int    *n,
-       const double *alpha,
-       const double *a,
-       const int    *lda,
-       const double *x,
-       const int    *incx,
-       const double *beta,
-       double       *y,
-       const int    *incy);
+dsymv_(const char                    *uplo,
+       const dealii::types::blas_int *n,
+       const double                  *alpha,
+       const double                  *a,
+       const dealii::types::blas_int *lda,
+       const double                  *x,
+       const dealii::types::blas_int *incx,
+       const double                  *beta,
+       double                        *y,
+       const dealii::types::blas_int *incy);
 
 namespace impactfe
 {
@@ -27,23 +27,45 @@ namespace impactfe
     const std::vector<types::global_dof_index> &dofs,
     const std::string                          &name)
   {
-    contact_dofs = dofs;
-    SparseCholesky factor;
-    inverse = factor.factorize_with_trailing_block(matrix, contact_dofs, name);
-    const int n = contact_dofs.size();
-    schur.assign(inverse.size(), 0.);
-    if (n == 0)
-      return;
-    // S = L_CC L_CC^T (lower triangle).
-    const double one = 1., zero = 0.;
-    syrk("L", "N", &n, &n, &one, inverse.data(), &n, &zero, schur.data(), &n);
-    // S^{-1} from the Cholesky factor L_CC (lower triangle, in place).
-    int info = 0;
-    potri("L", &n, inverse.data(), &n, &info);
-    AssertThrow(info == 0,
-                ExcMessage("The inverse of the Schur complement of " + name +
-                           " on its contact DoFs failed (LAPACK dpotri info " +
-                           std::to_string(info) + ")."));
+    // Computed aside and kept only when everything succeeded, so that a
+    // failure leaves the object as it was.
+    std::vector<types::global_dof_index> new_dofs(dofs);
+    std::vector<double>                  new_inverse, new_schur;
+    if (!new_dofs.empty())
+      {
+        AssertThrow(new_dofs.size() < 46340, // n^2 within a BLAS int
+                    ExcMessage("The Schur complement of " + name + " on " +
+                               std::to_string(new_dofs.size()) +
+                               " contact DoFs is too large to be dense."));
+        SparseCholesky factor;
+        new_inverse =
+          factor.factorize_with_trailing_block(matrix, new_dofs, name);
+        const types::blas_int n = new_dofs.size();
+        new_schur.assign(new_inverse.size(), 0.);
+        // S = L_CC L_CC^T (lower triangle).
+        const double one = 1., zero = 0.;
+        syrk("L",
+             "N",
+             &n,
+             &n,
+             &one,
+             new_inverse.data(),
+             &n,
+             &zero,
+             new_schur.data(),
+             &n);
+        // S^{-1} from the Cholesky factor L_CC (lower triangle, in place).
+        types::blas_int info = 0;
+        potri("L", &n, new_inverse.data(), &n, &info);
+        AssertThrow(info == 0,
+                    ExcMessage(
+                      "The inverse of the Schur complement of " + name +
+                      " on its contact DoFs failed (LAPACK dpotri info " +
+                      std::to_string(info) + ")."));
+      }
+    contact_dofs.swap(new_dofs);
+    inverse.swap(new_inverse);
+    schur.swap(new_schur);
   }
 
 
@@ -68,14 +90,14 @@ namespace impactfe
   {
     void
     symmetric_product(const std::vector<double> &matrix,
-                      const int                  n,
+                      const types::blas_int      n,
                       const double              *x,
                       double                    *y)
     {
       if (n == 0)
         return;
-      const double one = 1., zero = 0.;
-      const int    step = 1;
+      const double          one = 1., zero = 0.;
+      const types::blas_int step = 1;
       dsymv_("L", &n, &one, matrix.data(), &n, x, &step, &zero, y, &step);
     }
   } // namespace

@@ -195,6 +195,7 @@ namespace impactfe
       }
     std::vector<int> ordering;
     ordering.reserve(n);
+    UpperTriangle upper(matrix);
     {
       // The block of the other unknowns, analysed alone.
       std::vector<types::global_dof_index> others;
@@ -204,7 +205,6 @@ namespace impactfe
       std::vector<int> other_index(n, -1);
       for (unsigned int k = 0; k < others.size(); ++k)
         other_index[others[k]] = k;
-      UpperTriangle       upper(matrix);
       std::vector<int>    start(1, 0), rows;
       std::vector<double> values;
       for (const auto j : others)
@@ -242,7 +242,6 @@ namespace impactfe
       ordering.push_back(d);
 
     data->free_all();
-    UpperTriangle   upper(matrix);
     cholmod_common &common       = data->common;
     const int       nmethods     = common.nmethods;
     const int       first_method = common.method[0].ordering;

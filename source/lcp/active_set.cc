@@ -524,15 +524,17 @@ namespace impactfe
               last_report.verification = verify_contact_velocities(
                 nd, q, b, mu, P, V, norm_W, options.tolerance);
               last_report.converged = last_report.verification.ok;
-              {
-                std::vector<double> q_b(q), u_b(V);
-                for (unsigned int a = 0; a < n; ++a)
-                  {
-                    q_b[a * nd] += b[a];
-                    u_b[a * nd] += b[a];
-                  }
-                last_report.cone_error = exact_cone_error(nd, q_b, u_b, P, mu);
-              }
+              // q and V with the gap terms, in two work vectors (free
+              // here) so that the solve does not allocate
+              full_in.assign(q.begin(), q.end());
+              full_out.assign(V.begin(), V.end());
+              for (unsigned int a = 0; a < n; ++a)
+                {
+                  full_in[a * nd] += b[a];
+                  full_out[a * nd] += b[a];
+                }
+              last_report.cone_error =
+                exact_cone_error(nd, full_in, full_out, P, mu);
               if (!last_report.converged)
                 last_report.message =
                   "the contact states settled but (P, V) failed the "

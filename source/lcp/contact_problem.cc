@@ -608,11 +608,12 @@ namespace impactfe
                      const std::vector<double> &P,
                      const std::vector<double> &mu_of_contact)
     {
-      const std::size_t  m          = P.size();
-      const unsigned int n_contacts = m / d;
-      if (q.size() != m || u.size() != m || mu_of_contact.size() < n_contacts)
+      const std::size_t m = P.size();
+      if (d < 1 || d > 3 || m % d != 0 || q.size() != m || u.size() != m ||
+          (d > 1 && mu_of_contact.size() < m / d))
         throw std::invalid_argument("exact_cone_error: inconsistent sizes");
-      double q2 = 0., P2 = 0., u2 = 0., e2 = 0.;
+      const unsigned int n_contacts = m / d;
+      double             q2 = 0., P2 = 0., u2 = 0., e2 = 0.;
       for (std::size_t k = 0; k < m; ++k)
         {
           q2 += q[k] * q[k];

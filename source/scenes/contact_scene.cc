@@ -95,6 +95,7 @@ namespace impactfe
         const StepReport report =
           multibody_system->do_time_step(n_steps - step);
         loop_timer.stop();
+        ++n_steps_taken;
         step += report.n_substeps;
         output_results(report);
       }
@@ -231,7 +232,8 @@ namespace impactfe
       .add("setup_cpu_seconds", setup_cpu_seconds)
       .add("loop_cpu_seconds", loop_cpu_seconds);
     const CostBreakdown &costs = multibody_system->cost_breakdown();
-    const double n_steps = std::max(1u, parameters.time_stepping.n_steps());
+    // per step: per call of do_time_step() (a free-flight step is one)
+    const double n_steps = std::max(1u, n_steps_taken);
     if (parameters.output.print_performance)
       summary.add("cost",
                   JsonObject()
@@ -261,7 +263,7 @@ namespace impactfe
             << "  CPU seconds per step: free velocity "
             << costs.free_velocity / n_steps << ", contact problem "
             << costs.lcp / n_steps << ", update " << costs.update / n_steps
-            << "; once: factorisation of M~ " << costs.factorization
+            << "; in total: factorisations of M~ " << costs.factorization
             << ", Delassus operator " << costs.delassus << std::endl;
       }
     recorder->report_files(out,

@@ -8,8 +8,9 @@
 // - S y from its definition, with A_II^{-1} by a solve with A whose rows and
 //   columns of C are the identity's;
 // - S S^{-1} y = y;
-// and the unknowns returned are C, and a repeated unknown is refused with a
-// message naming the matrix.
+// and the unknowns returned are C, a repeated unknown is refused with a
+// message naming the matrix and leaves the object as it was, every unknown
+// trailing gives S = A, and none an empty complement.
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparse_matrix.h>
@@ -150,7 +151,8 @@ main()
   check(DenseSchurComplement::pays_off(3267, 60000000) &&
           !DenseSchurComplement::pays_off(3267, 1000000) &&
           !DenseSchurComplement::pays_off(20000, 1000000000),
-        "pays_off: 3D cube yes, 2D-like fill no, 2.9 GiB no");
+        "pays_off: 3D cube yes, 2D-like fill no, two matrices of 2.9 GiB "
+        "no");
 
   try
     {
@@ -163,5 +165,46 @@ main()
       check(std::string(e.what()).find("the test matrix") != std::string::npos,
             "a repeated unknown throws, naming the matrix");
     }
+  schur.vmult(Sinv_y.data(), back.data());
+  error = 0.;
+  for (unsigned int a = 0; a < n_c; ++a)
+    error = std::max(error, std::abs(back[a] - y[a]));
+  check(schur.size() == n_c && error <= 1e-13,
+        "a failed compute() leaves S and S^{-1} as they were");
+
+  // Every unknown trailing: S = A, S^{-1} = A^{-1}.
+  {
+    const unsigned int                   n_small = 8;
+    DynamicSparsityPattern               dsp_small(n_small, n_small);
+    std::vector<types::global_dof_index> all;
+    for (unsigned int i = 0; i < n_small; ++i)
+      {
+        dsp_small.add(i, i);
+        if (i + 1 < n_small)
+          dsp_small.add(i, i + 1), dsp_small.add(i + 1, i);
+        all.push_back(n_small - 1 - i);
+      }
+    SparsityPattern small_pattern;
+    small_pattern.copy_from(dsp_small);
+    SparseMatrix<double> B(small_pattern);
+    for (unsigned int i = 0; i < n_small; ++i)
+      for (auto it = small_pattern.begin(i); it != small_pattern.end(i); ++it)
+        B.set(i, it->column(), it->column() == i ? 3. : -1.);
+    DenseSchurComplement whole;
+    whole.compute(B, all, "B");
+    std::vector<double> e(n_small, 0.), Be(n_small);
+    e[2] = 1.;
+    whole.vmult(e.data(), Be.data());
+    double b_error = 0.;
+    for (unsigned int a = 0; a < n_small; ++a)
+      b_error =
+        std::max(b_error,
+                 std::abs(Be[a] - B.el(whole.dofs()[a], whole.dofs()[2])));
+    check(b_error <= 1e-14, "every unknown trailing: S = A");
+    DenseSchurComplement none;
+    none.compute(B, {}, "B");
+    check(none.size() == 0 && none.memory_consumption() < 1000,
+          "no unknown: an empty complement");
+  }
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
 }

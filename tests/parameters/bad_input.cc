@@ -199,6 +199,12 @@ main()
   run_case("hertz_on_block_growth_below_one",
            with("Geometry", "Block growth factor = 0.8"),
            hertz_on_block);
+  run_case("hertz_on_block_centre_cell_over_the_block",
+           with("Geometry", "Block centre cell size = 0.05"),
+           hertz_on_block);
+  run_case("hertz_negative_peak_force_bound",
+           with("Verification", "Maximum peak force error = -0.5"),
+           hertz_on_block);
 
   // taylor_bar: the finite-strain program's own entries.
   const std::string taylor = TAYLOR_BAR_EXECUTABLE;

@@ -223,7 +223,8 @@ namespace impactfe
     std::vector<std::unique_ptr<ElasticBody<dim>>> body_list;
     std::unique_ptr<MultibodySystem<dim>>          multibody_system;
     std::unique_ptr<SceneRecorder<dim>>            recorder;
-    double setup_cpu_seconds = 0., loop_cpu_seconds = 0.;
+    double       setup_cpu_seconds = 0., loop_cpu_seconds = 0.;
+    unsigned int n_steps_taken = 0;
   };
 } // namespace impactfe
 
