@@ -580,16 +580,9 @@ namespace impactfe
           return;
         }
       impulse_velocity = 0.;
-      for (unsigned int j = 0; j < n * nd; ++j)
-        if (x[j] != 0.)
-          contact_set.add_column(lcp_candidates[j / nd] * nd + j % nd,
-                                 x[j],
-                                 impulse_velocity);
+      add_lcp_columns(x, impulse_velocity);
       solve_step_matrix(impulse_velocity);
-      y.resize(n * nd);
-      for (unsigned int j = 0; j < n * nd; ++j)
-        y[j] = contact_set.column_dot(lcp_candidates[j / nd] * nd + j % nd,
-                                      impulse_velocity);
+      lcp_column_dots(impulse_velocity, y);
     };
     // S_CC y = M~_CC y - M~_CI M~_II^{-1} M~_IC y for y = H x on C; rows of
     // candidates between two bodies get c_j x_j.
@@ -700,11 +693,7 @@ namespace impactfe
         // (the velocity correction, and the excluded candidates' check) is
         // one solve pair.
         impulse_velocity = 0.;
-        for (unsigned int j = 0; j < n * nd; ++j)
-          if (P[j] != 0.)
-            contact_set.add_column(lcp_candidates[j / nd] * nd + j % nd,
-                                   P[j],
-                                   impulse_velocity);
+        add_lcp_columns(P, impulse_velocity);
         solve_step_matrix(impulse_velocity);
       }
     impulse_velocity_ready = true;
@@ -723,16 +712,10 @@ namespace impactfe
                                             std::vector<double>       &y,
                                             const bool use_schur) const
   {
-    const unsigned int nd = contact_set.n_directions();
-    const unsigned int n  = lcp_candidates.size();
     for (unsigned int b = 0; b < dense_schur.size(); ++b)
       for (const auto d : dense_schur[b].dofs())
         schur_nodal.block(b)(d) = 0.;
-    for (unsigned int j = 0; j < n * nd; ++j)
-      if (x[j] != 0.)
-        contact_set.add_column(lcp_candidates[j / nd] * nd + j % nd,
-                               x[j],
-                               schur_nodal);
+    add_lcp_columns(x, schur_nodal);
     for (unsigned int b = 0; b < dense_schur.size(); ++b)
       {
         const DenseSchurComplement &schur = dense_schur[b];
@@ -748,10 +731,36 @@ namespace impactfe
         for (unsigned int i = 0; i < dofs.size(); ++i)
           schur_product.block(b)(dofs[i]) = dense_out[i];
       }
-    y.resize(n * nd);
-    for (unsigned int j = 0; j < n * nd; ++j)
-      y[j] = contact_set.column_dot(lcp_candidates[j / nd] * nd + j % nd,
-                                    schur_product);
+    lcp_column_dots(schur_product, y);
+  }
+
+
+
+  // H x for x on the LCP's candidates (added to @p target), and H^T v.
+  template <int dim>
+  void
+  MultibodySystem<dim>::add_lcp_columns(const std::vector<double> &x,
+                                        BlockVector<double>       &target) const
+  {
+    const unsigned int nd = contact_set.n_directions();
+    for (unsigned int j = 0; j < x.size(); ++j)
+      if (x[j] != 0.)
+        contact_set.add_column(lcp_candidates[j / nd] * nd + j % nd,
+                               x[j],
+                               target);
+  }
+
+
+
+  template <int dim>
+  void
+  MultibodySystem<dim>::lcp_column_dots(const BlockVector<double> &v,
+                                        std::vector<double>       &y) const
+  {
+    const unsigned int nd = contact_set.n_directions();
+    y.resize(lcp_candidates.size() * nd);
+    for (unsigned int j = 0; j < y.size(); ++j)
+      y[j] = contact_set.column_dot(lcp_candidates[j / nd] * nd + j % nd, v);
   }
 
 

@@ -385,6 +385,12 @@ namespace impactfe
       lcp_impulse_guess, lcp_penalty;
     void
     setup_schur_preconditioner();
+    /// target += H x for x on the LCP candidates' directions; y = H^T v.
+    void
+    add_lcp_columns(const std::vector<double> &x,
+                    BlockVector<double>       &target) const;
+    void
+    lcp_column_dots(const BlockVector<double> &v, std::vector<double> &y) const;
     /// y = H^T S^{-1} H x, or H^T S H x if @p use_schur, with dense_schur.
     void
                         dense_schur_product(const std::vector<double> &x,
