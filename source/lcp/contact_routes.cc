@@ -470,12 +470,24 @@ namespace impactfe
 
 
 
+    // The other routes on W scaled to max |W| = 1, as for a cold routed
+    // solve (the impulses of the failed attempt do not depend on the
+    // scale, so it is recorded against the scaled problem as it is).
     ContactSolution
     continue_with_other_routes(const ContactProblem  &p,
                                const ContactOptions  &options,
                                const ContactSolution &failed)
     {
-      return solve_contact_problem_by_routes(p, options, &failed).solution;
+      ContactProblem scaled;
+      const double   scale = scale_to_unit_delassus(p, scaled);
+      if (scale == 1.)
+        return solve_contact_problem_by_routes(p, options, &failed).solution;
+      ContactSolution s =
+        solve_contact_problem_by_routes(scaled, options, &failed).solution;
+      std::ostringstream m;
+      m << "W and q scaled by 1/" << scale << ": " << s.message;
+      s.message = m.str();
+      return s;
     }
 
 

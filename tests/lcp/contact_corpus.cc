@@ -15,7 +15,9 @@
 // reported as infeasible.
 //
 // The output lists, per class, how many problems were solved and verified,
-// proven infeasible, or neither. Which route solved each problem is printed
+// proven infeasible, or neither, and how many the time loop's path (route 1
+// on W as it is, then the other routes on W scaled to unit size) answers as
+// expected. Which route solved each problem is printed
 // on stdout only (not compared): it depends on rounding.
 #include <impactfe/lcp/contact_routes.h>
 #include <impactfe/lcp/problem_io.h>
@@ -316,6 +318,9 @@ main()
     for (const auto &kind : kinds)
       {
         unsigned int solved = 0, infeasible = 0, other = 0, wrong = 0;
+        // The time loop's path: route 1 on W as it is, then the other
+        // routes (continue_with_other_routes(), on W scaled to unit size).
+        unsigned int time_loop_as_expected = 0;
         for (unsigned int i = 0; i < per_class; ++i, ++total)
           {
             const ContactProblem generated = generate(kind.first, dim, rng);
@@ -327,7 +332,18 @@ main()
             const ContactProblem &p = f.contact;
 
             const RoutedContactSolution r = solve_contact_problem_by_routes(p);
-            const Status                status = r.solution.lcp.status;
+            {
+              const ContactSolution t = solve_contact_problem(p);
+              std::string           unused;
+              if (kind.second ? (t.lcp.status == Status::solved &&
+                                 check_solution(p, t.P, t.n_facets, unused)) :
+                                t.lcp.status == Status::infeasible)
+                ++time_loop_as_expected;
+              else
+                std::cout << file << " (time-loop path): " << t.message
+                          << std::endl;
+            }
+            const Status status = r.solution.lcp.status;
             // a problem that is neither solved nor proven infeasible stays on
             // disk, to be looked at with lcp-solve
             if (status == Status::solved || status == Status::infeasible)
@@ -369,7 +385,8 @@ main()
         dealii::deallog << dim << "D " << kind.first << ": " << per_class
                         << " problems, " << solved << " solved and verified, "
                         << infeasible << " proven infeasible, " << other
-                        << " neither, " << wrong << " wrong" << std::endl;
+                        << " neither, " << wrong << " wrong; time-loop path "
+                        << time_loop_as_expected << " as expected" << std::endl;
         impactfe_tests::check(ok,
                               std::to_string(dim) + "D " + kind.first +
                                 (kind.second ?
