@@ -49,18 +49,7 @@ namespace impactfe
     , solver_parameters(solver_parameters)
     , contact_set(contact_directions)
     , scheme(create_time_integrator(time_stepping))
-  {
-    AssertThrow(!(contact_directions > 2 &&
-                  solver_parameters.method ==
-                    ContactSolverParameters::Method::active_set &&
-                  solver_parameters.friction_cone != lcp::ConeModel::exact),
-                ExcMessage(
-                  "Contact solver: 'Method = active set' solves 3D friction "
-                  "with the circular cone only; this scene asks for "
-                  "'Friction cone = facets'. Use 'Friction cone = exact', or "
-                  "'Method = lemke' or 'automatic' (which uses Lemke's "
-                  "method for the polygonal cone)."));
-  }
+  {}
 
 
 
@@ -531,9 +520,7 @@ namespace impactfe
   MultibodySystem<dim>::use_active_set(const unsigned int n) const
   {
     using Method = ContactSolverParameters::Method;
-    return (contact_set.n_directions() <= 2 ||
-            solver_parameters.friction_cone == lcp::ConeModel::exact) &&
-           (solver_parameters.method == Method::active_set ||
+    return (solver_parameters.method == Method::active_set ||
             (solver_parameters.method == Method::automatic &&
              n >= solver_parameters.active_set_threshold));
   }
@@ -637,6 +624,8 @@ namespace impactfe
       };
     lcp::ActiveSetOptions options;
     options.max_iterations = solver_parameters.active_set_iterations;
+    if (nd == 3 && solver_parameters.friction_cone == lcp::ConeModel::facets)
+      options.n_facets = solver_parameters.n_facets;
     const lcp::ActiveSetReport &result = active_set_solver.solve(
       product,
       preconditioner,
@@ -664,6 +653,9 @@ namespace impactfe
       }
     stats.largest_cone_error =
       std::max(stats.largest_cone_error, result.cone_error);
+    stats.refinements += result.refinements;
+    stats.largest_linear_residual =
+      std::max(stats.largest_linear_residual, result.linear_residual);
     stats.largest_violation =
       std::max({stats.largest_violation,
                 result.verification.max_signorini_violation,

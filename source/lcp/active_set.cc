@@ -30,6 +30,71 @@ namespace impactfe
         return m;
       }
 
+      /// The outward direction of feature @p f of the k-gon (2 j: vertex j,
+      /// at 2 pi j / k; 2 j + 1: the normal of edge j, at (2 j + 1) pi / k).
+      double
+      feature_angle(const int f, const unsigned int k)
+      {
+        return std::acos(-1.) * f / k;
+      }
+
+      /// By how much xi = (xi1, xi2) lies outside the regular k-gon with
+      /// vertices R d_j (max_j n_j . xi - R cos(pi / k); < 0 inside), and in
+      /// @p feature the vertex or edge that its projection on it lies on.
+      double
+      polygon_projection(const double       xi1,
+                         const double       xi2,
+                         const double       R,
+                         const unsigned int k,
+                         int               &feature)
+      {
+        const double pi = std::acos(-1.);
+        if (!(R > 1e-12 * std::hypot(xi1, xi2)))
+          {
+            // the polygon is (nearly) a point: the feature whose normal
+            // cone holds xi is the vertex nearest its direction
+            const double angle = std::atan2(xi2, xi1);
+            feature =
+              2 * (static_cast<int>(std::lround(angle * k / (2. * pi)) + k) %
+                   static_cast<int>(k));
+            double excess = -1e300;
+            for (unsigned int j = 0; j < k; ++j)
+              {
+                const double e = feature_angle(2 * j + 1, k);
+                excess =
+                  std::max(excess, std::cos(e) * xi1 + std::sin(e) * xi2);
+              }
+            return excess - std::max(R, 0.) * std::cos(pi / k);
+          }
+        const double length = 2. * R * std::sin(pi / k);
+        double       excess = -1e300, nearest = 1e300;
+        feature = 0;
+        for (unsigned int j = 0; j < k; ++j)
+          {
+            const double e = feature_angle(2 * j + 1, k),
+                         a = feature_angle(2 * j, k);
+            excess = std::max(excess, std::cos(e) * xi1 + std::sin(e) * xi2);
+            // the edge from R d_j along t_j = (-sin e, cos e)
+            const double v1 = R * std::cos(a), v2 = R * std::sin(a);
+            const double tau =
+              -std::sin(e) * (xi1 - v1) + std::cos(e) * (xi2 - v2);
+            int    f   = 2 * j + 1;
+            double end = tau;
+            if (tau <= 0.)
+              f = 2 * j, end = 0.;
+            else if (tau >= length)
+              f = 2 * ((j + 1) % k), end = length;
+            const double p1 = v1 - std::sin(e) * end - xi1,
+                         p2 = v2 + std::cos(e) * end - xi2;
+            if (p1 * p1 + p2 * p2 < nearest)
+              {
+                nearest = p1 * p1 + p2 * p2;
+                feature = f;
+              }
+          }
+        return excess - R * std::cos(pi / k);
+      }
+
     } // namespace
 
 
@@ -48,6 +113,27 @@ namespace impactfe
         for (unsigned int a = 0; a < state.size(); ++a)
           if (is_sliding(state[a]))
             P_full[2 * a + 1] = mu[a] * P_full[2 * a] * direction[a];
+      if (nd == 3 && n_facets > 0) // polygonal cone: vertex or edge
+        for (unsigned int a = 0; a < state.size(); ++a)
+          if (is_sliding(state[a]))
+            {
+              const double p_n = P_full[3 * a];
+              const double e   = feature_angle(feature[a], n_facets);
+              if (feature[a] % 2 == 0)
+                {
+                  P_full[3 * a + 1] = mu[a] * p_n * std::cos(e);
+                  P_full[3 * a + 2] = mu[a] * p_n * std::sin(e);
+                }
+              else
+                {
+                  const double alpha = P_full[3 * a + 1];
+                  const double gamma =
+                    mu[a] * p_n * std::cos(std::acos(-1.) / n_facets);
+                  P_full[3 * a + 1] =
+                    -alpha * std::sin(e) + gamma * std::cos(e);
+                  P_full[3 * a + 2] = alpha * std::cos(e) + gamma * std::sin(e);
+                }
+            }
     }
 
 
@@ -55,7 +141,29 @@ namespace impactfe
     bool
     ActiveSetSolver::is_slip_row(const unsigned int row) const
     {
-      return dimension == 3 && row % 3 != 0 && is_sliding(state[row / 3]);
+      return dimension == 3 && n_facets == 0 && row % 3 != 0 &&
+             is_sliding(state[row / 3]);
+    }
+
+
+
+    bool
+    ActiveSetSolver::is_edge_row(const unsigned int row) const
+    {
+      return dimension == 3 && n_facets > 0 && row % 3 == 1 &&
+             is_sliding(state[row / 3]) && feature[row / 3] % 2 == 1;
+    }
+
+
+
+    void
+    ActiveSetSolver::edge_tangent(const unsigned int a,
+                                  double            &t1,
+                                  double            &t2) const
+    {
+      const double e = feature_angle(feature[a], n_facets);
+      t1             = -std::sin(e);
+      t2             = std::cos(e);
     }
 
 
@@ -118,30 +226,44 @@ namespace impactfe
       const std::size_t  m = unknowns.size();
       const unsigned int k_max =
         std::max<unsigned int>(1, std::min<std::size_t>(restart, m));
-      std::vector<double> &WP      = work;
-      auto                 apply_K = [&](const std::vector<double> &in,
+      auto apply_K = [&](const std::vector<double> &in,
                          std::vector<double>       &out) {
-        expand(in, mu, P);
-        W(P, WP);
-        ++last_report.operator_applications;
-        for (std::size_t k = 0; k < m; ++k)
-          {
-            const unsigned int row = unknowns[k];
-            out[k] = is_slip_row(row) ? slip_row(row, P, WP, mu) : WP[row];
-          }
+        apply_newton_operator(W, mu, in, out);
       };
       auto apply_Z = [&](const std::vector<double> &in,
                          std::vector<double>       &out) {
         // slip rows (3D): c, their operator is (I + O(beta (1 - c W_TT))) / c
         // with c W_TT ~ 1
+        // edge rows (polygonal cone): the velocity and the impulse along
+        // the edge's tangent t
         std::fill(full_in.begin(), full_in.end(), 0.);
+        double t1 = 0., t2 = 0.;
         for (std::size_t k = 0; k < m; ++k)
-          if (!is_slip_row(unknowns[k]))
-            full_in[unknowns[k]] = in[k];
+          {
+            const unsigned int row = unknowns[k];
+            if (is_edge_row(row))
+              {
+                edge_tangent(row / 3, t1, t2);
+                full_in[row]     = t1 * in[k];
+                full_in[row + 1] = t2 * in[k];
+              }
+            else if (!is_slip_row(row))
+              full_in[row] = in[k];
+          }
         preconditioner(full_in, full_out);
         for (std::size_t k = 0; k < m; ++k)
-          out[k] = is_slip_row(unknowns[k]) ? c[unknowns[k]] * in[k] :
-                                              full_out[unknowns[k]];
+          {
+            const unsigned int row = unknowns[k];
+            if (is_slip_row(row))
+              out[k] = c[row] * in[k];
+            else if (is_edge_row(row))
+              {
+                edge_tangent(row / 3, t1, t2);
+                out[k] = t1 * full_out[row] + t2 * full_out[row + 1];
+              }
+            else
+              out[k] = full_out[row];
+          }
       };
 
       basis.resize(k_max + 1);
@@ -159,9 +281,20 @@ namespace impactfe
 
       const double rhs_norm = std::sqrt(dot(rhs, rhs, m));
       const double target   = tolerance * rhs_norm;
-      apply_K(x, r);
-      for (std::size_t k = 0; k < m; ++k)
-        r[k] = rhs[k] - r[k];
+      if (std::all_of(x.begin(), x.begin() + m, [](double v) {
+            return v == 0.;
+          }))
+        {
+          // a refinement's start: K 0 = 0, W P = 0 without a product
+          std::copy(rhs.begin(), rhs.begin() + m, r.begin());
+          std::fill(work.begin(), work.end(), 0.);
+        }
+      else
+        {
+          apply_K(x, r);
+          for (std::size_t k = 0; k < m; ++k)
+            r[k] = rhs[k] - r[k];
+        }
       double       beta       = std::sqrt(dot(r, r, m));
       unsigned int iterations = 0;
       stalled                 = false;
@@ -234,7 +367,139 @@ namespace impactfe
         }
       stalled = stalled || beta > target;
       last_report.linear_iterations += iterations;
+      residual.assign(r.begin(), r.begin() + m);
       return iterations;
+    }
+
+
+
+    void
+    ActiveSetSolver::apply_newton_operator(const DelassusProduct     &W,
+                                           const std::vector<double> &mu,
+                                           const std::vector<double> &in,
+                                           std::vector<double>       &out)
+    {
+      expand(in, mu, P);
+      W(P, work);
+      ++last_report.operator_applications;
+      for (std::size_t k = 0; k < unknowns.size(); ++k)
+        {
+          const unsigned int row = unknowns[k];
+          if (is_slip_row(row))
+            out[k] = slip_row(row, P, work, mu);
+          else if (is_edge_row(row))
+            {
+              double t1 = 0., t2 = 0.;
+              edge_tangent(row / 3, t1, t2);
+              out[k] = t1 * work[row] + t2 * work[row + 1];
+            }
+          else
+            out[k] = work[row];
+        }
+    }
+
+
+
+    void
+    ActiveSetSolver::assemble_rhs(const std::vector<double> &q,
+                                  const std::vector<double> &b)
+    {
+      const unsigned int nd = dimension;
+      rhs.resize(unknowns.size());
+      for (std::size_t k = 0; k < unknowns.size(); ++k)
+        {
+          const unsigned int row = unknowns[k];
+          if (is_slip_row(row))
+            rhs[k] = slip_rhs(row, q);
+          else if (is_edge_row(row))
+            {
+              double t1 = 0., t2 = 0.;
+              edge_tangent(row / 3, t1, t2);
+              rhs[k] = -(t1 * q[row] + t2 * q[row + 1]);
+            }
+          else
+            rhs[k] = row % nd == 0 ? -(q[row] + b[row / nd]) : -q[row];
+        }
+    }
+
+
+
+    // Classical iterative refinement: the residual of x is computed with a
+    // fresh product (the directions have moved since the last solve), a
+    // correction is solved to a modest relative accuracy against it and
+    // added. GMRES's true residual of the correction is that of the sum, and
+    // W P of the sum is the sum of the two products, so a pass costs only
+    // its GMRES iterations. Stops at the tolerance, at the rounding floor
+    // (the residual no longer halves) or after max_refinements passes.
+    double
+    ActiveSetSolver::refine(const DelassusProduct     &W,
+                            const DelassusProduct     &preconditioner,
+                            const std::vector<double> &q,
+                            const std::vector<double> &b,
+                            const std::vector<double> &mu,
+                            const ActiveSetOptions    &options)
+    {
+      const std::size_t m = unknowns.size();
+      assemble_rhs(q, b);
+      auto impulse_residual = [&]() {
+        apply_newton_operator(W, mu, x, residual);
+        double worst = 0.;
+        for (std::size_t k = 0; k < m; ++k)
+          {
+            residual[k] = rhs[k] - residual[k];
+            worst = std::max(worst, c[unknowns[k]] * std::abs(residual[k]));
+          }
+        return worst / std::max(max_abs(P), 1e-300);
+      };
+      auto relative_to_impulses = [&]() {
+        double worst = 0.;
+        for (std::size_t k = 0; k < m; ++k)
+          worst = std::max(worst, c[unknowns[k]] * std::abs(residual[k]));
+        return worst / std::max(max_abs(P), 1e-300);
+      };
+      double error = impulse_residual();
+      for (unsigned int pass = 0; pass < options.max_refinements &&
+                                  error > options.refinement_tolerance;
+           ++pass)
+        {
+          saved_rhs.swap(rhs);
+          saved_x.swap(x);
+          saved_work     = work;
+          saved_residual = residual;
+          rhs            = residual;
+          x.assign(m, 0.);
+          bool stalled = false;
+          gmres(W,
+                preconditioner,
+                mu,
+                1e-3,
+                options.max_linear_iterations,
+                options.restart,
+                stalled);
+          for (std::size_t k = 0; k < m; ++k)
+            x[k] += saved_x[k];
+          for (std::size_t i = 0; i < work.size(); ++i)
+            work[i] += saved_work[i];
+          expand(x, mu, P);
+          saved_rhs.swap(rhs);
+          const double new_error = relative_to_impulses();
+          ++last_report.refinements;
+          if (!(new_error < error)) // no gain: keep the x before the pass
+            {
+              x.swap(saved_x);
+              work.swap(saved_work);
+              residual.swap(saved_residual);
+              expand(x, mu, P);
+              break;
+            }
+          const bool halved = new_error < 0.5 * error;
+          error             = new_error;
+          if (!halved)
+            break;
+        }
+      for (std::size_t i = 0; i < V.size(); ++i)
+        V[i] = q[i] + work[i];
+      return error;
     }
 
 
@@ -292,6 +557,7 @@ namespace impactfe
       auto update_states = [&](const double margin) {
         new_state.resize(n);
         violation.assign(n, 0.);
+        new_feature.assign(n, -1);
         for (unsigned int a = 0; a < n; ++a)
           {
             const unsigned int iN   = a * nd;
@@ -302,6 +568,46 @@ namespace impactfe
               new_state[a] = ContactState::open;
             else if (nd == 1)
               new_state[a] = ContactState::stick;
+            else if (nd == 3 && n_facets > 0)
+              {
+                // polygonal cone: the feature of the projection of xi
+                int          f = 0;
+                const double excess =
+                  polygon_projection(P[iN + 1] - c[iN + 1] * V[iN + 1],
+                                     P[iN + 2] - c[iN + 2] * V[iN + 2],
+                                     mu[a] * std::max(zeta, 0.),
+                                     n_facets,
+                                     f);
+                // From a vertex to the next one, through the edge between
+                // them: xi is far outside the polygon (c |V_T| >> mu P_N),
+                // so its projection is a vertex unless -V_T is exactly the
+                // edge's normal, which is what sliding on the edge means;
+                // without this the states alternate between the two
+                // vertices. On the edge, alpha decides: beyond the edge's
+                // end, the projection is that vertex again.
+                if (is_sliding(state[a]) && feature[a] % 2 == 0 && f % 2 == 0)
+                  {
+                    const int k2 = 2 * n_facets,
+                              d  = ((f - feature[a]) % k2 + k2) % k2;
+                    if (d == 2 || d == k2 - 2)
+                      f = (feature[a] + (d == 2 ? 1 : k2 - 1)) % k2;
+                  }
+                const bool turns_round =
+                  is_sliding(state[a]) &&
+                  std::cos(feature_angle(f - feature[a], n_facets)) < -1e-9;
+                if (excess <= -margin)
+                  new_state[a] = ContactState::stick;
+                else if (excess > margin)
+                  new_state[a] = turns_round ? ContactState::stick :
+                                               ContactState::slip_positive;
+                else
+                  new_state[a] = is_sliding(state[a]) && !turns_round ?
+                                   ContactState::slip_positive :
+                                   ContactState::stick;
+                if (is_sliding(new_state[a]))
+                  new_feature[a] = f;
+                violation[a] = std::abs(excess);
+              }
             else
               {
                 // xi = P_T - c V_T; a slip direction d = xi / |xi|
@@ -353,8 +659,11 @@ namespace impactfe
       // cycle is met again (down to one contact, as in Murty's method).
       auto damp_cycles = [&]() {
         std::size_t hash = 1469598103934665603ull;
-        for (const ContactState s : new_state)
-          hash = (hash ^ static_cast<unsigned char>(s)) * 1099511628211ull;
+        for (unsigned int a = 0; a < n; ++a)
+          hash =
+            (hash ^ (static_cast<unsigned char>(new_state[a]) +
+                     256u * static_cast<unsigned int>(new_feature[a] + 1))) *
+            1099511628211ull;
         if (std::find(seen.begin(), seen.end(), hash) == seen.end())
           {
             seen.push_back(hash);
@@ -363,7 +672,7 @@ namespace impactfe
         ++cycles;
         changed.clear();
         for (unsigned int a = 0; a < n; ++a)
-          if (new_state[a] != state[a])
+          if (new_state[a] != state[a] || new_feature[a] != feature[a])
             changed.push_back(a);
         const std::size_t keep =
           std::max<std::size_t>(1, changed.size() >> std::min(cycles, 30u));
@@ -371,7 +680,10 @@ namespace impactfe
           return violation[i] > violation[j];
         });
         for (std::size_t k = keep; k < changed.size(); ++k)
-          new_state[changed[k]] = state[changed[k]];
+          {
+            new_state[changed[k]]   = state[changed[k]];
+            new_feature[changed[k]] = feature[changed[k]];
+          }
       };
 
       // Slip directions: of the guessed impulses, else against the free
@@ -382,6 +694,13 @@ namespace impactfe
       beta.assign(n, 0.);
       new_beta.assign(n, 0.);
       dimension = nd;
+      n_facets  = nd == 3 ? options.n_facets : 0;
+      if (n_facets > 0 && n_facets < 3)
+        throw std::invalid_argument(
+          "ActiveSetSolver: the polygonal cone needs at least 3 facets, got " +
+          std::to_string(n_facets));
+      feature.assign(n, -1);
+      new_feature.assign(n, -1);
       if (impulse_guess.size() == n_rows)
         P = impulse_guess;
       for (unsigned int a = 0; a < n && nt > 0; ++a)
@@ -410,12 +729,33 @@ namespace impactfe
             for (ContactState &s : state)
               if (is_closed(s))
                 s = ContactState::stick;
+          // polygonal cone: a guessed sliding contact starts on the feature
+          // that its guessed P_T lies on, else where -q_T points
+          for (unsigned int a = 0; a < n && n_facets > 0; ++a)
+            if (is_sliding(state[a]))
+              {
+                const unsigned int iN  = 3 * a;
+                const double       p_n = P[iN];
+                if (impulse_guess.size() == n_rows && mu[a] * p_n > 0.)
+                  polygon_projection((1. + 1e-6) * P[iN + 1],
+                                     (1. + 1e-6) * P[iN + 2],
+                                     mu[a] * p_n,
+                                     n_facets,
+                                     feature[a]);
+                else
+                  polygon_projection(-2. * direction[2 * a],
+                                     -2. * direction[2 * a + 1],
+                                     1.,
+                                     n_facets,
+                                     feature[a]);
+              }
         }
       else
         {
           state.assign(n, ContactState::open);
           update_states(0.);
           state     = new_state;
+          feature   = new_feature;
           direction = new_direction;
           beta      = new_beta;
         }
@@ -437,22 +777,21 @@ namespace impactfe
               {
                 unknowns.push_back(a * nd);
                 if (state[a] == ContactState::stick ||
-                    (nd == 3 && is_sliding(state[a])))
+                    (nd == 3 && n_facets == 0 && is_sliding(state[a])))
                   for (unsigned int k = 1; k < nd; ++k)
                     unknowns.push_back(a * nd + k);
+                else if (is_edge_row(a * nd + 1))
+                  unknowns.push_back(a * nd + 1);
               }
           const std::size_t m = unknowns.size();
           x.resize(m);
-          rhs.resize(m);
           for (std::size_t k = 0; k < m; ++k)
             {
               const unsigned int row = unknowns[k];
               position[row]          = static_cast<int>(k);
               x[k]                   = P[row];
-              rhs[k] = row % nd == 0 ? -(q[row] + b[row / nd]) : -q[row];
-              if (is_slip_row(row))
-                rhs[k] = slip_rhs(row, q);
             }
+          assemble_rhs(q, b);
           if (m == 0)
             {
               std::fill(P.begin(), P.end(), 0.);
@@ -488,19 +827,19 @@ namespace impactfe
           update_states(
             (tight ? 1e-10 : 1e2 * options.inexact_linear_tolerance) *
             std::max(p_max, impulse_scale_free));
-          if (new_state != state)
+          if (new_state != state || new_feature != feature)
             damp_cycles();
           // 3D: how far the slip directions of the sliding contacts moved
           // (they settle like the states; in 2D they are the states' signs)
           double turn = 0.;
-          for (unsigned int a = 0; a < n && nd == 3; ++a)
+          for (unsigned int a = 0; a < n && nd == 3 && n_facets == 0; ++a)
             if (is_sliding(state[a]) && is_sliding(new_state[a]))
               turn =
                 std::max(turn,
                          std::hypot(new_direction[2 * a] - direction[2 * a],
                                     new_direction[2 * a + 1] -
                                       direction[2 * a + 1]));
-          const bool same = new_state == state;
+          const bool same = new_state == state && new_feature == feature;
           for (unsigned int a = 0; a < n; ++a)
             if (is_sliding(new_state[a]))
               {
@@ -517,12 +856,16 @@ namespace impactfe
             }
           if (same && turn <= options.direction_tolerance)
             {
+              // at the settled states and directions (those just updated)
+              if (m > 0)
+                last_report.linear_residual =
+                  refine(W, preconditioner, q, b, mu, options);
               double wp_max = 0.;
               for (std::size_t i = 0; i < n_rows; ++i)
                 wp_max = std::max(wp_max, std::abs(V[i] - q[i]));
               const double norm_W = p_max > 0. ? wp_max / p_max : 1. / c_max;
               last_report.verification = verify_contact_velocities(
-                nd, q, b, mu, P, V, norm_W, options.tolerance);
+                nd, q, b, mu, P, V, norm_W, options.tolerance, n_facets);
               last_report.converged = last_report.verification.ok;
               // q and V with the gap terms, in two work vectors (free
               // here) so that the solve does not allocate
@@ -549,8 +892,9 @@ namespace impactfe
                   ")";
               break;
             }
-          state = new_state;
-          tight = settled_once;
+          state   = new_state;
+          feature = new_feature;
+          tight   = settled_once;
         }
       if (!last_report.converged && last_report.message.empty())
         last_report.message = "the contact states did not settle in " +

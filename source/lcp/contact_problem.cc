@@ -506,7 +506,8 @@ namespace impactfe
                               const std::vector<double> &P,
                               const std::vector<double> &V,
                               const double               norm_W,
-                              const double               tol)
+                              const double               tol,
+                              const unsigned int         n_facets)
     {
       const std::size_t nc = gap_term.size();
       if (P.size() != nc * dim || V.size() != nc * dim ||
@@ -556,6 +557,42 @@ namespace impactfe
               VT2 += V[c * dim + a] * V[c * dim + a];
             }
           const double PT = std::sqrt(PT2), VT = std::sqrt(VT2);
+          const bool   polygon = dim == 3 && n_facets > 0;
+          if (polygon)
+            {
+              // the polygon's support function and its edges
+              const double pi          = std::acos(-1.);
+              double       edge_excess = -1e300, support = -1e300;
+              for (unsigned int j = 0; j < n_facets; ++j)
+                {
+                  const double a = 2. * pi * j / n_facets,
+                               e = a + pi / n_facets;
+                  edge_excess    = std::max(edge_excess,
+                                         std::cos(e) * P[c * dim + 1] +
+                                           std::sin(e) * P[c * dim + 2]);
+                  support        = std::max(support,
+                                     -std::cos(a) * V[c * dim + 1] -
+                                       std::sin(a) * V[c * dim + 2]);
+                }
+              edge_excess -= mu[c] * PN * std::cos(pi / n_facets);
+              r.max_cone_violation =
+                std::max(r.max_cone_violation, rel(edge_excess, sP));
+              if (PN <= tol * sP)
+                ++r.n_separated;
+              else if (VT <= tol * sV)
+                ++r.n_sticking;
+              else
+                {
+                  ++r.n_sliding;
+                  const double dissipation = -(V[c * dim + 1] * P[c * dim + 1] +
+                                               V[c * dim + 2] * P[c * dim + 2]);
+                  r.max_sliding_violation  = std::max(
+                    r.max_sliding_violation,
+                    rel((mu[c] * std::max(PN, 0.) * support - dissipation) / VT,
+                        sP));
+                }
+              continue;
+            }
           r.max_cone_violation =
             std::max(r.max_cone_violation, rel(PT - mu[c] * PN, sP));
           if (PN <= tol * sP)

@@ -91,6 +91,9 @@ namespace impactfe
         .add("active_set_products", double(active_set.operator_applications))
         .add("active_set_largest_violation", active_set.largest_violation)
         .add("active_set_largest_cone_error", active_set.largest_cone_error)
+        .add("active_set_refinements", double(active_set.refinements))
+        .add("active_set_largest_linear_residual",
+             active_set.largest_linear_residual)
         .add("active_set_fallbacks", double(active_set.fallbacks))
         .add("active_set_dense_schur_complement",
              double(active_set.dense_schur_complement));

@@ -13,6 +13,11 @@
 // 3b, 3c. 50 random 3D problems (20 to 60 contacts, the circular cone),
 //    cold and warm, against ExactConeSolver (facet LCPs re-aligned until
 //    the circular cone holds to 1e-12): the same checks.
+// 3d, 3e. 50 random 3D problems with the polygonal cone of 8 facets, cold
+//    and warm, against Lemke's method on the facet LCP (FrictionForm::
+//    facets): every answer converged, passes the polygonal cone's
+//    verification (verify_contact_velocities() with n_facets = 8) and equals
+//    Lemke's P to 1e-8 relative.
 // 4. 30 strongly coupled frictional problems (W = B B^T + I/2, mu up to
 //    1), where the method may cycle: every answer it accepts passes the
 //    dense verification (the ones it does not accept are left to Lemke's
@@ -95,7 +100,8 @@ namespace
                      const bool          weakly_coupled,
                      const bool          warm,
                      const std::uint64_t seed,
-                     const unsigned int  max_contacts = 200)
+                     const unsigned int  max_contacts = 200,
+                     const unsigned int  n_facets     = 0)
   {
     lcp_test::Rng      rng(seed);
     ActiveSetSolver    solver;
@@ -110,10 +116,14 @@ namespace
         // until the circular cone holds (ExactConeSolver)
         ExactConeOptions cone;
         cone.tolerance = 1e-12;
-        ExactConeSolver       exact;
-        const ContactSolution lemke = nd == 3 ?
-                                        exact.solve(p, ContactOptions(), cone) :
-                                        solve_contact_problem(p);
+        ExactConeSolver exact;
+        ContactOptions  facets;
+        facets.form     = FrictionForm::facets;
+        facets.n_facets = n_facets;
+        const ContactSolution lemke =
+          n_facets > 0 ? solve_contact_problem(p, facets) :
+          nd == 3      ? exact.solve(p, ContactOptions(), cone) :
+                         solve_contact_problem(p);
         if (lemke.lcp.status != Status::solved)
           continue;
         ++lemke_solved;
@@ -128,7 +138,9 @@ namespace
             for (double &v : impulse_guess)
               v *= 1. + 0.1 * rng.uniform(-1., 1.);
           }
-        const DenseOperators   ops(p);
+        const DenseOperators ops(p);
+        ActiveSetOptions     options;
+        options.n_facets              = n_facets;
         const ActiveSetReport &report = solver.solve(ops.product,
                                                      ops.jacobi,
                                                      ops.penalty,
@@ -137,7 +149,8 @@ namespace
                                                      p.gap_term,
                                                      p.mu,
                                                      state_guess,
-                                                     impulse_guess);
+                                                     impulse_guess,
+                                                     options);
         if (!report.converged)
           {
             dealii::deallog << "  not converged (" << nc
@@ -145,7 +158,20 @@ namespace
             continue;
           }
         ++converged;
-        if (verify_contact_solution(p, solver.impulses()).ok)
+        std::vector<double> V;
+        p.W.vmult(V, solver.impulses());
+        for (unsigned int i = 0; i < V.size(); ++i)
+          V[i] += p.free_velocity[i];
+        if (verify_contact_velocities(nd,
+                                      p.free_velocity,
+                                      p.gap_term,
+                                      p.mu,
+                                      solver.impulses(),
+                                      V,
+                                      p.W.linfty_norm(),
+                                      1e-8,
+                                      n_facets)
+              .ok)
           ++verified;
         if (lcp_test::relative_difference(p, solver.impulses(), lemke.P) <=
             1e-8)
@@ -174,6 +200,10 @@ main()
     "3b. 3D, circular cone, mu <= 0.2, cold", 3, 0.2, true, false, 16, 60);
   compare_with_lemke(
     "3c. 3D, circular cone, mu <= 0.2, warm", 3, 0.2, true, true, 16, 60);
+  compare_with_lemke(
+    "3d. 3D, 8 facets, mu <= 0.2, cold", 3, 0.2, true, false, 17, 60, 8);
+  compare_with_lemke(
+    "3e. 3D, 8 facets, mu <= 0.2, warm", 3, 0.2, true, true, 17, 60, 8);
 
   // 4. Strongly coupled, large mu: what is accepted is verified.
   {

@@ -135,10 +135,6 @@ main()
   run_case("zero_exact_cone_tolerance",
            with("Contact solver", "Exact cone tolerance = 0"),
            plate_3d);
-  run_case("active_set_with_facets",
-           with("Contact solver",
-                "Method = active set\n  set Friction cone = facets"),
-           plate_3d);
   run_case("plate_3d_missing_contact_boundary",
            with("Mesh", "Contact boundary id = 7"),
            plate_3d);

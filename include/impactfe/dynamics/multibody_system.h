@@ -266,8 +266,12 @@ namespace impactfe
       unsigned long long operator_applications = 0;
       double             largest_violation     = 0.;
       /// The largest exact_cone_error() of the verified answers.
-      double       largest_cone_error = 0.;
-      unsigned int fallbacks          = 0;
+      double largest_cone_error = 0.;
+      /// Refinement passes of the final solves, and the largest final
+      /// linear residual (impulse units, relative to the largest impulse).
+      unsigned long long refinements             = 0;
+      double             largest_linear_residual = 0.;
+      unsigned int       fallbacks               = 0;
       /// Whether the products used the dense Schur complements.
       bool        dense_schur_complement = false;
       std::string last_fallback_reason;

@@ -31,6 +31,14 @@ namespace impactfe
       /// and of the solves while the states still change (inexact Newton).
       double linear_tolerance         = 1e-12;
       double inexact_linear_tolerance = 1e-6;
+      /// The final answer's linear residual in impulse units (c_k |r_k| of
+      /// every unknown k), relative to the largest impulse, that iterative
+      /// refinement aims at: GMRES's linear_tolerance is relative to the
+      /// right-hand side, which stiff normal rows can make far larger than
+      /// the impulses (thin bodies).
+      double refinement_tolerance = 1e-10;
+      /// Refinement passes at most (each: one GMRES solve of the residual).
+      unsigned int max_refinements = 4;
       /// 3D: the slip directions of the sliding contacts settle when they
       /// move by less than direction_tolerance in an iteration (and by less
       /// than inexact_direction_tolerance before the final, exact solves).
@@ -41,6 +49,9 @@ namespace impactfe
       unsigned int restart               = 120;
       /// Verification tolerance (verify_contact_velocities()).
       double tolerance = 1e-8;
+      /// 3D: 0 for the circular cone; k >= 3 for the polygonal cone of the
+      /// facet form (P_T in conv{mu P_N d_j}, d_j at the angles 2 pi j / k).
+      unsigned int n_facets = 0;
     };
 
     /// What a solve did.
@@ -54,6 +65,11 @@ namespace impactfe
       ContactVerification verification;
       /// exact_cone_error() of the answer (the standard measure, issue 12).
       double cone_error = 0.;
+      /// Refinement passes of the final solve, and its linear residual in
+      /// impulse units relative to the largest impulse (ActiveSetOptions::
+      /// refinement_tolerance).
+      unsigned int refinements     = 0;
+      double       linear_residual = 0.;
       /// Why it did not converge (empty if it did).
       std::string message;
     };
@@ -78,6 +94,18 @@ namespace impactfe
      * In 2D d is the sign that slip_positive / slip_negative name; in 3D
      * the directions settle by a fixed point (direction_tolerance) and a
      * sliding contact is reported as slip_positive.
+     *
+     * With the polygonal cone (3D, ActiveSetOptions::n_facets = k) the
+     * projection is onto the polygon conv{mu zeta d_j}, which is piecewise
+     * linear: a sliding contact is on a vertex j (P_T = mu P_N d_j: P_T is
+     * eliminated) or on an edge j, between d_j and d_{j+1}, with outward
+     * normal n_j and tangent t_j (P_T = alpha t_j + mu P_N cos(pi/k) n_j,
+     * alpha an unknown whose equation is t_j . V_T = 0). Every equation is
+     * then a velocity row and linear at fixed states: no slip directions
+     * to settle. The states are the vertex or edge of the projection of
+     * xi (the "feature"); the answer passes the polygonal cone's
+     * verification (verify_contact_velocities() with n_facets = k), the
+     * conditions of the facet LCP that Lemke's method solves.
      * A state changes only if its condition is violated by more than
      * 1e-10 of the scale, so rounding cannot make it cycle; a sliding
      * contact whose slip turns round sticks first; a set of states met
@@ -130,6 +158,10 @@ namespace impactfe
       /// 3D: beta = mu P_N / |xi| of the last iterate, per contact.
       std::vector<double> beta, new_beta;
       unsigned int        dimension = 1;
+      /// The polygonal cone (0: circular); per contact, the feature of a
+      /// sliding contact on it (2 j: vertex j, 2 j + 1: edge j; -1 else).
+      unsigned int     n_facets = 0;
+      std::vector<int> feature, new_feature;
       /// Per contact, the size of the violation that changes its state;
       /// hashes of the sets of states met; the contacts that change.
       std::vector<double>       violation;
@@ -139,6 +171,10 @@ namespace impactfe
       /// Unknown k is local row unknowns[k]; position[row] is k or -1.
       std::vector<unsigned int> unknowns;
       std::vector<int>          position;
+      /// The true residual rhs - K x of the last GMRES solve, and a copy of
+      /// the right-hand side and x during a refinement.
+      std::vector<double> residual, saved_rhs, saved_x, saved_work,
+        saved_residual;
       /// GMRES storage: the Krylov basis (restart + 1 vectors), Hessenberg.
       std::vector<std::vector<double>> basis;
       std::vector<double> hessenberg, givens_cos, givens_sin, g, y_small;
@@ -147,6 +183,13 @@ namespace impactfe
       expand(const std::vector<double> &x_unknowns,
              const std::vector<double> &mu,
              std::vector<double>       &P_full) const;
+      /// Whether local row @p row is the unknown alpha of a contact on an
+      /// edge of the polygonal cone (its equation is t_j . V_T = 0); the
+      /// edge's tangent.
+      bool
+      is_edge_row(const unsigned int row) const;
+      void
+      edge_tangent(const unsigned int a, double &t1, double &t2) const;
       /// Whether local row @p row is a tangential row of a sliding contact
       /// in 3D, and its Newton equation (active_set.cc).
       bool
@@ -158,6 +201,27 @@ namespace impactfe
                const std::vector<double> &mu) const;
       double
       slip_rhs(const unsigned int row, const std::vector<double> &q) const;
+      /// out = K in: the Newton system's operator on the unknowns (leaves
+      /// P = E in and work = W P).
+      void
+      apply_newton_operator(const DelassusProduct     &W,
+                            const std::vector<double> &mu,
+                            const std::vector<double> &in,
+                            std::vector<double>       &out);
+      /// The right-hand side of the Newton system at the current states and
+      /// directions.
+      void
+      assemble_rhs(const std::vector<double> &q, const std::vector<double> &b);
+      /// Iterative refinement of the final solve (refinement_tolerance);
+      /// returns the final impulse residual relative to the largest impulse
+      /// and leaves P, V = q + W P of the refined x.
+      double
+      refine(const DelassusProduct     &W,
+             const DelassusProduct     &preconditioner,
+             const std::vector<double> &q,
+             const std::vector<double> &b,
+             const std::vector<double> &mu,
+             const ActiveSetOptions    &options);
       unsigned int
       gmres(const DelassusProduct     &W,
             const DelassusProduct     &preconditioner,

@@ -218,6 +218,13 @@ namespace impactfe
      * (the active set solver) passes ||W P||_inf / ||P||_inf, a lower bound
      * of ||W||_inf: the velocity scale s_V is then smaller and the velocity
      * checks stricter; the impulse scale is ||P||_inf unless P is nearly 0.
+     *
+     * In 3D with @p n_facets = k > 0 the cone is the polygonal one of the
+     * facet form, P_T in conv{mu P_N d_j}, d_j at the angles 2 pi j / k in
+     * the (t1, t2) plane: the cone check is max_j n_j . P_T <= mu P_N
+     * cos(pi / k) (n_j the edges' outward normals), and a sliding contact
+     * must maximise the dissipation over the polygon, -V_T . P_T = mu P_N
+     * max_j (-V_T . d_j) (P_T in the normal cone's preimage of -V_T).
      */
     ContactVerification
     verify_contact_velocities(const unsigned int         n_directions,
@@ -227,7 +234,8 @@ namespace impactfe
                               const std::vector<double> &P,
                               const std::vector<double> &V,
                               const double               norm_W,
-                              const double               tolerance = 1e-8);
+                              const double               tolerance = 1e-8,
+                              const unsigned int         n_facets  = 0);
 
     /**
      * The exact-cone error of @p P, a standard measure of the friction
