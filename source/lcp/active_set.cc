@@ -497,6 +497,10 @@ namespace impactfe
           if (!halved)
             break;
         }
+      // The caller may use the last product's by-products (the time loop's
+      // M~^{-1} H P, the velocity correction): make it one with the final P.
+      if (last_report.refinements > 0)
+        error = impulse_residual();
       for (std::size_t i = 0; i < V.size(); ++i)
         V[i] = q[i] + work[i];
       return error;
@@ -743,8 +747,8 @@ namespace impactfe
                                      n_facets,
                                      feature[a]);
                 else
-                  polygon_projection(-2. * direction[2 * a],
-                                     -2. * direction[2 * a + 1],
+                  polygon_projection(2. * direction[2 * a],
+                                     2. * direction[2 * a + 1],
                                      1.,
                                      n_facets,
                                      feature[a]);
@@ -790,6 +794,12 @@ namespace impactfe
               const unsigned int row = unknowns[k];
               position[row]          = static_cast<int>(k);
               x[k]                   = P[row];
+              if (is_edge_row(row)) // alpha = t . P_T
+                {
+                  double t1 = 0., t2 = 0.;
+                  edge_tangent(row / 3, t1, t2);
+                  x[k] = t1 * P[row] + t2 * P[row + 1];
+                }
             }
           assemble_rhs(q, b);
           if (m == 0)
@@ -860,7 +870,8 @@ namespace impactfe
               if (m > 0)
                 last_report.linear_residual =
                   refine(W, preconditioner, q, b, mu, options);
-              double wp_max = 0.;
+              const double p_max  = max_abs(P);
+              double       wp_max = 0.;
               for (std::size_t i = 0; i < n_rows; ++i)
                 wp_max = std::max(wp_max, std::abs(V[i] - q[i]));
               const double norm_W = p_max > 0. ? wp_max / p_max : 1. / c_max;
