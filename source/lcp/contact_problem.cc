@@ -557,44 +557,29 @@ namespace impactfe
               VT2 += V[c * dim + a] * V[c * dim + a];
             }
           const double PT = std::sqrt(PT2), VT = std::sqrt(VT2);
-          const bool   polygon = dim == 3 && n_facets > 0;
+          // the polygon of the facet form: its edges' outward normals at
+          // (2 j + 1) pi / k, its support function max_j (-V_T . d_j)
+          const bool   polygon     = dim == 3 && n_facets > 0;
+          const double pi          = std::acos(-1.);
+          double       cone_excess = PT - mu[c] * PN, support = -1e300;
           if (polygon)
             {
-              // the polygon's support function and its edges
-              const double pi          = std::acos(-1.);
-              double       edge_excess = -1e300, support = -1e300;
+              cone_excess = -1e300;
               for (unsigned int j = 0; j < n_facets; ++j)
                 {
                   const double a = 2. * pi * j / n_facets,
                                e = a + pi / n_facets;
-                  edge_excess    = std::max(edge_excess,
+                  cone_excess    = std::max(cone_excess,
                                          std::cos(e) * P[c * dim + 1] +
                                            std::sin(e) * P[c * dim + 2]);
                   support        = std::max(support,
                                      -std::cos(a) * V[c * dim + 1] -
                                        std::sin(a) * V[c * dim + 2]);
                 }
-              edge_excess -= mu[c] * PN * std::cos(pi / n_facets);
-              r.max_cone_violation =
-                std::max(r.max_cone_violation, rel(edge_excess, sP));
-              if (PN <= tol * sP)
-                ++r.n_separated;
-              else if (VT <= tol * sV)
-                ++r.n_sticking;
-              else
-                {
-                  ++r.n_sliding;
-                  const double dissipation = -(V[c * dim + 1] * P[c * dim + 1] +
-                                               V[c * dim + 2] * P[c * dim + 2]);
-                  r.max_sliding_violation  = std::max(
-                    r.max_sliding_violation,
-                    rel((mu[c] * std::max(PN, 0.) * support - dissipation) / VT,
-                        sP));
-                }
-              continue;
+              cone_excess -= mu[c] * PN * std::cos(pi / n_facets);
             }
           r.max_cone_violation =
-            std::max(r.max_cone_violation, rel(PT - mu[c] * PN, sP));
+            std::max(r.max_cone_violation, rel(cone_excess, sP));
           if (PN <= tol * sP)
             ++r.n_separated;
           else if (VT <= tol * sV)
@@ -602,15 +587,26 @@ namespace impactfe
           else
             {
               ++r.n_sliding;
-              double dev2 = 0.;
-              for (unsigned int a = 1; a < dim; ++a)
+              // circular: |P_T + mu P_N V_T/|V_T||; polygon: the
+              // dissipation missing to its maximum over the polygon
+              double deviation = 0.;
+              if (polygon)
+                deviation = (mu[c] * std::max(PN, 0.) * support +
+                             V[c * dim + 1] * P[c * dim + 1] +
+                             V[c * dim + 2] * P[c * dim + 2]) /
+                            VT;
+              else
                 {
-                  const double e =
-                    P[c * dim + a] + mu[c] * PN * V[c * dim + a] / VT;
-                  dev2 += e * e;
+                  for (unsigned int a = 1; a < dim; ++a)
+                    {
+                      const double e =
+                        P[c * dim + a] + mu[c] * PN * V[c * dim + a] / VT;
+                      deviation += e * e;
+                    }
+                  deviation = std::sqrt(deviation);
                 }
               r.max_sliding_violation =
-                std::max(r.max_sliding_violation, rel(std::sqrt(dev2), sP));
+                std::max(r.max_sliding_violation, rel(deviation, sP));
             }
         }
       r.ok = r.max_signorini_violation <= tol && r.max_cone_violation <= tol &&
