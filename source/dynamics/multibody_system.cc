@@ -716,8 +716,8 @@ namespace impactfe
         dense_out.resize(dofs.size());
         for (unsigned int i = 0; i < dofs.size(); ++i)
           dense_in[i] = schur_nodal.block(b)(dofs[i]);
-        if (use_schur)
-          schur.vmult(dense_in.data(), dense_out.data());
+        if (use_schur) // the preconditioner: single precision suffices
+          schur.vmult_single_precision(dense_in.data(), dense_out.data());
         else
           schur.vmult_inverse(dense_in.data(), dense_out.data());
         for (unsigned int i = 0; i < dofs.size(); ++i)

@@ -18,6 +18,17 @@ dsymv_(const char                    *uplo,
        const double                  *beta,
        double                        *y,
        const dealii::types::blas_int *incy);
+extern "C" void
+ssymv_(const char                    *uplo,
+       const dealii::types::blas_int *n,
+       const float                   *alpha,
+       const float                   *a,
+       const dealii::types::blas_int *lda,
+       const float                   *x,
+       const dealii::types::blas_int *incx,
+       const float                   *beta,
+       float                         *y,
+       const dealii::types::blas_int *incy);
 
 namespace impactfe
 {
@@ -66,6 +77,7 @@ namespace impactfe
     contact_dofs.swap(new_dofs);
     inverse.swap(new_inverse);
     schur.swap(new_schur);
+    schur_single.assign(schur.begin(), schur.end());
   }
 
 
@@ -113,6 +125,31 @@ namespace impactfe
 
 
   void
+  DenseSchurComplement::vmult_single_precision(const double *x, double *y) const
+  {
+    const types::blas_int n = size();
+    if (n == 0)
+      return;
+    x_single.assign(x, x + n);
+    y_single.resize(n);
+    const float           one = 1.f, zero = 0.f;
+    const types::blas_int step = 1;
+    ssymv_("L",
+           &n,
+           &one,
+           schur_single.data(),
+           &n,
+           x_single.data(),
+           &step,
+           &zero,
+           y_single.data(),
+           &step);
+    std::copy(y_single.begin(), y_single.end(), y);
+  }
+
+
+
+  void
   DenseSchurComplement::vmult_inverse(const double *x, double *y) const
   {
     symmetric_product(inverse, size(), x, y);
@@ -124,6 +161,7 @@ namespace impactfe
   DenseSchurComplement::memory_consumption() const
   {
     return (schur.capacity() + inverse.capacity()) * sizeof(double) +
+           schur_single.capacity() * sizeof(float) +
            contact_dofs.capacity() * sizeof(types::global_dof_index);
   }
 
@@ -135,7 +173,8 @@ namespace impactfe
                                  const std::size_t memory_limit)
   {
     const std::size_t squared = n_contact_dofs * n_contact_dofs;
-    return n_contact_dofs > 0 && 2 * squared * sizeof(double) <= memory_limit &&
+    return n_contact_dofs > 0 &&
+           squared * (2 * sizeof(double) + sizeof(float)) <= memory_limit &&
            squared < 4 * n_factor_entries;
   }
 } // namespace impactfe

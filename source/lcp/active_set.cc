@@ -210,7 +210,7 @@ namespace impactfe
 
 
 
-    // Restarted GMRES on K x = rhs, K = (W E)(unknown rows), right
+    // Restarted flexible GMRES on K x = rhs, K = (W E)(unknown rows), right
     // preconditioned by Z restricted to the unknowns. Starts from x and
     // leaves in `work` the product W P of the final P = E x: the caller's
     // V = q + W P needs no further product.
@@ -269,12 +269,15 @@ namespace impactfe
       basis.resize(k_max + 1);
       for (auto &v : basis)
         v.resize(m);
+      preconditioned.resize(k_max);
+      for (auto &v : preconditioned)
+        v.resize(m);
       hessenberg.assign((k_max + 1) * k_max, 0.);
       givens_cos.resize(k_max);
       givens_sin.resize(k_max);
       g.resize(k_max + 1);
       y_small.resize(k_max);
-      std::vector<double> &r = basis[k_max], z(m), w(m);
+      std::vector<double> &r = basis[k_max], w(m);
       auto                 H = [&](unsigned int i, unsigned int j) -> double                 &{
         return hessenberg[i * k_max + j];
       };
@@ -307,8 +310,10 @@ namespace impactfe
           unsigned int j = 0;
           while (j < k_max && iterations < max_iterations)
             {
-              apply_Z(basis[j], z);
-              apply_K(z, w);
+              // flexible GMRES: Z v_j is kept, so a preconditioner that is
+              // not exactly linear (single precision) costs no accuracy
+              apply_Z(basis[j], preconditioned[j]);
+              apply_K(preconditioned[j], w);
               for (unsigned int i = 0; i <= j; ++i)
                 {
                   H(i, j) = dot(w, basis[i], m);
@@ -345,13 +350,9 @@ namespace impactfe
                 s -= H(i, l) * y_small[l];
               y_small[i] = H(i, i) != 0. ? s / H(i, i) : 0.;
             }
-          std::fill(w.begin(), w.end(), 0.);
           for (unsigned int i = 0; i < j; ++i)
             for (std::size_t k = 0; k < m; ++k)
-              w[k] += y_small[i] * basis[i][k];
-          apply_Z(w, z);
-          for (std::size_t k = 0; k < m; ++k)
-            x[k] += z[k];
+              x[k] += y_small[i] * preconditioned[i][k];
           // the true residual (and W P of the new x)
           apply_K(x, r);
           for (std::size_t k = 0; k < m; ++k)

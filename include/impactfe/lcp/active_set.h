@@ -177,6 +177,8 @@ namespace impactfe
         saved_residual;
       /// GMRES storage: the Krylov basis (restart + 1 vectors), Hessenberg.
       std::vector<std::vector<double>> basis;
+      /// Flexible GMRES: the preconditioned basis vectors Z v_j.
+      std::vector<std::vector<double>> preconditioned;
       std::vector<double> hessenberg, givens_cos, givens_sin, g, y_small;
 
       void
