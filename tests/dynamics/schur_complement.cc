@@ -148,6 +148,15 @@ main()
     error = std::max(error, std::abs(back[a] - y[a]));
   check(error <= 1e-13, "S (S^{-1} y) = y");
 
+  // single precision: S and y rounded to float, 1e-7 of the product's size
+  std::vector<double> S_y_single(n_c);
+  schur.vmult_single_precision(y.data(), S_y_single.data());
+  error = 0.;
+  for (unsigned int a = 0; a < n_c; ++a)
+    error = std::max(error, std::abs(S_y_single[a] - S_y[a]));
+  check(error <= 1e-6 * scale && error > 0.,
+        "S y in single precision: within 1e-6 of S y, and not equal");
+
   check(DenseSchurComplement::pays_off(3267, 60000000) &&
           !DenseSchurComplement::pays_off(3267, 1000000) &&
           !DenseSchurComplement::pays_off(20000, 1000000000),
