@@ -30,13 +30,16 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "common"))
 import runs  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(__file__))
+import run_performance  # noqa: E402
+
 import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 PRM = "parameter_files/block_sliding_3d.prm"
-STEPS, TIME_STEP = 5, 5e-4
+STEPS = 5
 FIELDS = ["cells_per_edge", "cone", "dofs", "contacts", "steps",
           "seconds_per_step", "free_velocity_per_step", "lcp_per_step",
           "newton_iterations_per_step", "gmres_iterations_per_step",
@@ -45,19 +48,8 @@ FIELDS = ["cells_per_edge", "cone", "dofs", "contacts", "steps",
 
 
 def overrides(n, cone):
-    return ("subsection Geometry\n  set Height = 0.002\n"
-            f"  set Number of cells along x = {n}\n"
-            "  set Number of cells up = 1\n"
-            f"  set Number of cells along z = {n}\nend\n"
-            f"subsection Time stepping\n  set End time = {STEPS * TIME_STEP}\n"
-            "end\n"
-            f"subsection Contact solver\n  set Friction cone = {cone}\n"
-            "  set Number of facets = 8\n  set Method = active set\n"
-            "  set Dense Schur complement = false\nend\n"
-            "subsection Output\n  set Print performance data = true\nend\n"
-            + ("subsection Verification\n"
-               "  set Maximum sliding distance error = 0.5\nend\n"
-               if cone == "facets" else ""))
+    return run_performance.overrides(n, STEPS, False, cone, height=0.002,
+                                     cells_up=1)
 
 
 def measure(build, n, cone):

@@ -45,11 +45,13 @@ FIELDS = ["cells_per_edge", "cone", "products", "dofs", "contacts", "steps",
           "impulse_balance_error", "distance_error", "returncode"]
 
 
-def overrides(n, steps, dense, cone):
+def overrides(n, steps, dense, cone, height=0.1, cells_up=None):
+    """The block as n x cells_up x n cells (a cube of n^3 by default) of
+    0.1 m x height x 0.1 m; also used by run_contact_scaling_3d.py."""
     return ("subsection Geometry\n"
-            "  set Length = 0.1\n  set Height = 0.1\n  set Width = 0.1\n"
+            f"  set Length = 0.1\n  set Height = {height}\n  set Width = 0.1\n"
             f"  set Number of cells along x = {n}\n"
-            f"  set Number of cells up = {n}\n"
+            f"  set Number of cells up = {cells_up or n}\n"
             f"  set Number of cells along z = {n}\nend\n"
             "subsection Time stepping\n"
             f"  set End time = {steps * TIME_STEP}\nend\n"
