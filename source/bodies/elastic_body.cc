@@ -7,12 +7,95 @@
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
+#include <impactfe/bodies/cell_operators.h>
 #include <impactfe/bodies/elastic_body.h>
 
 #include <sstream>
 
 namespace impactfe
 {
+  // @sect3{Element operators}
+  void
+  CellOperators::reinit(const unsigned int dofs_per_cell)
+  {
+    mass.reinit(dofs_per_cell, dofs_per_cell);
+    stiffness.reinit(dofs_per_cell, dofs_per_cell);
+    viscous.reinit(dofs_per_cell, dofs_per_cell);
+    load.reinit(dofs_per_cell);
+  }
+
+
+
+  template <int dim>
+  void
+  integrate_cell_operators(const FEValues<dim>           &fe_values,
+                           const SymmetricTensor<4, dim> &elasticity,
+                           const SymmetricTensor<4, dim> &viscosity,
+                           const bool                     viscous,
+                           const double                   rho,
+                           const Tensor<1, dim>          &body_force_density,
+                           const double                   out_of_plane,
+                           CellOperators                 &cell)
+  {
+    const FiniteElement<dim> &fe = fe_values.get_fe();
+    cell.mass                    = 0.;
+    cell.stiffness               = 0.;
+    cell.viscous                 = 0.;
+    cell.load                    = 0.;
+    for (const unsigned int q : fe_values.quadrature_point_indices())
+      {
+        const double dx = fe_values.JxW(q) * out_of_plane;
+        for (const unsigned int i : fe_values.dof_indices())
+          {
+            const unsigned int      ci = fe.system_to_component_index(i).first;
+            const double            phi_i = fe_values.shape_value(i, q);
+            SymmetricTensor<2, dim> eps_i;
+            const Tensor<1, dim>    grad_i = fe_values.shape_grad(i, q);
+            // eps_i = sym(e_ci (x) grad phi_i); a SymmetricTensor stores
+            // [ci][d] and [d][ci] once.
+            for (unsigned int d = 0; d < dim; ++d)
+              eps_i[ci][d] = (d == ci ? 1. : 0.5) * grad_i[d];
+            const SymmetricTensor<2, dim> sigma_i = elasticity * eps_i;
+            const SymmetricTensor<2, dim> viscous_i =
+              viscous ? viscosity * eps_i : SymmetricTensor<2, dim>();
+            cell.load(i) += body_force_density[ci] * phi_i * dx;
+            for (const unsigned int j : fe_values.dof_indices())
+              {
+                const unsigned int cj = fe.system_to_component_index(j).first;
+                if (ci == cj)
+                  cell.mass(i, j) +=
+                    rho * phi_i * fe_values.shape_value(j, q) * dx;
+                const Tensor<1, dim> grad_j = fe_values.shape_grad(j, q);
+                // sigma_i : eps_j with eps_j = sym(e_cj (x) grad_j)
+                double contraction = 0., viscous_contraction = 0.;
+                for (unsigned int d = 0; d < dim; ++d)
+                  contraction += sigma_i[cj][d] * grad_j[d];
+                cell.stiffness(i, j) += contraction * dx;
+                if (viscous)
+                  {
+                    for (unsigned int d = 0; d < dim; ++d)
+                      viscous_contraction += viscous_i[cj][d] * grad_j[d];
+                    cell.viscous(i, j) += viscous_contraction * dx;
+                  }
+              }
+          }
+      }
+  }
+
+
+
+  void
+  lumped_cell_mass(const FullMatrix<double> &cell_mass,
+                   std::vector<double>      &row_sums)
+  {
+    row_sums.assign(cell_mass.m(), 0.);
+    for (unsigned int i = 0; i < cell_mass.m(); ++i)
+      for (unsigned int j = 0; j < cell_mass.n(); ++j)
+        row_sums[i] += cell_mass(i, j);
+  }
+
+
+
   namespace
   {
     // The element mass of a cell with massless vertices, as documented at
@@ -254,9 +337,10 @@ namespace impactfe
     FEValues<dim>     fe_values(
       fe, quadrature, update_values | update_gradients | update_JxW_values);
     const unsigned int dofs_per_cell = fe.n_dofs_per_cell();
-    FullMatrix<double> cell_mass(dofs_per_cell, dofs_per_cell);
-    FullMatrix<double> cell_stiffness(dofs_per_cell, dofs_per_cell);
-    Vector<double>     cell_load(dofs_per_cell);
+    CellOperators      cell_operators;
+    cell_operators.reinit(dofs_per_cell);
+    FullMatrix<double>                  &cell_mass = cell_operators.mass;
+    std::vector<double>                  row_sums;
     std::vector<types::global_dof_index> local_dofs(dofs_per_cell);
 
     // A linear law: K and C are assembled once, from its elasticity and
@@ -270,55 +354,19 @@ namespace impactfe
     const SymmetricTensor<4, dim> elasticity = model->elasticity_tensor();
     const SymmetricTensor<4, dim> viscosity  = model->viscosity_tensor();
     const bool                    viscous    = viscosity.norm() > 0.;
-    FullMatrix<double>            cell_viscous(dofs_per_cell, dofs_per_cell);
-    const double                  rho = material_parameters.density;
+    const double                  rho        = material_parameters.density;
 
     for (const auto &cell : dofs.active_cell_iterators())
       {
         fe_values.reinit(cell);
-        cell_mass      = 0.;
-        cell_stiffness = 0.;
-        cell_viscous   = 0.;
-        cell_load      = 0.;
-        for (const unsigned int q : fe_values.quadrature_point_indices())
-          {
-            const double dx = fe_values.JxW(q) * out_of_plane;
-            for (const unsigned int i : fe_values.dof_indices())
-              {
-                const unsigned int ci = fe.system_to_component_index(i).first;
-                const double       phi_i = fe_values.shape_value(i, q);
-                SymmetricTensor<2, dim> eps_i;
-                const Tensor<1, dim>    grad_i = fe_values.shape_grad(i, q);
-                // eps_i = sym(e_ci (x) grad phi_i); a SymmetricTensor stores
-                // [ci][d] and [d][ci] once.
-                for (unsigned int d = 0; d < dim; ++d)
-                  eps_i[ci][d] = (d == ci ? 1. : 0.5) * grad_i[d];
-                const SymmetricTensor<2, dim> sigma_i = elasticity * eps_i;
-                const SymmetricTensor<2, dim> viscous_i =
-                  viscous ? viscosity * eps_i : SymmetricTensor<2, dim>();
-                cell_load(i) += body_force_density[ci] * phi_i * dx;
-                for (const unsigned int j : fe_values.dof_indices())
-                  {
-                    const unsigned int cj =
-                      fe.system_to_component_index(j).first;
-                    if (ci == cj)
-                      cell_mass(i, j) +=
-                        rho * phi_i * fe_values.shape_value(j, q) * dx;
-                    const Tensor<1, dim> grad_j = fe_values.shape_grad(j, q);
-                    // sigma_i : eps_j with eps_j = sym(e_cj (x) grad_j)
-                    double contraction = 0., viscous_contraction = 0.;
-                    for (unsigned int d = 0; d < dim; ++d)
-                      contraction += sigma_i[cj][d] * grad_j[d];
-                    cell_stiffness(i, j) += contraction * dx;
-                    if (viscous)
-                      {
-                        for (unsigned int d = 0; d < dim; ++d)
-                          viscous_contraction += viscous_i[cj][d] * grad_j[d];
-                        cell_viscous(i, j) += viscous_contraction * dx;
-                      }
-                  }
-              }
-          }
+        integrate_cell_operators(fe_values,
+                                 elasticity,
+                                 viscosity,
+                                 viscous,
+                                 rho,
+                                 body_force_density,
+                                 out_of_plane,
+                                 cell_operators);
         cell->get_dof_indices(local_dofs);
         if (!massless_vertex.empty())
           {
@@ -347,20 +395,18 @@ namespace impactfe
               redistribute_cell_mass(fe, massless, cell_mass);
           }
         if (discretization_parameters.lumped_mass)
-          for (unsigned int i = 0; i < dofs_per_cell; ++i)
-            {
-              double row_sum = 0.;
-              for (unsigned int j = 0; j < dofs_per_cell; ++j)
-                row_sum += cell_mass(i, j);
-              mass.add(local_dofs[i], local_dofs[i], row_sum);
-            }
+          {
+            lumped_cell_mass(cell_mass, row_sums);
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+              mass.add(local_dofs[i], local_dofs[i], row_sums[i]);
+          }
         else
           mass.add(local_dofs, cell_mass);
-        stiffness.add(local_dofs, cell_stiffness);
+        stiffness.add(local_dofs, cell_operators.stiffness);
         if (has_damping())
-          damping.add(local_dofs, cell_viscous);
+          damping.add(local_dofs, cell_operators.viscous);
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
-          body_force_vector(local_dofs[i]) += cell_load(i);
+          body_force_vector(local_dofs[i]) += cell_operators.load(i);
       }
 
     // A constant body force rho g is M g for the consistent or lumped mass.
@@ -552,6 +598,33 @@ namespace impactfe
 
 
 
+  template void
+  integrate_cell_operators<1>(const FEValues<1> &,
+                              const SymmetricTensor<4, 1> &,
+                              const SymmetricTensor<4, 1> &,
+                              const bool,
+                              const double,
+                              const Tensor<1, 1> &,
+                              const double,
+                              CellOperators &);
+  template void
+  integrate_cell_operators<2>(const FEValues<2> &,
+                              const SymmetricTensor<4, 2> &,
+                              const SymmetricTensor<4, 2> &,
+                              const bool,
+                              const double,
+                              const Tensor<1, 2> &,
+                              const double,
+                              CellOperators &);
+  template void
+  integrate_cell_operators<3>(const FEValues<3> &,
+                              const SymmetricTensor<4, 3> &,
+                              const SymmetricTensor<4, 3> &,
+                              const bool,
+                              const double,
+                              const Tensor<1, 3> &,
+                              const double,
+                              CellOperators &);
   template class ElasticBody<1>;
   template class ElasticBody<2>;
   template class ElasticBody<3>;

@@ -113,18 +113,18 @@ namespace impactfe
   // +90 degrees; in 3D two orthonormal tangents complete a right-handed
   // frame.
   template <int dim>
-  void
-  ContactSet::set_frame(ContactCandidate     &candidate,
-                        const Tensor<1, dim> &normal) const
+  std::array<std::array<double, 3>, 3>
+  contact_frame(const Tensor<1, dim> &normal)
   {
     const double norm = normal.norm();
     AssertThrow(norm > 0., ExcMessage("A contact normal must not be zero."));
-    std::array<double, 3> n{{0., 0., 0.}};
+    std::array<std::array<double, 3>, 3> frame{};
+    std::array<double, 3>                n{{0., 0., 0.}};
     for (unsigned int d = 0; d < dim; ++d)
       n[d] = normal[d] / norm;
-    candidate.frame[0] = n;
+    frame[0] = n;
     if (dim == 2)
-      candidate.frame[1] = {{-n[1], n[0], 0.}};
+      frame[1] = {{-n[1], n[0], 0.}};
     if (dim == 3)
       {
         // t1: the unit vector orthogonal to n built from the axis least
@@ -143,11 +143,22 @@ namespace impactfe
           std::sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
         for (double &x : t1)
           x /= l;
-        candidate.frame[1] = t1;
-        candidate.frame[2] = {{n[1] * t1[2] - n[2] * t1[1],
-                               n[2] * t1[0] - n[0] * t1[2],
-                               n[0] * t1[1] - n[1] * t1[0]}};
+        frame[1] = t1;
+        frame[2] = {{n[1] * t1[2] - n[2] * t1[1],
+                     n[2] * t1[0] - n[0] * t1[2],
+                     n[0] * t1[1] - n[1] * t1[0]}};
       }
+    return frame;
+  }
+
+
+
+  template <int dim>
+  void
+  ContactSet::set_frame(ContactCandidate     &candidate,
+                        const Tensor<1, dim> &normal) const
+  {
+    candidate.frame = contact_frame(normal);
   }
 
 
@@ -778,43 +789,45 @@ namespace impactfe
 
 
 
-#define IMPACTFE_INSTANTIATE(dim)                              \
-  template unsigned int ContactSet::add_node_to_plane<dim>(    \
-    const std::vector<const ElasticBody<dim> *> &,             \
-    const unsigned int,                                        \
-    const types::boundary_id,                                  \
-    const Point<dim> &,                                        \
-    const Tensor<1, dim> &,                                    \
-    const double);                                             \
-  template unsigned int ContactSet::add_node_to_obstacle<dim>( \
-    const std::vector<const ElasticBody<dim> *> &,             \
-    const unsigned int,                                        \
-    const types::boundary_id,                                  \
-    const RigidObstacle<dim> &,                                \
-    const double);                                             \
-  template unsigned int ContactSet::add_node_to_segment<dim>(  \
-    const std::vector<const ElasticBody<dim> *> &,             \
-    const unsigned int,                                        \
-    const types::boundary_id,                                  \
-    const unsigned int,                                        \
-    const types::boundary_id,                                  \
-    const double);                                             \
-  template unsigned int ContactSet::add_node_to_face<dim>(     \
-    const std::vector<const ElasticBody<dim> *> &,             \
-    const unsigned int,                                        \
-    const types::boundary_id,                                  \
-    const unsigned int,                                        \
-    const types::boundary_id,                                  \
-    const double);                                             \
-  template unsigned int ContactSet::add_node_to_node<dim>(     \
-    const std::vector<const ElasticBody<dim> *> &,             \
-    const unsigned int,                                        \
-    const types::boundary_id,                                  \
-    const unsigned int,                                        \
-    const types::boundary_id,                                  \
-    const Tensor<1, dim> &,                                    \
-    const double);                                             \
-  template void ContactSet::build_operator<dim>(               \
+#define IMPACTFE_INSTANTIATE(dim)                                   \
+  template std::array<std::array<double, 3>, 3> contact_frame<dim>( \
+    const Tensor<1, dim> &);                                        \
+  template unsigned int ContactSet::add_node_to_plane<dim>(         \
+    const std::vector<const ElasticBody<dim> *> &,                  \
+    const unsigned int,                                             \
+    const types::boundary_id,                                       \
+    const Point<dim> &,                                             \
+    const Tensor<1, dim> &,                                         \
+    const double);                                                  \
+  template unsigned int ContactSet::add_node_to_obstacle<dim>(      \
+    const std::vector<const ElasticBody<dim> *> &,                  \
+    const unsigned int,                                             \
+    const types::boundary_id,                                       \
+    const RigidObstacle<dim> &,                                     \
+    const double);                                                  \
+  template unsigned int ContactSet::add_node_to_segment<dim>(       \
+    const std::vector<const ElasticBody<dim> *> &,                  \
+    const unsigned int,                                             \
+    const types::boundary_id,                                       \
+    const unsigned int,                                             \
+    const types::boundary_id,                                       \
+    const double);                                                  \
+  template unsigned int ContactSet::add_node_to_face<dim>(          \
+    const std::vector<const ElasticBody<dim> *> &,                  \
+    const unsigned int,                                             \
+    const types::boundary_id,                                       \
+    const unsigned int,                                             \
+    const types::boundary_id,                                       \
+    const double);                                                  \
+  template unsigned int ContactSet::add_node_to_node<dim>(          \
+    const std::vector<const ElasticBody<dim> *> &,                  \
+    const unsigned int,                                             \
+    const types::boundary_id,                                       \
+    const unsigned int,                                             \
+    const types::boundary_id,                                       \
+    const Tensor<1, dim> &,                                         \
+    const double);                                                  \
+  template void ContactSet::build_operator<dim>(                    \
     const std::vector<const ElasticBody<dim> *> &);
 
   IMPACTFE_INSTANTIATE(1)

@@ -206,6 +206,59 @@ namespace impactfe
 
 
 
+  ThetaStepRule
+  TimeIntegrator::theta_step_rule() const
+  {
+    AssertThrow(false,
+                ExcMessage("The scheme '" + to_string(scheme()) +
+                           "' has no theta-step rule: its step needs the "
+                           "acceleration (choose a theta-scheme)."));
+    return {};
+  }
+
+  void
+  TimeIntegrator::gap_term(const ContactSet      &contacts,
+                           const MechanicalState &s,
+                           std::vector<double>   &b) const
+  {
+    const ThetaStepRule rule = theta_step_rule();
+    if (rule.gap_prediction != 0.)
+      {
+        rule_displacement = s.displacement;
+        rule_displacement.add(h * rule.gap_prediction, s.velocity);
+        contacts.gaps(rule_displacement, b);
+      }
+    else
+      contacts.gaps(s.displacement, b);
+    if (rule.gap_velocity != 0.)
+      {
+        contacts.normal_velocities(s.velocity, rule_normal_velocity);
+        for (unsigned int c = 0; c < b.size(); ++c)
+          b[c] = b[c] / rule.gap_divisor +
+                 rule.gap_velocity * rule_normal_velocity[c];
+      }
+    else
+      for (double &bc : b)
+        bc /= rule.gap_divisor;
+  }
+
+  void
+  TimeIntegrator::complete_step(const MechanicalState &old_state,
+                                MechanicalState       &new_state) const
+  {
+    const double w         = theta_step_rule().new_velocity_weight;
+    new_state.displacement = old_state.displacement;
+    if (w == 1.)
+      new_state.displacement.add(h, new_state.velocity);
+    else
+      new_state.displacement.add(h * w,
+                                 new_state.velocity,
+                                 h * (1. - w),
+                                 old_state.velocity);
+  }
+
+
+
   namespace
   {
     // @sect4{theta-method (Moreau--Jean)}
@@ -237,28 +290,11 @@ namespace impactfe
         return {-h * (1. - theta), -h * h * theta * (1. - theta), -h, h};
       }
 
-      void
-      gap_term(const ContactSet      &contacts,
-               const MechanicalState &s,
-               std::vector<double>   &b) const override
+      ThetaStepRule
+      theta_step_rule() const override
       {
         const double theta = parameters.theta;
-        contacts.gaps(s.displacement, b);
-        contacts.normal_velocities(s.velocity, normal_velocity);
-        for (unsigned int c = 0; c < b.size(); ++c)
-          b[c] = b[c] / (h * theta) + (1. - theta) / theta * normal_velocity[c];
-      }
-
-      void
-      complete_step(const MechanicalState &old_state,
-                    MechanicalState       &new_state) const override
-      {
-        const double theta     = parameters.theta;
-        new_state.displacement = old_state.displacement;
-        new_state.displacement.add(h * theta,
-                                   new_state.velocity,
-                                   h * (1. - theta),
-                                   old_state.velocity);
+        return {theta, 0., h * theta, (1. - theta) / theta};
       }
 
       double
@@ -268,9 +304,6 @@ namespace impactfe
                  (1. - parameters.theta) / parameters.theta :
                  0.;
       }
-
-    protected:
-      mutable std::vector<double> normal_velocity;
     };
 
 
@@ -285,20 +318,12 @@ namespace impactfe
     public:
       using ThetaMethod::ThetaMethod;
 
-      void
-      gap_term(const ContactSet      &contacts,
-               const MechanicalState &s,
-               std::vector<double>   &b) const override
+      ThetaStepRule
+      theta_step_rule() const override
       {
-        estimated_displacement = s.displacement;
-        estimated_displacement.add(h * (1. - parameters.theta), s.velocity);
-        contacts.gaps(estimated_displacement, b);
-        for (double &bc : b)
-          bc /= h;
+        const double theta = parameters.theta;
+        return {theta, 1. - theta, h, 0.};
       }
-
-    private:
-      mutable BlockVector<double> estimated_displacement;
     };
 
 
@@ -331,22 +356,10 @@ namespace impactfe
         return {-h * (1. - parameters.theta), 0., -h, h};
       }
 
-      void
-      gap_term(const ContactSet      &contacts,
-               const MechanicalState &s,
-               std::vector<double>   &b) const override
+      ThetaStepRule
+      theta_step_rule() const override
       {
-        contacts.gaps(s.displacement, b);
-        for (double &bc : b)
-          bc /= h;
-      }
-
-      void
-      complete_step(const MechanicalState &old_state,
-                    MechanicalState       &new_state) const override
-      {
-        new_state.displacement = old_state.displacement;
-        new_state.displacement.add(h, new_state.velocity);
+        return {1., 0., h, 0.};
       }
     };
 

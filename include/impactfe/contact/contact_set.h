@@ -29,6 +29,16 @@ namespace impactfe
    *   g = (x_A - x_B) . n >= 0 when open,
    *   V_N = (v_A - v_B) . n, and the impulse P_N n acts on A, -P_N n on B.
    */
+  /**
+   * The local frame of a contact with normal @p normal (not necessarily of
+   * unit length): row 0 the unit normal, then the tangents (2D: the normal
+   * turned by +90 degrees; 3D: t1 from the axis least aligned with n,
+   * t2 = n x t1, a right-handed frame). Padded to 3 coordinates.
+   */
+  template <int dim>
+  std::array<std::array<double, 3>, 3>
+  contact_frame(const Tensor<1, dim> &normal);
+
   struct ContactCandidate
   {
     unsigned int body_a   = 0;

@@ -77,6 +77,25 @@ namespace impactfe
 
 
 
+  /**
+   * The update and the gap term of the theta-schemes, as numbers (one
+   * place for each scheme's formulas, used by the serial and the
+   * distributed time loops):
+   *   u^{i+1} = u^i + h (w v^{i+1} + (1 - w) v^i),
+   *   b_N = g(u^i + a h v^i) / d + c V_N(v^i),
+   * with w = new_velocity_weight, a = gap_prediction, d = gap_divisor,
+   * c = gap_velocity.
+   */
+  struct ThetaStepRule
+  {
+    double new_velocity_weight = 1.;
+    double gap_prediction      = 0.;
+    double gap_divisor         = 1.;
+    double gap_velocity        = 0.;
+  };
+
+
+
   /** Displacement, velocity and (Newmark only) acceleration at one time. */
   struct MechanicalState
   {
@@ -152,16 +171,25 @@ namespace impactfe
              const MechanicalState &state,
              BlockVector<double>   &rhs) const;
 
-    /** b_N per contact candidate for the step from @p state. */
+    /**
+     * The theta-schemes' update and gap term (ThetaStepRule); Newmark,
+     * whose step needs the acceleration, has none and throws.
+     */
+    virtual ThetaStepRule
+    theta_step_rule() const;
+
+    /** b_N per contact candidate for the step from @p state (by default
+     * from theta_step_rule()). */
     virtual void
     gap_term(const ContactSet      &contacts,
              const MechanicalState &state,
-             std::vector<double>   &b) const = 0;
+             std::vector<double>   &b) const;
 
-    /** Given v^{i+1} in @p new_state, complete u^{i+1} (and a^{i+1}). */
+    /** Given v^{i+1} in @p new_state, complete u^{i+1} (and a^{i+1}); by
+     * default from theta_step_rule(). */
     virtual void
     complete_step(const MechanicalState &old_state,
-                  MechanicalState       &new_state) const = 0;
+                  MechanicalState       &new_state) const;
 
     /** The contact force that the impulse P of one step represents. */
     virtual double
@@ -213,6 +241,9 @@ namespace impactfe
     const TimeSteppingParameters parameters;
     const double                 h;
     bool                         massless_contact_nodes = false;
+    /// Work space of gap_term().
+    mutable BlockVector<double> rule_displacement;
+    mutable std::vector<double> rule_normal_velocity;
   };
 
   std::unique_ptr<TimeIntegrator>
