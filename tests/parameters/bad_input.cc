@@ -235,5 +235,26 @@ main()
   run_case("two_bars_3d_nonmatching_node_to_node",
            with("Geometry", "Number of cells across bar 2 = 3"),
            TWO_BARS_3D_EXECUTABLE);
+  // block_sliding_mpi on two ranks: every rank meets the error, rank 0
+  // prints it, all exit with 1 (no rank is left waiting).
+  const std::string mpi = MPIEXEC_TWO_RANKS " " BLOCK_SLIDING_MPI_EXECUTABLE;
+  run_case("mpi_more_ranks_than_cells",
+           with("Geometry",
+                "Number of cells along x = 1\n  set Number of cells along z "
+                "= 1"),
+           mpi);
+  run_case("mpi_newmark", with("Time stepping", "Scheme = newmark"), mpi);
+  run_case("mpi_empty_contact_boundary",
+           with("Mesh", "Contact boundary id = 7"),
+           mpi);
+  run_case("mpi_2d_oblique_direction",
+           "set Dimension = 2\n" +
+             with("Obstacle", "Point on plane = 0, 0\n  set Normal = 0, 1") +
+             "subsection Initial conditions\n  set Sliding direction = "
+             "0.6\nend\n",
+           mpi);
+  run_case("mpi_bad_solver_tolerance",
+           with("Parallel solver", "Tolerance = 2"),
+           mpi);
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
 }

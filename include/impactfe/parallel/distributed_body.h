@@ -1,0 +1,114 @@
+// A linear (visco)elastic body on a distributed mesh (p4est) with Trilinos
+// matrices and vectors: the distributed counterpart of ElasticBody for
+// meshes that do not fit one process (issue 14, doc/parallel.md).
+#ifndef impactfe_parallel_distributed_body_h
+#define impactfe_parallel_distributed_body_h
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/distributed/tria.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_system.h>
+
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <impactfe/bodies/elastic_body.h>
+#include <impactfe/bodies/material.h>
+
+namespace impactfe
+{
+  using namespace dealii;
+
+  namespace distributed
+  {
+    using DistributedVector = TrilinosWrappers::MPI::Vector;
+    using DistributedMatrix = TrilinosWrappers::SparseMatrix;
+
+    /**
+     * Q1 vector-valued body on a parallel::distributed::Triangulation. Each
+     * rank assembles its locally owned cells with the element operators of
+     * the serial ElasticBody (integrate_cell_operators()), so the two give
+     * the same M, K, C and body force. Mass redistribution is not
+     * available here (setup() says so).
+     */
+    template <int dim>
+    class DistributedElasticBody
+    {
+    public:
+      DistributedElasticBody(const MPI_Comm                  communicator,
+                             const MaterialParameters       &material,
+                             const DiscretizationParameters &discretization);
+
+      parallel::distributed::Triangulation<dim> &
+      triangulation();
+      const parallel::distributed::Triangulation<dim> &
+      triangulation() const;
+
+      /// The body force density [N/m^3], set before setup().
+      void
+      set_body_force(const Tensor<1, dim> &force_density);
+
+      /// Distribute the DoFs, build the sparsity and assemble M, K, C, f.
+      void
+      setup();
+
+      MPI_Comm
+      communicator() const;
+      const DoFHandler<dim> &
+      dof_handler() const;
+      const IndexSet &
+      locally_owned_dofs() const;
+      const IndexSet &
+      locally_relevant_dofs() const;
+      const MaterialParameters &
+      material() const;
+
+      const DistributedMatrix &
+      mass_matrix() const;
+      const DistributedMatrix &
+      stiffness_matrix() const;
+      /// C = viscous matrix + Rayleigh terms (zero matrix without damping).
+      const DistributedMatrix &
+      damping_matrix() const;
+      bool
+      has_damping() const;
+      const DistributedVector &
+      external_force() const;
+
+      /// 1^T M 1 per component (the same for all components).
+      double
+      total_mass() const;
+
+      /// The vector with @p value at every node (all components).
+      void
+      fill_uniform(DistributedVector    &vector,
+                   const Tensor<1, dim> &value) const;
+
+      /// e_d^T M v for each direction d: the momentum of velocity @p v.
+      Tensor<1, dim>
+      momentum(const DistributedVector &velocity) const;
+
+    private:
+      MPI_Comm                                  mpi_communicator;
+      MaterialParameters                        material_parameters;
+      DiscretizationParameters                  discretization_parameters;
+      parallel::distributed::Triangulation<dim> mesh;
+      FESystem<dim>                             fe;
+      DoFHandler<dim>                           dofs;
+      IndexSet                                  owned, relevant;
+      Tensor<1, dim>                            body_force_density;
+      DistributedMatrix                         mass, stiffness, damping;
+      DistributedVector                         body_force;
+      /// M e_d for each direction d (the momentum weights).
+      std::array<DistributedVector, dim> mass_unit_fields;
+      double                             mass_total = 0.;
+    };
+  } // namespace distributed
+} // namespace impactfe
+
+#endif

@@ -1,0 +1,163 @@
+// The time step of a distributed body against rigid obstacles: the
+// theta-schemes of the serial code (TimeIntegrator::theta_step_rule()),
+// the mass/stiffness solves by AMG-preconditioned CG on Trilinos matrices,
+// and the contact problem replicated on every rank and solved by the
+// active set method with its products through distributed solves (issue
+// 14, doc/parallel.md).
+#ifndef impactfe_parallel_distributed_dynamics_h
+#define impactfe_parallel_distributed_dynamics_h
+
+#include <deal.II/lac/trilinos_precondition.h>
+
+#include <impactfe/contact/contact_parameters.h>
+#include <impactfe/lcp/active_set.h>
+#include <impactfe/parallel/distributed_contact.h>
+#include <impactfe/time_integration/time_integrator.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace impactfe
+{
+  namespace distributed
+  {
+    /// What one step did.
+    struct DistributedStepReport
+    {
+      double       time            = 0.;
+      unsigned int lcp_size        = 0;
+      unsigned int active_contacts = 0;
+      /// Sum over the contacts of P_N, and |sum of P_T| (as vectors) [N s].
+      double normal_impulse = 0., tangential_impulse = 0.;
+      /// The total contact impulse in global coordinates [N s].
+      std::array<double, 3> impulse{{0., 0., 0.}};
+      bool                  fallback = false;
+    };
+
+    /// Counts and worst values over the run.
+    struct DistributedRunStatistics
+    {
+      unsigned int contact_problems = 0, active_set_iterations = 0,
+                   products = 0, cg_iterations = 0, solves = 0, fallbacks = 0,
+                   lcp_resolves = 0, largest_lcp = 0;
+      /// The worst verification violations of the accepted answers
+      /// (relative, verify_contact_velocities()).
+      double largest_signorini = 0., largest_cone = 0., largest_sliding = 0.,
+             largest_complementarity = 0.;
+      std::string last_fallback_reason;
+    };
+
+    /**
+     * Parameter subsection `Parallel solver`: the CG solves with M~.
+     */
+    struct ParallelSolverParameters
+    {
+      /// Relative residual of each CG solve with M~.
+      double       tolerance      = 1e-12;
+      unsigned int max_iterations = 1000;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /**
+     * The step of schemes.md at the velocity level,
+     *   M~ v^{i+1} = F~ + H P,  w_N = V_N^{i+1} + b_N >= 0 _|_ P_N >= 0,
+     * and Coulomb's law, with M~, F~ and b_N from the serial TimeIntegrator
+     * (Newmark is refused: it has no theta-step rule). W = H^T M~^{-1} H is
+     * never formed: each product is one CG solve with M~ (ML's AMG, set up
+     * once). The candidates that can touch (free normal velocity closing
+     * the gap, or active in the last step) enter the contact problem; the
+     * active set method solves it, preconditioned by H^T M~ H (the contact
+     * nodes' block of M~, one distributed product), and its answer is
+     * verified. If it does not converge, W of the candidates is built by
+     * products (n_c n_d solves) and Lemke's method solves the problem
+     * (reported as a fallback), up to `Largest Lemke fallback` candidates.
+     * `Method = lemke` always takes that route (for small scenes and
+     * tests).
+     */
+    template <int dim>
+    class DistributedImpactSolver
+    {
+    public:
+      DistributedImpactSolver(const DistributedElasticBody<dim>     &body,
+                              const DistributedObstacleContact<dim> &contact,
+                              const TimeSteppingParameters          &time,
+                              const ContactSolverParameters         &solver,
+                              const ParallelSolverParameters &linear_solver);
+
+      /// The step matrices and the AMG preconditioner.
+      void
+      setup();
+
+      void
+      set_initial_velocity(const Tensor<1, dim> &velocity);
+
+      const DistributedStepReport &
+      do_time_step();
+
+      double
+      time() const;
+      const DistributedVector &
+      displacement() const;
+      const DistributedVector &
+      velocity() const;
+      /// Per candidate (replicated): whether it carries an impulse.
+      const std::vector<bool> &
+      active_set() const;
+      const DistributedRunStatistics &
+      statistics() const;
+      const TimeIntegrator &
+      integrator() const;
+
+      /// 1/2 v.M v + 1/2 u.K u - f.u (f constant: its potential).
+      double
+      energy() const;
+
+    private:
+      const DistributedElasticBody<dim>     &body;
+      const DistributedObstacleContact<dim> &contact;
+      const ContactSolverParameters          solver_parameters;
+      const ParallelSolverParameters         linear_parameters;
+      std::unique_ptr<TimeIntegrator>        scheme;
+      ThetaStepRule                          rule;
+
+      DistributedMatrix                 step_matrix, velocity_matrix;
+      double                            displacement_factor = 0.;
+      TrilinosWrappers::PreconditionAMG amg;
+      DistributedVector u, v, u_old, v_old, v_free, rhs, correction,
+        impulse_force, work;
+      double                   current_time = 0.;
+      DistributedStepReport    report;
+      DistributedRunStatistics stats;
+
+      std::vector<bool>         active, in_lcp;
+      std::vector<unsigned int> lcp_candidates;
+      std::vector<double>       gap_terms, gap_work, normal_velocity,
+        local_free_velocity, local_impulses, last_impulses;
+      std::vector<ContactState> last_states;
+      std::vector<double> lcp_q, lcp_b, lcp_mu, lcp_penalty, lcp_guess, lcp_P,
+        lcp_correction;
+      std::vector<ContactState> lcp_state_guess;
+      lcp::ActiveSetSolver      active_set_solver;
+
+      /// x <- M~^{-1} x by CG (counts the iterations).
+      void
+      solve_step_matrix(const DistributedVector &b, DistributedVector &x);
+      /// y = W x on lcp_candidates; correction = M~^{-1} H x.
+      void
+      delassus_product(const std::vector<double> &x, std::vector<double> &y);
+      /// Solve the contact problem of lcp_candidates into lcp_P; whether
+      /// it took the active set route (else: Lemke, fallback or chosen).
+      void
+      solve_contact_problem();
+      void
+      solve_by_lemke();
+    };
+  } // namespace distributed
+} // namespace impactfe
+
+#endif

@@ -1,0 +1,111 @@
+// The scene of programs/block_sliding_mpi: an elastic block (2D or 3D)
+// sliding on a rigid plane under gravity with Coulomb friction, on a
+// distributed mesh (issue 14, doc/parallel.md).
+#ifndef impactfe_parallel_sliding_block_scene_h
+#define impactfe_parallel_sliding_block_scene_h
+
+#include <deal.II/base/conditional_ostream.h>
+
+#include <impactfe/bodies/mesh_input.h>
+#include <impactfe/dynamics/stability_monitor.h>
+#include <impactfe/output/output.h>
+#include <impactfe/parallel/distributed_dynamics.h>
+#include <impactfe/scenes/contact_scene.h>
+#include <impactfe/scenes/rigid_block.h>
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace impactfe
+{
+  namespace distributed
+  {
+    /**
+     * The parameters of block_sliding_mpi: every entry of block_sliding_3d
+     * (the scene's, the obstacle's, the material's and the common ones), so
+     * that its files run here too, plus `Dimension` and `Parallel solver`.
+     */
+    struct SlidingBlockParameters
+    {
+      unsigned int             dimension = 3;
+      SceneParameters          scene;
+      MeshParameters           mesh;
+      ObstacleParameters       obstacle;
+      MaterialParameters       material;
+      ParallelSolverParameters linear_solver;
+      StabilityBounds          bounds;
+      double                   length = 0.1, height = 0.01, width = 0.1;
+      unsigned int             nx = 4, ny = 1, nz = 4;
+      double                   speed = 1., phi = 0., gravity = 9.81;
+
+      /// Declare every entry, read @p file and check the values (throws with
+      /// the entry named).
+      void
+      read(const std::string &file);
+    };
+
+
+
+    /**
+     * The scene of block_sliding_mpi in the shape of a deal.II tutorial
+     * program: make_grid(), setup_system(), the time loop of
+     * DistributedImpactSolver, output_results() (history.csv on rank 0 with
+     * block_sliding_3d's columns, partitioned VTU and their .pvtu/.pvd
+     * records), report_results() (the checks, summary.json, the RESULT
+     * line). Every member function is collective.
+     */
+    template <int dim>
+    class SlidingBlockScene
+    {
+    public:
+      SlidingBlockScene(const SlidingBlockParameters &parameters,
+                        const std::string            &file);
+      void
+      run();
+
+    private:
+      void
+      make_grid();
+      void
+      setup_system();
+      void
+      output_results(const unsigned int step);
+      void
+      report_results();
+
+      Tensor<1, dim>
+      direction() const
+      {
+        Tensor<1, dim> s;
+        s[0] = std::cos(parameters.phi);
+        if (dim == 3)
+          s[dim - 1] = std::sin(parameters.phi);
+        return s;
+      }
+
+      const SlidingBlockParameters                  parameters;
+      const std::string                             parameter_file;
+      MPI_Comm                                      comm;
+      const unsigned int                            n_ranks;
+      ConditionalOStream                            pcout;
+      DistributedElasticBody<dim>                   body;
+      DistributedObstacleContact<dim>               contact;
+      std::unique_ptr<RigidObstacle<dim>>           obstacle;
+      std::unique_ptr<DistributedImpactSolver<dim>> solver;
+      std::unique_ptr<HistoryWriter>                history;
+      std::unique_ptr<RigidBlockTracker<dim>>       tracker;
+      std::vector<std::pair<double, std::string>>   vtu_records;
+      Tensor<1, dim>                                normal;
+      DistributedStepReport                         last_report;
+      DistributedVector                             work;
+      double normal_impulse = 0., tangential_impulse = 0., balance_error = 0.,
+             largest_turn        = 0.;
+      double       setup_seconds = 0., loop_seconds = 0.;
+      unsigned int n_steps = 0;
+    };
+  } // namespace distributed
+} // namespace impactfe
+
+#endif

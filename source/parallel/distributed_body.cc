@@ -1,0 +1,303 @@
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+
+#include <impactfe/bodies/cell_operators.h>
+#include <impactfe/bodies/constitutive_model.h>
+#include <impactfe/parallel/distributed_body.h>
+
+namespace impactfe
+{
+  namespace distributed
+  {
+    template <int dim>
+    DistributedElasticBody<dim>::DistributedElasticBody(
+      const MPI_Comm                  communicator,
+      const MaterialParameters       &material,
+      const DiscretizationParameters &discretization)
+      : mpi_communicator(communicator)
+      , material_parameters(material)
+      , discretization_parameters(discretization)
+      , mesh(communicator)
+      , fe(FE_Q<dim>(1), dim)
+      , dofs(mesh)
+    {}
+
+
+
+    template <int dim>
+    parallel::distributed::Triangulation<dim> &
+    DistributedElasticBody<dim>::triangulation()
+    {
+      return mesh;
+    }
+
+
+
+    template <int dim>
+    const parallel::distributed::Triangulation<dim> &
+    DistributedElasticBody<dim>::triangulation() const
+    {
+      return mesh;
+    }
+
+
+
+    template <int dim>
+    void
+    DistributedElasticBody<dim>::set_body_force(
+      const Tensor<1, dim> &force_density)
+    {
+      body_force_density = force_density;
+    }
+
+
+
+    // @sect3{Set-up and assembly}
+    // The same element operators as the serial body; each rank adds its
+    // locally owned cells, and compress() sums the shared rows.
+    template <int dim>
+    void
+    DistributedElasticBody<dim>::setup()
+    {
+      AssertThrow(!discretization_parameters.mass_redistribution,
+                  ExcMessage("Discretization: 'Mass redistribution = true' is "
+                             "not available in the distributed programs yet."));
+      AssertThrow(mesh.n_global_active_cells() > 0,
+                  ExcMessage("The distributed body has no cells."));
+      dofs.distribute_dofs(fe);
+      owned = dofs.locally_owned_dofs();
+      DoFTools::extract_locally_relevant_dofs(dofs, relevant);
+
+      AffineConstraints<double> hanging;
+      hanging.reinit(relevant);
+      DoFTools::make_hanging_node_constraints(dofs, hanging);
+      hanging.close();
+      AssertThrow(Utilities::MPI::sum(hanging.n_constraints(),
+                                      mpi_communicator) == 0,
+                  ExcMessage("The distributed body's mesh has hanging nodes; "
+                             "refine it uniformly."));
+
+      TrilinosWrappers::SparsityPattern pattern(owned,
+                                                owned,
+                                                relevant,
+                                                mpi_communicator);
+      DoFTools::make_sparsity_pattern(dofs, pattern);
+      pattern.compress();
+      mass.reinit(pattern);
+      stiffness.reinit(pattern);
+      damping.reinit(pattern);
+      body_force.reinit(owned, mpi_communicator);
+
+      const auto model = create_constitutive_model<dim>(material_parameters);
+      AssertThrow(model->is_linear(),
+                  ExcMessage("The material law '" + model->name() +
+                             "' is nonlinear; the distributed body needs a "
+                             "linear one."));
+      const SymmetricTensor<4, dim> elasticity = model->elasticity_tensor();
+      const SymmetricTensor<4, dim> viscosity  = model->viscosity_tensor();
+      const bool                    viscous    = viscosity.norm() > 0.;
+
+      const QGauss<dim> quadrature(2);
+      FEValues<dim>     fe_values(
+        fe, quadrature, update_values | update_gradients | update_JxW_values);
+      const unsigned int n = fe.n_dofs_per_cell();
+      CellOperators      cell_operators;
+      cell_operators.reinit(n);
+      std::vector<double>                  row_sums;
+      std::vector<types::global_dof_index> local_dofs(n);
+      for (const auto &cell : dofs.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            integrate_cell_operators(fe_values,
+                                     elasticity,
+                                     viscosity,
+                                     viscous,
+                                     material_parameters.density,
+                                     body_force_density,
+                                     1.,
+                                     cell_operators);
+            cell->get_dof_indices(local_dofs);
+            if (discretization_parameters.lumped_mass)
+              {
+                lumped_cell_mass(cell_operators.mass, row_sums);
+                for (unsigned int i = 0; i < n; ++i)
+                  mass.add(local_dofs[i], local_dofs[i], row_sums[i]);
+              }
+            else
+              mass.add(local_dofs, cell_operators.mass);
+            stiffness.add(local_dofs, cell_operators.stiffness);
+            if (viscous)
+              damping.add(local_dofs, cell_operators.viscous);
+            body_force.add(local_dofs, cell_operators.load);
+          }
+      mass.compress(VectorOperation::add);
+      stiffness.compress(VectorOperation::add);
+      damping.compress(VectorOperation::add);
+      body_force.compress(VectorOperation::add);
+      // C = the law's viscous matrix + Rayleigh a M + b K (as ElasticBody).
+      if (material_parameters.rayleigh_stiffness != 0.)
+        damping.add(material_parameters.rayleigh_stiffness, stiffness);
+      if (material_parameters.rayleigh_mass != 0.)
+        damping.add(material_parameters.rayleigh_mass, mass);
+
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          DistributedVector unit(owned, mpi_communicator);
+          Tensor<1, dim>    e;
+          e[d] = 1.;
+          fill_uniform(unit, e);
+          mass_unit_fields[d].reinit(owned, mpi_communicator);
+          mass.vmult(mass_unit_fields[d], unit);
+          if (d == 0)
+            mass_total = mass_unit_fields[d] * unit;
+        }
+    }
+
+
+
+    template <int dim>
+    MPI_Comm
+    DistributedElasticBody<dim>::communicator() const
+    {
+      return mpi_communicator;
+    }
+
+
+
+    template <int dim>
+    const DoFHandler<dim> &
+    DistributedElasticBody<dim>::dof_handler() const
+    {
+      return dofs;
+    }
+
+
+
+    template <int dim>
+    const IndexSet &
+    DistributedElasticBody<dim>::locally_owned_dofs() const
+    {
+      return owned;
+    }
+
+
+
+    template <int dim>
+    const IndexSet &
+    DistributedElasticBody<dim>::locally_relevant_dofs() const
+    {
+      return relevant;
+    }
+
+
+
+    template <int dim>
+    const MaterialParameters &
+    DistributedElasticBody<dim>::material() const
+    {
+      return material_parameters;
+    }
+
+
+
+    template <int dim>
+    const DistributedMatrix &
+    DistributedElasticBody<dim>::mass_matrix() const
+    {
+      return mass;
+    }
+
+
+
+    template <int dim>
+    const DistributedMatrix &
+    DistributedElasticBody<dim>::stiffness_matrix() const
+    {
+      return stiffness;
+    }
+
+
+
+    template <int dim>
+    const DistributedMatrix &
+    DistributedElasticBody<dim>::damping_matrix() const
+    {
+      return damping;
+    }
+
+
+
+    template <int dim>
+    bool
+    DistributedElasticBody<dim>::has_damping() const
+    {
+      return material_parameters.has_damping();
+    }
+
+
+
+    template <int dim>
+    const DistributedVector &
+    DistributedElasticBody<dim>::external_force() const
+    {
+      return body_force;
+    }
+
+
+
+    template <int dim>
+    double
+    DistributedElasticBody<dim>::total_mass() const
+    {
+      return mass_total;
+    }
+
+
+
+    // Every owned DoF lies on a locally owned cell, where its component is
+    // known.
+    template <int dim>
+    void
+    DistributedElasticBody<dim>::fill_uniform(DistributedVector    &vector,
+                                              const Tensor<1, dim> &value) const
+    {
+      std::vector<types::global_dof_index> local_dofs(fe.n_dofs_per_cell());
+      for (const auto &cell : dofs.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            cell->get_dof_indices(local_dofs);
+            for (unsigned int i = 0; i < local_dofs.size(); ++i)
+              if (owned.is_element(local_dofs[i]))
+                vector[local_dofs[i]] =
+                  value[fe.system_to_component_index(i).first];
+          }
+      vector.compress(VectorOperation::insert);
+    }
+
+
+
+    template <int dim>
+    Tensor<1, dim>
+    DistributedElasticBody<dim>::momentum(
+      const DistributedVector &velocity) const
+    {
+      Tensor<1, dim> p;
+      for (unsigned int d = 0; d < dim; ++d)
+        p[d] = mass_unit_fields[d] * velocity;
+      return p;
+    }
+
+
+
+    template class DistributedElasticBody<2>;
+    template class DistributedElasticBody<3>;
+  } // namespace distributed
+} // namespace impactfe

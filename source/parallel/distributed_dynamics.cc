@@ -1,0 +1,578 @@
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+
+#include <impactfe/lcp/exact_cone.h>
+#include <impactfe/parallel/distributed_dynamics.h>
+#include <impactfe/utilities/program.h>
+
+#include <cmath>
+
+namespace impactfe
+{
+  namespace distributed
+  {
+    void
+    ParallelSolverParameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Parallel solver");
+      prm.declare_entry("Tolerance",
+                        "1e-12",
+                        Patterns::Double(0.),
+                        "Relative residual of each CG solve with the step "
+                        "matrix M~ (AMG-preconditioned) [-]. The contact "
+                        "problem's products W x are such solves, so this "
+                        "bounds the accuracy of the answer.");
+      prm.declare_entry("Maximum iterations",
+                        "1000",
+                        Patterns::Integer(1),
+                        "CG iterations per solve before the run stops with "
+                        "an error [-].");
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    ParallelSolverParameters::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Parallel solver");
+      tolerance      = prm.get_double("Tolerance");
+      max_iterations = prm.get_integer("Maximum iterations");
+      prm.leave_subsection();
+      AssertThrow(tolerance > 0. && tolerance < 1.,
+                  ExcMessage("Parallel solver: 'Tolerance' must be in (0, 1), "
+                             "got " +
+                             format_number(tolerance) + "."));
+    }
+
+
+
+    template <int dim>
+    DistributedImpactSolver<dim>::DistributedImpactSolver(
+      const DistributedElasticBody<dim>     &body,
+      const DistributedObstacleContact<dim> &contact,
+      const TimeSteppingParameters          &time,
+      const ContactSolverParameters         &solver,
+      const ParallelSolverParameters        &linear_solver)
+      : body(body)
+      , contact(contact)
+      , solver_parameters(solver)
+      , linear_parameters(linear_solver)
+      , scheme(create_time_integrator(time))
+    {
+      AssertThrow(time.scheme != Scheme::newmark,
+                  ExcMessage("Time stepping: 'Scheme = newmark' is not "
+                             "available in the distributed programs; choose "
+                             "theta, theta-euler or modified-theta."));
+      rule = scheme->theta_step_rule();
+    }
+
+
+
+    // @sect3{Set-up}
+    // M~ = M + c_C C + c_K K and the matrix of F~'s velocity term, M + a_C
+    // C + a_K K, on the body's sparsity pattern; ML's AMG on M~ with the
+    // rigid translations as its near null space.
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::setup()
+    {
+      const FreeRhsCoefficients f = scheme->free_rhs_coefficients();
+      step_matrix.copy_from(body.mass_matrix());
+      step_matrix.add(scheme->stiffness_coefficient(), body.stiffness_matrix());
+      velocity_matrix.copy_from(body.mass_matrix());
+      if (f.velocity_stiffness != 0.)
+        velocity_matrix.add(f.velocity_stiffness, body.stiffness_matrix());
+      if (body.has_damping())
+        {
+          step_matrix.add(scheme->damping_coefficient(), body.damping_matrix());
+          velocity_matrix.add(f.velocity_damping, body.damping_matrix());
+        }
+      displacement_factor = f.displacement_stiffness;
+
+      TrilinosWrappers::PreconditionAMG::AdditionalData data;
+      std::vector<std::vector<bool>>                    modes;
+      DoFTools::extract_constant_modes(body.dof_handler(),
+                                       ComponentMask(),
+                                       modes);
+      data.constant_modes        = modes;
+      data.elliptic              = true;
+      data.higher_order_elements = false;
+      data.smoother_sweeps       = 2;
+      data.aggregation_threshold = 0.02;
+      amg.initialize(step_matrix, data);
+
+      const IndexSet &owned = body.locally_owned_dofs();
+      const MPI_Comm  comm  = body.communicator();
+      for (DistributedVector *x : {&u,
+                                   &v,
+                                   &u_old,
+                                   &v_old,
+                                   &v_free,
+                                   &rhs,
+                                   &correction,
+                                   &impulse_force,
+                                   &work})
+        x->reinit(owned, comm);
+      const unsigned int n  = contact.n_candidates();
+      const unsigned int nd = contact.n_directions();
+      active.assign(n, false);
+      in_lcp.assign(n, false);
+      last_impulses.assign(n * nd, 0.);
+      last_states.assign(n, ContactState::open);
+      local_impulses.assign(n * nd, 0.);
+    }
+
+
+
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::set_initial_velocity(
+      const Tensor<1, dim> &velocity)
+    {
+      body.fill_uniform(v, velocity);
+    }
+
+
+
+    // One CG solve with M~; a solve that does not converge stops the run
+    // with the step named.
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::solve_step_matrix(const DistributedVector &b,
+                                                    DistributedVector       &x)
+    {
+      x                  = 0.;
+      const double normb = b.l2_norm();
+      ++stats.solves;
+      if (normb == 0.)
+        return;
+      SolverControl               control(linear_parameters.max_iterations,
+                            linear_parameters.tolerance * normb,
+                            false,
+                            false);
+      SolverCG<DistributedVector> cg(control);
+      try
+        {
+          cg.solve(step_matrix, x, b, amg);
+        }
+      catch (const SolverControl::NoConvergence &e)
+        {
+          AssertThrow(false,
+                      ExcMessage(
+                        "The CG solve with the step matrix did not reach "
+                        "the relative residual " +
+                        format_number(linear_parameters.tolerance) + " in " +
+                        std::to_string(e.last_step) +
+                        " iterations at t = " + format_number(current_time) +
+                        " s (Parallel solver/Maximum iterations)."));
+        }
+      stats.cg_iterations += control.last_step();
+    }
+
+
+
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::delassus_product(const std::vector<double> &x,
+                                                   std::vector<double>       &y)
+    {
+      impulse_force = 0.;
+      contact.add_impulses(lcp_candidates, x, impulse_force);
+      solve_step_matrix(impulse_force, correction);
+      contact.local_values(correction, lcp_candidates, y);
+      ++stats.products;
+    }
+
+
+
+    // @sect3{The contact problem}
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::solve_contact_problem()
+    {
+      const unsigned int nd = contact.n_directions();
+      const unsigned int n  = lcp_candidates.size();
+      lcp_q.resize(n * nd);
+      lcp_b.resize(n);
+      lcp_mu.assign(n, contact.friction_coefficient());
+      lcp_guess.resize(n * nd);
+      lcp_state_guess.resize(n);
+      for (unsigned int a = 0; a < n; ++a)
+        {
+          const unsigned int c = lcp_candidates[a];
+          lcp_b[a]             = gap_terms[c];
+          lcp_state_guess[a]   = last_states[c];
+          for (unsigned int k = 0; k < nd; ++k)
+            {
+              lcp_q[a * nd + k]     = local_free_velocity[c * nd + k];
+              lcp_guess[a * nd + k] = last_impulses[c * nd + k];
+            }
+        }
+      ++stats.contact_problems;
+      stats.largest_lcp = std::max(stats.largest_lcp, n);
+      if (solver_parameters.method == ContactSolverParameters::Method::lemke)
+        {
+          solve_by_lemke();
+          return;
+        }
+
+      // 1/W_jj ~ the frame's diagonal of M~ at the node (M~ is nearly
+      // diagonal where the mass dominates: small steps)
+      lcp_penalty.assign(n * nd, 0.);
+      for (unsigned int a = 0; a < n; ++a)
+        if (contact.owns(lcp_candidates[a]))
+          {
+            const auto &cand = contact.candidate(lcp_candidates[a]);
+            for (unsigned int k = 0; k < nd; ++k)
+              for (unsigned int d = 0; d < dim; ++d)
+                lcp_penalty[a * nd + k] +=
+                  cand.frame[k][d] * cand.frame[k][d] *
+                  step_matrix.diag_element(cand.dofs[d]);
+          }
+      Utilities::MPI::sum(lcp_penalty, body.communicator(), lcp_penalty);
+
+      const lcp::DelassusProduct product = [this](const std::vector<double> &x,
+                                                  std::vector<double> &y) {
+        delassus_product(x, y);
+      };
+      const lcp::DelassusProduct preconditioner =
+        [this](const std::vector<double> &x, std::vector<double> &y) {
+          impulse_force = 0.;
+          contact.add_impulses(lcp_candidates, x, impulse_force);
+          step_matrix.vmult(work, impulse_force);
+          contact.local_values(work, lcp_candidates, y);
+        };
+      // GMRES cannot go below the products' own error, which the CG
+      // tolerance sets (times the condition of M~, modest at small steps)
+      lcp::ActiveSetOptions options;
+      options.max_iterations = solver_parameters.active_set_iterations;
+      options.linear_tolerance =
+        std::max(options.linear_tolerance, 1e2 * linear_parameters.tolerance);
+      if (nd == 3 && solver_parameters.friction_cone == lcp::ConeModel::facets)
+        options.n_facets = solver_parameters.n_facets;
+      const bool                  warm = solver_parameters.warm_start;
+      const lcp::ActiveSetReport &result =
+        active_set_solver.solve(product,
+                                preconditioner,
+                                lcp_penalty,
+                                nd,
+                                lcp_q,
+                                lcp_b,
+                                lcp_mu,
+                                warm ? lcp_state_guess :
+                                       std::vector<ContactState>(),
+                                warm ? lcp_guess : std::vector<double>(),
+                                options);
+      stats.active_set_iterations += result.iterations;
+      if (!result.converged)
+        {
+          ++stats.fallbacks;
+          stats.last_fallback_reason = result.message;
+          report.fallback            = true;
+          AssertThrow(
+            n <= solver_parameters.largest_lemke_fallback,
+            ExcMessage(
+              "The contact problem at t = " + format_number(report.time) +
+              " s (" + std::to_string(n) +
+              " candidates) was not solved: the active set method "
+              "did not converge (" +
+              result.message +
+              "), and the problem is larger than 'Largest Lemke "
+              "fallback' = " +
+              std::to_string(solver_parameters.largest_lemke_fallback) + "."));
+          solve_by_lemke();
+          return;
+        }
+      const lcp::ContactVerification &check = result.verification;
+      stats.largest_signorini =
+        std::max(stats.largest_signorini, check.max_signorini_violation);
+      stats.largest_cone =
+        std::max(stats.largest_cone, check.max_cone_violation);
+      stats.largest_sliding =
+        std::max(stats.largest_sliding, check.max_sliding_violation);
+      lcp_P = active_set_solver.impulses();
+      // the solver's last product was with lcp_P: correction = M~^{-1} H P
+      for (unsigned int a = 0; a < n; ++a)
+        last_states[lcp_candidates[a]] = active_set_solver.states()[a];
+    }
+
+
+
+    // W of the candidates column by column (n n_d solves), then Lemke's
+    // method on the contact LCP (the exact cone by re-aligned facets in 3D,
+    // or the facet form), verified as in the serial programs.
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::solve_by_lemke()
+    {
+      const unsigned int  nd = contact.n_directions();
+      const unsigned int  n  = lcp_candidates.size();
+      lcp::ContactProblem problem;
+      problem.n_directions = nd;
+      problem.n_contacts   = n;
+      problem.W.reinit(n * nd, n * nd);
+      problem.free_velocity = lcp_q;
+      problem.gap_term      = lcp_b;
+      problem.mu            = lcp_mu;
+      std::vector<double> unit(n * nd, 0.), column;
+      for (unsigned int j = 0; j < n * nd; ++j)
+        {
+          unit[j] = 1.;
+          delassus_product(unit, column);
+          unit[j] = 0.;
+          for (unsigned int i = 0; i < n * nd; ++i)
+            problem.W(i, j) = column[i];
+        }
+      // W is symmetric; the CG solves leave it so only to their tolerance
+      for (unsigned int i = 0; i < n * nd; ++i)
+        for (unsigned int j = 0; j < i; ++j)
+          problem.W(i, j) = problem.W(j, i) =
+            0.5 * (problem.W(i, j) + problem.W(j, i));
+
+      lcp::ContactSolution solution;
+      lcp::ContactOptions  options;
+      if (nd == 3 && solver_parameters.friction_cone == lcp::ConeModel::exact)
+        {
+          lcp::ExactConeSolver  exact;
+          lcp::ExactConeOptions cone;
+          cone.tolerance = solver_parameters.exact_cone_tolerance;
+          solution       = exact.solve(problem, options, cone);
+          AssertThrow(solution.lcp.status != lcp::Status::solved ||
+                        exact.report().converged,
+                      ExcMessage("The exact cone was not reached at t = " +
+                                 format_number(report.time) + " s: residual " +
+                                 format_number(exact.report().residual) + "."));
+        }
+      else
+        {
+          if (nd == 3)
+            {
+              options.form     = lcp::FrictionForm::facets;
+              options.n_facets = solver_parameters.n_facets;
+            }
+          solution = lcp::solve_contact_problem(problem, options);
+        }
+      AssertThrow(
+        solution.lcp.status == lcp::Status::solved,
+        ExcMessage(
+          "The contact LCP at t = " + format_number(report.time) + " s (" +
+          std::to_string(n) + " candidates) was not solved: " +
+          lcp::to_string(solution.lcp.status) + ". " + solution.lcp.message));
+      const lcp::ContactVerification check =
+        lcp::verify_contact_solution(problem, solution.P);
+      stats.largest_signorini =
+        std::max(stats.largest_signorini, check.max_signorini_violation);
+      stats.largest_cone =
+        std::max(stats.largest_cone, check.max_cone_violation);
+      stats.largest_sliding =
+        std::max(stats.largest_sliding, check.max_sliding_violation);
+      lcp_P = solution.P;
+      for (unsigned int a = 0; a < n && a < solution.states.size(); ++a)
+        last_states[lcp_candidates[a]] = solution.states[a];
+      // correction = M~^{-1} H P
+      delassus_product(lcp_P, column);
+    }
+
+
+
+    // @sect3{The time step}
+    template <int dim>
+    const DistributedStepReport &
+    DistributedImpactSolver<dim>::do_time_step()
+    {
+      const double       h  = scheme->time_step();
+      const unsigned int n  = contact.n_candidates();
+      const unsigned int nd = contact.n_directions();
+      report                = DistributedStepReport();
+      report.time           = current_time + h;
+
+      // 1. The free velocity: M~ v_free = F~.
+      velocity_matrix.vmult(rhs, v);
+      if (displacement_factor != 0.)
+        {
+          body.stiffness_matrix().vmult(work, u);
+          rhs.add(displacement_factor, work);
+        }
+      rhs.add(scheme->free_rhs_coefficients().force, body.external_force());
+      solve_step_matrix(rhs, v_free);
+
+      // 2. b_N of the scheme: g(u + a h v) / d + c V_N(v).
+      if (rule.gap_prediction != 0.)
+        {
+          work = u;
+          work.add(h * rule.gap_prediction, v);
+          contact.gaps(work, gap_terms);
+        }
+      else
+        contact.gaps(u, gap_terms);
+      if (rule.gap_velocity != 0.)
+        contact.normal_velocities(v, normal_velocity);
+      for (unsigned int c = 0; c < n; ++c)
+        gap_terms[c] =
+          gap_terms[c] / rule.gap_divisor +
+          (rule.gap_velocity != 0. ? rule.gap_velocity * normal_velocity[c] :
+                                     0.);
+      contact.local_velocities(v_free, local_free_velocity);
+
+      // 3. The candidates that can touch, and the contact problem; a
+      // candidate left out that the impulses push in joins, and the
+      // problem is solved again.
+      double scale = 0.;
+      for (unsigned int c = 0; c < n; ++c)
+        {
+          const double w_free = local_free_velocity[c * nd] + gap_terms[c];
+          in_lcp[c]           = (w_free < 0.) || active[c];
+          scale               = std::max({scale,
+                                          std::abs(local_free_velocity[c * nd]),
+                                          std::abs(gap_terms[c])});
+        }
+      std::fill(local_impulses.begin(), local_impulses.end(), 0.);
+      correction                          = 0.;
+      std::vector<double> &all_correction = gap_work;
+      for (;;)
+        {
+          lcp_candidates.clear();
+          for (unsigned int c = 0; c < n; ++c)
+            if (in_lcp[c])
+              lcp_candidates.push_back(c);
+          if (lcp_candidates.empty())
+            {
+              correction = 0.;
+              break;
+            }
+          solve_contact_problem();
+          contact.local_velocities(correction, all_correction);
+          bool grown = false;
+          for (unsigned int c = 0; c < n; ++c)
+            if (!in_lcp[c] && local_free_velocity[c * nd] + gap_terms[c] +
+                                  all_correction[c * nd] <
+                                -1e-12 * scale)
+              {
+                in_lcp[c] = true;
+                grown     = true;
+              }
+          if (!grown)
+            break;
+          ++stats.lcp_resolves;
+        }
+      report.lcp_size = lcp_candidates.size() * nd;
+      for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
+        for (unsigned int k = 0; k < nd; ++k)
+          local_impulses[lcp_candidates[a] * nd + k] = lcp_P[a * nd + k];
+
+      // 4. v = v_free + M~^{-1} H P, then u from the scheme's rule.
+      v_old = v;
+      v     = v_free;
+      v += correction;
+      u_old = u;
+      if (rule.new_velocity_weight == 1.)
+        u.add(h, v);
+      else
+        u.add(h * rule.new_velocity_weight,
+              v,
+              h * (1. - rule.new_velocity_weight),
+              v_old);
+      current_time = report.time;
+
+      Tensor<1, dim> tangential;
+      for (unsigned int c = 0; c < n; ++c)
+        {
+          const double p_n = local_impulses[c * nd];
+          active[c]        = p_n > 0.;
+          if (!in_lcp[c])
+            last_states[c] = ContactState::open;
+          report.active_contacts += active[c] ? 1 : 0;
+          report.normal_impulse += p_n;
+          const auto &frame = contact.candidate(c).frame;
+          for (unsigned int k = 0; k < nd; ++k)
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                const double p = frame[k][d] * local_impulses[c * nd + k];
+                report.impulse[d] += p;
+                tangential[d] += k > 0 ? p : 0.;
+              }
+        }
+      report.tangential_impulse = tangential.norm();
+      last_impulses             = local_impulses;
+      return report;
+    }
+
+
+
+    template <int dim>
+    double
+    DistributedImpactSolver<dim>::time() const
+    {
+      return current_time;
+    }
+
+
+
+    template <int dim>
+    const DistributedVector &
+    DistributedImpactSolver<dim>::displacement() const
+    {
+      return u;
+    }
+
+
+
+    template <int dim>
+    const DistributedVector &
+    DistributedImpactSolver<dim>::velocity() const
+    {
+      return v;
+    }
+
+
+
+    template <int dim>
+    const std::vector<bool> &
+    DistributedImpactSolver<dim>::active_set() const
+    {
+      return active;
+    }
+
+
+
+    template <int dim>
+    const DistributedRunStatistics &
+    DistributedImpactSolver<dim>::statistics() const
+    {
+      return stats;
+    }
+
+
+
+    template <int dim>
+    const TimeIntegrator &
+    DistributedImpactSolver<dim>::integrator() const
+    {
+      return *scheme;
+    }
+
+
+
+    template <int dim>
+    double
+    DistributedImpactSolver<dim>::energy() const
+    {
+      DistributedVector tmp(body.locally_owned_dofs(), body.communicator());
+      body.mass_matrix().vmult(tmp, v);
+      double e = 0.5 * (tmp * v);
+      body.stiffness_matrix().vmult(tmp, u);
+      e += 0.5 * (tmp * u);
+      return e - body.external_force() * u;
+    }
+
+
+
+    template class DistributedImpactSolver<2>;
+    template class DistributedImpactSolver<3>;
+  } // namespace distributed
+} // namespace impactfe

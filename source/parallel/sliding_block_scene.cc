@@ -1,0 +1,468 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/grid/grid_generator.h>
+
+#include <deal.II/numerics/data_out.h>
+
+#include <impactfe/dynamics/contact_monitor.h>
+#include <impactfe/parallel/sliding_block_scene.h>
+#include <impactfe/utilities/program.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace impactfe
+{
+  namespace distributed
+  {
+    // @sect3{Parameters}
+    void
+    SlidingBlockParameters::read(const std::string &file)
+    {
+      ParameterHandler prm;
+      prm.declare_entry("Dimension",
+                        "3",
+                        Patterns::Integer(2, 3),
+                        "2: the block's section in the x-y plane (plane "
+                        "strain, sliding along x); 3: the box [-].");
+      SceneParameters::declare_parameters(prm, "results/block_sliding_mpi");
+      MeshParameters::declare_parameters(prm, "Mesh", 2);
+      ObstacleParameters::declare_parameters(prm, "0, 0, 0", "0, 1, 0", "0.5");
+      MaterialParameters::declare_parameters(prm, 2); // 2D: a superset
+      ParallelSolverParameters::declare_parameters(prm);
+      StabilityBounds::declare_parameters(prm);
+      prm.enter_subsection("Geometry");
+      prm.declare_entry("Length", "0.1", Patterns::Double(), "Along x [m].");
+      prm.declare_entry("Height", "0.01", Patterns::Double(), "Along y [m].");
+      prm.declare_entry("Width", "0.1", Patterns::Double(), "Along z [m].");
+      for (const char *axis : {"x", "z"})
+        prm.declare_entry(std::string("Number of cells along ") + axis,
+                          "4",
+                          Patterns::Integer(1),
+                          "Q1 cells [-].");
+      prm.declare_entry("Number of cells up", "1", Patterns::Integer(1), "[-]");
+      prm.leave_subsection();
+      prm.enter_subsection("Initial conditions");
+      prm.declare_entry("Sliding speed", "1", Patterns::Double(), "v0 [m/s].");
+      prm.declare_entry("Sliding direction",
+                        "0",
+                        Patterns::Double(),
+                        "phi [rad] (3D): along (cos phi, 0, sin phi).");
+      prm.leave_subsection();
+      prm.enter_subsection("Loads");
+      prm.declare_entry("Gravity", "9.81", Patterns::Double(), "g [m/s^2].");
+      prm.leave_subsection();
+
+      AssertThrow(std::filesystem::exists(file),
+                  ExcMessage("The parameter file '" + file +
+                             "' does not exist."));
+      prm.parse_input(file);
+      dimension = prm.get_integer("Dimension");
+      scene.parse_parameters(prm);
+      mesh.parse_parameters(prm, "Mesh");
+      obstacle.parse_parameters(prm, dimension);
+      material.parse_parameters(prm, dimension);
+      linear_solver.parse_parameters(prm);
+      bounds.parse_parameters(prm);
+      prm.enter_subsection("Geometry");
+      length = prm.get_double("Length");
+      height = prm.get_double("Height");
+      width  = prm.get_double("Width");
+      nx     = prm.get_integer("Number of cells along x");
+      ny     = prm.get_integer("Number of cells up");
+      nz     = prm.get_integer("Number of cells along z");
+      prm.leave_subsection();
+      require_positive(length, "Geometry", "Length");
+      require_positive(height, "Geometry", "Height");
+      require_positive(width, "Geometry", "Width");
+      prm.enter_subsection("Initial conditions");
+      speed = prm.get_double("Sliding speed");
+      phi   = prm.get_double("Sliding direction");
+      prm.leave_subsection();
+      require_positive(speed, "Initial conditions", "Sliding speed");
+      AssertThrow(dimension == 3 || std::abs(std::sin(phi)) < 1e-12,
+                  ExcMessage("Initial conditions: 'Sliding direction' must "
+                             "be 0 or pi in 2D (the block slides along x), "
+                             "got " +
+                             format_number(phi) + "."));
+      prm.enter_subsection("Loads");
+      gravity = prm.get_double("Gravity");
+      prm.leave_subsection();
+      require_positive(gravity, "Loads", "Gravity");
+      AssertThrow(scene.time_stepping.free_flight_step_factor == 1,
+                  ExcMessage("Time stepping: 'Free-flight step factor' is "
+                             "not available in block_sliding_mpi yet."));
+    }
+
+
+
+    template <int dim>
+    SlidingBlockScene<dim>::SlidingBlockScene(
+      const SlidingBlockParameters &parameters,
+      const std::string            &file)
+      : parameters(parameters)
+      , parameter_file(file)
+      , comm(MPI_COMM_WORLD)
+      , n_ranks(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD))
+      , pcout(std::cout, Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      , body(MPI_COMM_WORLD,
+             parameters.material,
+             parameters.scene.discretization)
+    {}
+
+
+
+    // @sect3{The mesh}
+    // The box (or its section) on the plane y = 0, centred in x (and z),
+    // colorized: its lower face has boundary id 2. A file (subsection
+    // `Mesh`) is read on every rank as the coarse mesh and partitioned.
+    template <int dim>
+    void
+    SlidingBlockScene<dim>::make_grid()
+    {
+      auto &tria = body.triangulation();
+      if (parameters.mesh.from_file())
+        parameters.mesh.read(tria, parameter_file);
+      else if (dim == 3)
+        GridGenerator::subdivided_hyper_rectangle(
+          tria,
+          {parameters.nx, parameters.ny, parameters.nz},
+          Point<dim>(-0.5 * parameters.length, 0., -0.5 * parameters.width),
+          Point<dim>(0.5 * parameters.length,
+                     parameters.height,
+                     0.5 * parameters.width),
+          true);
+      else
+        GridGenerator::subdivided_hyper_rectangle(
+          tria,
+          {parameters.nx, parameters.ny},
+          Point<dim>(-0.5 * parameters.length, 0.),
+          Point<dim>(0.5 * parameters.length, parameters.height),
+          true);
+      AssertThrow(tria.n_global_active_cells() >= n_ranks,
+                  ExcMessage(
+                    "The mesh has " +
+                    std::to_string(tria.n_global_active_cells()) +
+                    (tria.n_global_active_cells() == 1 ? " cell" : " cells") +
+                    " for " + std::to_string(n_ranks) +
+                    " MPI ranks: use at most one rank per cell."));
+    }
+
+
+
+    // @sect3{Set-up}
+    template <int dim>
+    void
+    SlidingBlockScene<dim>::setup_system()
+    {
+      make_grid();
+      Tensor<1, dim> g;
+      g[1] = -parameters.material.density * parameters.gravity;
+      body.set_body_force(g);
+      body.setup();
+      obstacle = parameters.obstacle.create<dim>(parameters.length);
+      contact.setup(body,
+                    parameters.mesh.contact_boundary_id,
+                    *obstacle,
+                    parameters.obstacle.friction_coefficient);
+      solver = std::make_unique<DistributedImpactSolver<dim>>(
+        body,
+        contact,
+        parameters.scene.time_stepping,
+        parameters.scene.contact_solver,
+        parameters.linear_solver);
+      solver->setup();
+      work.reinit(body.locally_owned_dofs(), comm);
+      solver->set_initial_velocity(parameters.speed * direction());
+      normal[1] = 1.;
+      tracker   = std::make_unique<RigidBlockTracker<dim>>(
+        normal, direction(), parameters.scene.time_stepping.time_step);
+      tracker->start(parameters.speed * direction());
+
+      std::vector<std::string> columns = {"time",
+                                          "normal_force",
+                                          "tangential_force"};
+      const char              *axes[]  = {"x", "y", "z"};
+      for (unsigned int d = 0; d < dim; ++d)
+        columns.push_back(std::string("force_") + axes[d]);
+      for (unsigned int d = 0; d < dim; ++d)
+        columns.push_back(std::string("momentum_") + axes[d]);
+      for (const char *c :
+           {"kinetic_energy", "elastic_energy", "active_contacts"})
+        columns.push_back(c);
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        {
+          create_output_directory(parameters.scene.output.directory);
+          history = std::make_unique<HistoryWriter>(
+            parameters.scene.output.directory + "/history.csv", columns);
+        }
+    }
+
+
+
+    // @sect3{Output}
+    // history.csv (rank 0) at every step; the partitioned VTU files and
+    // their .pvtu/.pvd records every `Output interval` steps.
+    template <int dim>
+    void
+    SlidingBlockScene<dim>::output_results(const unsigned int step)
+    {
+      const DistributedVector &u = solver->displacement();
+      const DistributedVector &v = solver->velocity();
+      body.mass_matrix().vmult(work, v);
+      const double kinetic_energy = 0.5 * (work * v);
+      body.stiffness_matrix().vmult(work, u);
+      const double         elastic_energy = 0.5 * (work * u);
+      const Tensor<1, dim> p              = body.momentum(v); // collective
+      if (history)
+        {
+          const double per_impulse = solver->integrator().force_per_impulse();
+          std::vector<double> row  = {solver->time(),
+                                      last_report.normal_impulse * per_impulse,
+                                      last_report.tangential_impulse *
+                                        per_impulse};
+          for (unsigned int d = 0; d < dim; ++d)
+            row.push_back(last_report.impulse[d] * per_impulse);
+          for (unsigned int d = 0; d < dim; ++d)
+            row.push_back(p[d]);
+          row.push_back(kinetic_energy);
+          row.push_back(elastic_energy);
+          row.push_back(last_report.active_contacts);
+          history->add_row(row);
+        }
+      if (!parameters.scene.output.vtu_output ||
+          step % parameters.scene.output.output_interval != 0)
+        return;
+      DistributedVector u_ghost, v_ghost;
+      u_ghost.reinit(body.locally_owned_dofs(),
+                     body.locally_relevant_dofs(),
+                     comm);
+      v_ghost.reinit(body.locally_owned_dofs(),
+                     body.locally_relevant_dofs(),
+                     comm);
+      u_ghost = u;
+      v_ghost = v;
+      DataOut<dim> data_out;
+      data_out.attach_dof_handler(body.dof_handler());
+      const std::vector<
+        DataComponentInterpretation::DataComponentInterpretation>
+        vector_field(dim,
+                     DataComponentInterpretation::component_is_part_of_vector);
+      data_out.add_data_vector(u_ghost,
+                               std::vector<std::string>(dim, "displacement"),
+                               DataOut<dim>::type_dof_data,
+                               vector_field);
+      data_out.add_data_vector(v_ghost,
+                               std::vector<std::string>(dim, "velocity"),
+                               DataOut<dim>::type_dof_data,
+                               vector_field);
+      Vector<float> subdomain(body.triangulation().n_active_cells());
+      for (unsigned int i = 0; i < subdomain.size(); ++i)
+        subdomain(i) = body.triangulation().locally_owned_subdomain();
+      data_out.add_data_vector(subdomain, "subdomain");
+      data_out.build_patches();
+      const std::string record = data_out.write_vtu_with_pvtu_record(
+        parameters.scene.output.directory + "/", "solution", step, comm, 4);
+      vtu_records.emplace_back(solver->time(), record);
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        {
+          std::ofstream pvd(parameters.scene.output.directory +
+                            "/solution.pvd");
+          DataOutBase::write_pvd_record(pvd, vtu_records);
+        }
+    }
+
+
+
+    // @sect3{The run}
+    // The loop's wall time is measured between barriers (a step is
+    // collective). Each step's momentum change is compared with the loads'
+    // and the contact impulses (the rigid translations are in the kernel of
+    // K, so the balance is exact up to the solves' tolerance).
+    template <int dim>
+    void
+    SlidingBlockScene<dim>::run()
+    {
+      using Clock = std::chrono::steady_clock;
+      MPI_Barrier(comm);
+      auto start = Clock::now();
+      setup_system();
+      output_results(0);
+      MPI_Barrier(comm);
+      setup_seconds =
+        std::chrono::duration<double>(Clock::now() - start).count();
+
+      const double   gamma = solver->integrator().free_rhs_coefficients().force;
+      Tensor<1, dim> load;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          Tensor<1, dim> e;
+          e[d] = 1.;
+          body.fill_uniform(work, e);
+          load[d] = work * body.external_force();
+        }
+      const Tensor<1, dim> p0 = body.momentum(solver->velocity());
+      Tensor<1, dim>       impulses;
+      double               largest_momentum = p0.norm();
+      n_steps = parameters.scene.time_stepping.n_steps();
+      for (unsigned int step = 1; step <= n_steps; ++step)
+        {
+          MPI_Barrier(comm);
+          start       = Clock::now();
+          last_report = solver->do_time_step();
+          MPI_Barrier(comm);
+          loop_seconds +=
+            std::chrono::duration<double>(Clock::now() - start).count();
+          normal_impulse += last_report.normal_impulse;
+          tangential_impulse += last_report.tangential_impulse;
+          for (unsigned int d = 0; d < dim; ++d)
+            impulses[d] += gamma * load[d] + last_report.impulse[d];
+          const Tensor<1, dim> p = body.momentum(solver->velocity());
+          largest_momentum       = std::max(largest_momentum, p.norm());
+          balance_error = std::max(balance_error, (p - p0 - impulses).norm());
+          const Tensor<1, dim> mean = p / body.total_mass();
+          tracker->record(solver->time(),
+                          mean,
+                          last_report.active_contacts > 0);
+          // the direction of sliding until the block first stops, while it
+          // slides faster than 1 % of v0 (near the stop the mean velocity is
+          // the vibration's; a tall block may rock after it)
+          const Tensor<1, dim> s      = direction();
+          const double         along  = mean * s;
+          const double         across = (mean - along * s).norm();
+          if (tracker->stop_time() < 0. &&
+              std::hypot(along, across) > 0.01 * parameters.speed)
+            largest_turn = std::max(largest_turn, std::atan2(across, along));
+          output_results(step);
+        }
+      balance_error /= largest_momentum;
+      report_results();
+    }
+
+
+
+    // @sect3{The report}
+    template <int dim>
+    void
+    SlidingBlockScene<dim>::report_results()
+    {
+      const DistributedRunStatistics &stats = solver->statistics();
+      unsigned int                    owned = 0;
+      for (unsigned int c = 0; c < contact.n_candidates(); ++c)
+        owned += contact.owns(c) ? 1 : 0;
+      const auto owned_range = Utilities::MPI::min_max_avg(double(owned), comm);
+      const double mass      = body.total_mass();
+      const double speed     = body.momentum(solver->velocity()).norm() / mass;
+      const double along =
+        body.momentum(solver->velocity()) * direction() / mass;
+      const double distance =
+        body.momentum(solver->displacement()) * direction() / mass;
+      const auto        &ts = parameters.scene.time_stepping;
+      std::ostringstream out;
+      out << "Block sliding on a plane in " << dim << "D on " << n_ranks
+          << " MPI rank" << (n_ranks > 1 ? "s" : "") << ", scheme "
+          << to_string(ts.scheme) << " (theta = " << ts.theta
+          << "), h = " << ts.time_step << " s, " << n_steps << " steps\n"
+          << "  Mesh: " << body.triangulation().n_global_active_cells()
+          << " Q1 cells, " << body.dof_handler().n_dofs() << " DoFs, "
+          << contact.n_candidates()
+          << " contact candidates; obstacle: " << obstacle->description()
+          << ", mu = " << contact.friction_coefficient() << "\n"
+          << "  Contact candidates owned per rank: " << owned_range.min
+          << " to " << owned_range.max << "\n"
+          << "  Mass " << format_figure(mass, 1e-9) << " kg; launched at "
+          << parameters.speed
+          << " m/s in the direction phi = " << parameters.phi << " rad\n"
+          << "  Largest angle between the mean sliding velocity and the "
+             "launch direction: "
+          << format_figure(largest_turn, 1e-6) << " rad\n"
+          << "  Mean velocity at the end: " << format_figure(speed, 1e-6)
+          << " m/s\n"
+          << "  Normal impulse " << format_figure(normal_impulse, 1e-9)
+          << ", tangential impulse " << format_figure(tangential_impulse, 1e-9)
+          << "\n"
+          << "  Impulse balance: max |p(t) - p(0) - impulses| / max |p| = "
+          << format_figure(balance_error, 1e-12) << "\n"
+          << "  Contact problems: " << stats.contact_problems << ", "
+          << stats.fallbacks << " fell back to Lemke's method; "
+          << "largest violations (Signorini, cone, sliding): "
+          << format_figure(stats.largest_signorini, 1e-12) << ", "
+          << format_figure(stats.largest_cone, 1e-12) << ", "
+          << format_figure(stats.largest_sliding, 1e-12) << "\n";
+      if (stats.fallbacks > 0)
+        out << "  Last fallback: " << stats.last_fallback_reason << "\n";
+      const double largest_violation = std::max(
+        {stats.largest_signorini, stats.largest_cone, stats.largest_sliding});
+      bool ok =
+        print_check(out,
+                    "impulse balance error",
+                    balance_error,
+                    "<=",
+                    parameters.scene.verification.max_impulse_balance_error);
+      ok &=
+        print_check(out, "contact verification", largest_violation, "<=", 1e-8);
+      const RigidSliding rigid(parameters.speed,
+                               0.,
+                               parameters.gravity,
+                               contact.friction_coefficient(),
+                               ts.end_time);
+      JsonObject         sliding;
+      ok &= tracker->report_sliding(
+        out, rigid, distance, along, ts.end_time, parameters.bounds, sliding);
+      if (parameters.scene.output.print_performance)
+        out << "  Wall seconds: set-up " << setup_seconds << ", time loop "
+            << loop_seconds << " (" << loop_seconds / n_steps << " per step); "
+            << stats.products << " products W x, " << stats.cg_iterations
+            << " CG iterations\n";
+      out << "Results in " << parameters.scene.output.directory
+          << "/: history.csv, summary.json"
+          << (parameters.scene.output.vtu_output ? ", solution.pvd" : "")
+          << "\n";
+      pcout << out.str();
+
+      JsonObject summary;
+      summary.add("program", "block_sliding_mpi")
+        .add("dimension", double(dim))
+        .add("ranks", double(n_ranks))
+        .add("scheme", to_string(ts.scheme))
+        .add("time_step", ts.time_step)
+        .add("cells", double(body.triangulation().n_global_active_cells()))
+        .add("dofs", double(body.dof_handler().n_dofs()))
+        .add("contact_candidates", double(contact.n_candidates()))
+        .add("n_steps", double(n_steps))
+        .add("setup_wall_seconds", setup_seconds)
+        .add("loop_wall_seconds", loop_seconds)
+        .add("final_speed", speed)
+        .add("largest_turn", largest_turn)
+        .add("normal_impulse", normal_impulse)
+        .add("tangential_impulse", tangential_impulse)
+        .add("impulse_balance_error", balance_error)
+        .add("contact_problems", double(stats.contact_problems))
+        .add("fallbacks", double(stats.fallbacks))
+        .add("products", double(stats.products))
+        .add("cg_iterations", double(stats.cg_iterations))
+        .add("largest_violation", largest_violation)
+        .add("sliding", sliding)
+        .add("checks_passed", ok ? "yes" : "no");
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        summary.write(parameters.scene.output.directory + "/summary.json");
+      if (parameters.scene.output.print_performance)
+        pcout << "RESULT program=block_sliding_mpi dim=" << dim
+              << " ranks=" << n_ranks << " dofs=" << body.dof_handler().n_dofs()
+              << " contacts=" << contact.n_candidates() << " steps=" << n_steps
+              << " seconds_per_step=" << loop_seconds / n_steps
+              << " fallbacks=" << stats.fallbacks
+              << " largest_violation=" << largest_violation << std::endl;
+      AssertThrow(ok,
+                  ExcMessage("block_sliding_mpi: a check failed (see above)."));
+    }
+
+
+    template class SlidingBlockScene<2>;
+    template class SlidingBlockScene<3>;
+  } // namespace distributed
+} // namespace impactfe

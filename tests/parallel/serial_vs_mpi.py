@@ -1,0 +1,55 @@
+#!/usr/bin/env python3
+"""ctest driver: run a serial program and block_sliding_mpi on two ranks on
+the same scene, then compare their history.csv with
+tools/compare_histories.py (to 1e-8 of each quantity's scale; the
+momentum's bound adds the two runs' own impulse balance errors). Both runs
+must also pass their own checks (exit code 0)."""
+import argparse
+import json
+import os
+import shlex
+import shutil
+import subprocess
+import sys
+
+
+def run(command, cwd, log):
+    with open(os.path.join(cwd, log), "w") as out:
+        code = subprocess.call(command, cwd=cwd, stdout=out,
+                               stderr=subprocess.STDOUT)
+    if code != 0:
+        print(f"{' '.join(command)} exited with {code}; its output:")
+        print(open(os.path.join(cwd, log)).read())
+        sys.exit(1)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--serial", required=True)
+    ap.add_argument("--serial-prm", required=True)
+    ap.add_argument("--parallel", required=True)
+    ap.add_argument("--parallel-prm", required=True)
+    ap.add_argument("--mpiexec", required=True)
+    ap.add_argument("--compare", required=True)
+    ap.add_argument("--work", required=True)
+    a = ap.parse_args()
+    shutil.rmtree(a.work, ignore_errors=True)
+    for sub in ("serial", "mpi"):
+        os.makedirs(os.path.join(a.work, sub))
+    run([a.serial, a.serial_prm], os.path.join(a.work, "serial"), "log")
+    run(shlex.split(a.mpiexec) + [a.parallel, a.parallel_prm],
+        os.path.join(a.work, "mpi"), "log")
+    # each run's own impulse balance error bounds its momentum's round-off
+    serial = json.load(open(os.path.join(a.work, "serial/results/summary.json")))
+    mpi = json.load(open(os.path.join(a.work, "mpi/results/summary.json")))
+    e_serial = serial["checks"]["impulse_balance_error"]
+    e_mpi = mpi["impulse_balance_error"]
+    print(f"impulse balance errors: serial {e_serial:.2e}, two ranks {e_mpi:.2e}")
+    return subprocess.call([sys.executable, a.compare,
+                            os.path.join(a.work, "serial/results/history.csv"),
+                            os.path.join(a.work, "mpi/results/history.csv"),
+                            "--allowance", str(e_serial + e_mpi)])
+
+
+if __name__ == "__main__":
+    sys.exit(main())
