@@ -9,6 +9,7 @@
 #include <impactfe/parallel/distributed_dynamics.h>
 #include <impactfe/utilities/program.h>
 
+#include <chrono>
 #include <cmath>
 
 namespace impactfe
@@ -19,13 +20,22 @@ namespace impactfe
     ParallelSolverParameters::declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Parallel solver");
-      prm.declare_entry("Tolerance",
-                        "1e-12",
-                        Patterns::Double(0.),
-                        "Relative residual of each CG solve with the step "
-                        "matrix M~ (AMG-preconditioned) [-]. The contact "
-                        "problem's products W x are such solves, so this "
-                        "bounds the accuracy of the answer.");
+      prm.declare_entry("Solver",
+                        "direct",
+                        Patterns::Selection("direct|amg cg"),
+                        "The solves with the step matrix M~ (one per product "
+                        "W x of the contact problem): direct (MUMPS through "
+                        "Trilinos' Amesos: M~ factorised once, then a "
+                        "distributed solve pair per product) or amg cg (CG "
+                        "with ML's algebraic multigrid, set up once).");
+      prm.declare_entry(
+        "Tolerance",
+        "1e-12",
+        Patterns::Double(0.),
+        "amg cg: relative residual of each CG solve with the step "
+        "matrix M~ (AMG-preconditioned) [-]. The contact "
+        "problem's products W x are such solves, so this "
+        "bounds the accuracy of the answer.");
       prm.declare_entry("Maximum iterations",
                         "1000",
                         Patterns::Integer(1),
@@ -40,6 +50,7 @@ namespace impactfe
     ParallelSolverParameters::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Parallel solver");
+      solver = prm.get("Solver") == "direct" ? Solver::direct : Solver::amg_cg;
       tolerance      = prm.get_double("Tolerance");
       max_iterations = prm.get_integer("Maximum iterations");
       prm.leave_subsection();
@@ -75,8 +86,8 @@ namespace impactfe
 
     // @sect3{Set-up}
     // M~ = M + c_C C + c_K K and the matrix of F~'s velocity term, M + a_C
-    // C + a_K K, on the body's sparsity pattern; ML's AMG on M~ with the
-    // rigid translations as its near null space.
+    // C + a_K K, on the body's sparsity pattern; MUMPS's factors of M~, or
+    // ML's AMG on M~ with the rigid translations as its near null space.
     template <int dim>
     void
     DistributedImpactSolver<dim>::setup()
@@ -94,17 +105,16 @@ namespace impactfe
         }
       displacement_factor = f.displacement_stiffness;
 
-      TrilinosWrappers::PreconditionAMG::AdditionalData data;
-      std::vector<std::vector<bool>>                    modes;
-      DoFTools::extract_constant_modes(body.dof_handler(),
-                                       ComponentMask(),
-                                       modes);
-      data.constant_modes        = modes;
-      data.elliptic              = true;
-      data.higher_order_elements = false;
-      data.smoother_sweeps       = 2;
-      data.aggregation_threshold = 0.02;
-      amg.initialize(step_matrix, data);
+      if (linear_parameters.solver == ParallelSolverParameters::Solver::direct)
+        {
+          direct_solver = std::make_unique<TrilinosWrappers::SolverDirect>(
+            direct_control,
+            TrilinosWrappers::SolverDirect::AdditionalData(false,
+                                                           "Amesos_Mumps"));
+          direct_solver->initialize(step_matrix);
+        }
+      else
+        setup_amg();
 
       const IndexSet &owned = body.locally_owned_dofs();
       const MPI_Comm  comm  = body.communicator();
@@ -131,6 +141,25 @@ namespace impactfe
 
     template <int dim>
     void
+    DistributedImpactSolver<dim>::setup_amg()
+    {
+      TrilinosWrappers::PreconditionAMG::AdditionalData data;
+      std::vector<std::vector<bool>>                    modes;
+      DoFTools::extract_constant_modes(body.dof_handler(),
+                                       ComponentMask(),
+                                       modes);
+      data.constant_modes        = modes;
+      data.elliptic              = true;
+      data.higher_order_elements = false;
+      data.smoother_sweeps       = 2;
+      data.aggregation_threshold = 0.02;
+      amg.initialize(step_matrix, data);
+    }
+
+
+
+    template <int dim>
+    void
     DistributedImpactSolver<dim>::set_initial_velocity(
       const Tensor<1, dim> &velocity)
     {
@@ -139,16 +168,28 @@ namespace impactfe
 
 
 
-    // One CG solve with M~; a solve that does not converge stops the run
-    // with the step named.
+    // One solve with M~: a solve pair with the factors, or CG; a CG solve
+    // that does not converge stops the run with the time named.
     template <int dim>
     void
     DistributedImpactSolver<dim>::solve_step_matrix(const DistributedVector &b,
                                                     DistributedVector       &x)
     {
+      ++stats.solves;
+      const auto start  = std::chrono::steady_clock::now();
+      const auto charge = [&]() {
+        stats.solve_seconds += std::chrono::duration<double>(
+                                 std::chrono::steady_clock::now() - start)
+                                 .count();
+      };
+      if (direct_solver)
+        {
+          direct_solver->solve(x, b);
+          charge();
+          return;
+        }
       x                  = 0.;
       const double normb = b.l2_norm();
-      ++stats.solves;
       if (normb == 0.)
         return;
       SolverControl               control(linear_parameters.max_iterations,
@@ -172,6 +213,7 @@ namespace impactfe
                         " s (Parallel solver/Maximum iterations)."));
         }
       stats.cg_iterations += control.last_step();
+      charge();
     }
 
 
@@ -251,8 +293,9 @@ namespace impactfe
       // tolerance sets (times the condition of M~, modest at small steps)
       lcp::ActiveSetOptions options;
       options.max_iterations = solver_parameters.active_set_iterations;
-      options.linear_tolerance =
-        std::max(options.linear_tolerance, 1e2 * linear_parameters.tolerance);
+      if (!direct_solver)
+        options.linear_tolerance =
+          std::max(options.linear_tolerance, 1e2 * linear_parameters.tolerance);
       if (nd == 3 && solver_parameters.friction_cone == lcp::ConeModel::facets)
         options.n_facets = solver_parameters.n_facets;
       const bool                  warm = solver_parameters.warm_start;

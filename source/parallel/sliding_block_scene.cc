@@ -417,7 +417,8 @@ namespace impactfe
         out << "  Wall seconds: set-up " << setup_seconds << ", time loop "
             << loop_seconds << " (" << loop_seconds / n_steps << " per step); "
             << stats.products << " products W x, " << stats.cg_iterations
-            << " CG iterations\n";
+            << " CG iterations; solves with M~ " << stats.solve_seconds
+            << " s (rank 0)\n";
       out << "Results in " << parameters.scene.output.directory
           << "/: history.csv, summary.json"
           << (parameters.scene.output.vtu_output ? ", solution.pvd" : "")
@@ -445,6 +446,7 @@ namespace impactfe
         .add("fallbacks", double(stats.fallbacks))
         .add("products", double(stats.products))
         .add("cg_iterations", double(stats.cg_iterations))
+        .add("solve_wall_seconds", stats.solve_seconds)
         .add("largest_violation", largest_violation)
         .add("sliding", sliding)
         .add("checks_passed", ok ? "yes" : "no");

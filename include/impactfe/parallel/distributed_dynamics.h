@@ -7,7 +7,9 @@
 #ifndef impactfe_parallel_distributed_dynamics_h
 #define impactfe_parallel_distributed_dynamics_h
 
+#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
 
 #include <impactfe/contact/contact_parameters.h>
 #include <impactfe/lcp/active_set.h>
@@ -46,13 +48,25 @@ namespace impactfe
       double largest_signorini = 0., largest_cone = 0., largest_sliding = 0.,
              largest_complementarity = 0.;
       std::string last_fallback_reason;
+      /// Wall seconds in the solves with M~ (this rank), and in the
+      /// exchanges of replicated contact values (sums over the ranks).
+      double solve_seconds = 0., exchange_seconds = 0.;
     };
 
     /**
-     * Parameter subsection `Parallel solver`: the CG solves with M~.
+     * Parameter subsection `Parallel solver`: how the solves with M~ are
+     * made.
      */
     struct ParallelSolverParameters
     {
+      enum class Solver
+      {
+        /// MUMPS (through Trilinos' Amesos), M~ factorised once.
+        direct,
+        /// CG preconditioned by ML's AMG, set up once.
+        amg_cg
+      };
+      Solver solver = Solver::direct;
       /// Relative residual of each CG solve with M~.
       double       tolerance      = 1e-12;
       unsigned int max_iterations = 1000;
@@ -68,13 +82,14 @@ namespace impactfe
      *   M~ v^{i+1} = F~ + H P,  w_N = V_N^{i+1} + b_N >= 0 _|_ P_N >= 0,
      * and Coulomb's law, with M~, F~ and b_N from the serial TimeIntegrator
      * (Newmark is refused: it has no theta-step rule). W = H^T M~^{-1} H is
-     * never formed: each product is one CG solve with M~ (ML's AMG, set up
-     * once). The candidates that can touch (free normal velocity closing
-     * the gap, or active in the last step) enter the contact problem; the
-     * active set method solves it, preconditioned by H^T M~ H (the contact
-     * nodes' block of M~, one distributed product), and its answer is
-     * verified. If it does not converge, W of the candidates is built by
-     * products (n_c n_d solves) and Lemke's method solves the problem
+     * never formed: each product is one solve with M~, by MUMPS's
+     * distributed factorisation of M~ (made once) or by CG with ML's AMG
+     * (set up once), `Parallel solver/Solver`. The candidates that can touch
+     * (free normal velocity closing the gap, or active in the last step) enter
+     * the contact problem; the active set method solves it, preconditioned by
+     * H^T M~ H (the contact nodes' block of M~, one distributed product), and
+     * its answer is verified. If it does not converge, W of the candidates is
+     * built by products (n_c n_d solves) and Lemke's method solves the problem
      * (reported as a fallback), up to `Largest Lemke fallback` candidates.
      * `Method = lemke` always takes that route (for small scenes and
      * tests).
@@ -128,6 +143,8 @@ namespace impactfe
       DistributedMatrix                 step_matrix, velocity_matrix;
       double                            displacement_factor = 0.;
       TrilinosWrappers::PreconditionAMG amg;
+      SolverControl                     direct_control;
+      std::unique_ptr<TrilinosWrappers::SolverDirect> direct_solver;
       DistributedVector u, v, u_old, v_old, v_free, rhs, correction,
         impulse_force, work;
       double                   current_time = 0.;
@@ -144,7 +161,10 @@ namespace impactfe
       std::vector<ContactState> lcp_state_guess;
       lcp::ActiveSetSolver      active_set_solver;
 
-      /// x <- M~^{-1} x by CG (counts the iterations).
+      /// ML's AMG on M~ with the rigid translations as near null space.
+      void
+      setup_amg();
+      /// x = M~^{-1} b (CG: counts the iterations).
       void
       solve_step_matrix(const DistributedVector &b, DistributedVector &x);
       /// y = W x on lcp_candidates; correction = M~^{-1} H x.
