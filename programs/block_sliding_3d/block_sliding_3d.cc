@@ -75,12 +75,12 @@ namespace BlockSliding3D
     double
     length_scale() const override
     {
-      return length;
+      return box.length;
     }
     Tensor<1, 3>
     initial_velocity() const override
     {
-      return speed * direction();
+      return box.speed * direction();
     }
     std::string
     title() const override
@@ -107,13 +107,10 @@ namespace BlockSliding3D
     Tensor<1, 3>
     direction() const
     {
-      return Tensor<1, 3>({std::cos(phi), 0., std::sin(phi)});
+      return Tensor<1, 3>({std::cos(box.phi), 0., std::sin(box.phi)});
     }
 
-    double          length = 0.1, height = 0.01, width = 0.1;
-    unsigned int    nx = 4, ny = 1, nz = 4;
-    double          speed = 1., phi = 0., gravity = 9.81;
-    StabilityBounds bounds;
+    SlidingBoxParameters box;
 
     /// The block's momentum over its mass, or its mean displacement.
     MassWeightedMean<3>                   block_mean;
@@ -127,41 +124,7 @@ namespace BlockSliding3D
   void
   BlockSliding3DProblem::declare_scene_parameters(ParameterHandler &prm)
   {
-    prm.enter_subsection("Geometry");
-    prm.declare_entry("Length", "0.1", Patterns::Double(), "Along x [m].");
-    prm.declare_entry("Height", "0.01", Patterns::Double(), "Along y [m].");
-    prm.declare_entry("Width", "0.1", Patterns::Double(), "Along z [m].");
-    prm.declare_entry("Number of cells along x",
-                      "4",
-                      Patterns::Integer(1),
-                      "Q1 cells along the length [-].");
-    prm.declare_entry("Number of cells up",
-                      "1",
-                      Patterns::Integer(1),
-                      "Q1 cells along the height [-].");
-    prm.declare_entry("Number of cells along z",
-                      "4",
-                      Patterns::Integer(1),
-                      "Q1 cells along the width [-].");
-    prm.leave_subsection();
-    prm.enter_subsection("Initial conditions");
-    prm.declare_entry("Sliding speed",
-                      "1",
-                      Patterns::Double(),
-                      "v0 [m/s], along the plane. Must be > 0.");
-    prm.declare_entry("Sliding direction",
-                      "0",
-                      Patterns::Double(),
-                      "phi [rad]: the block is launched along (cos phi, 0, "
-                      "sin phi).");
-    prm.leave_subsection();
-    prm.enter_subsection("Loads");
-    prm.declare_entry("Gravity",
-                      "9.81",
-                      Patterns::Double(),
-                      "g [m/s^2], towards the plane (-y). Must be > 0.");
-    prm.leave_subsection();
-    StabilityBounds::declare_parameters(prm);
+    SlidingBoxParameters::declare_parameters(prm);
   }
 
 
@@ -169,30 +132,7 @@ namespace BlockSliding3D
   void
   BlockSliding3DProblem::parse_scene_parameters(ParameterHandler &prm)
   {
-    prm.enter_subsection("Geometry");
-    length = prm.get_double("Length");
-    height = prm.get_double("Height");
-    width  = prm.get_double("Width");
-    nx     = prm.get_integer("Number of cells along x");
-    ny     = prm.get_integer("Number of cells up");
-    nz     = prm.get_integer("Number of cells along z");
-    prm.leave_subsection();
-    require_positive(length, "Geometry", "Length");
-    require_positive(height, "Geometry", "Height");
-    require_positive(width, "Geometry", "Width");
-    prm.enter_subsection("Initial conditions");
-    speed = prm.get_double("Sliding speed");
-    phi   = prm.get_double("Sliding direction");
-    prm.leave_subsection();
-    require_positive(speed, "Initial conditions", "Sliding speed");
-    AssertThrow(std::isfinite(phi),
-                ExcMessage(
-                  "Initial conditions: 'Sliding direction' must be finite."));
-    prm.enter_subsection("Loads");
-    gravity = prm.get_double("Gravity");
-    prm.leave_subsection();
-    require_positive(gravity, "Loads", "Gravity");
-    bounds.parse_parameters(prm);
+    box.parse_parameters(prm);
   }
 
 
@@ -207,9 +147,9 @@ namespace BlockSliding3D
   {
     GridGenerator::subdivided_hyper_rectangle(
       tria,
-      {nx, ny, nz},
-      Point<3>(-0.5 * length, 0., -0.5 * width),
-      Point<3>(0.5 * length, height, 0.5 * width),
+      {box.nx, box.ny, box.nz},
+      Point<3>(-0.5 * box.length, 0., -0.5 * box.width),
+      Point<3>(0.5 * box.length, box.height, 0.5 * box.width),
       true);
   }
 
@@ -219,7 +159,7 @@ namespace BlockSliding3D
   BlockSliding3DProblem::apply_loads()
   {
     body(0).set_body_force(
-      Tensor<1, 3>({0., -body(0).material().density * gravity, 0.}));
+      Tensor<1, 3>({0., -body(0).material().density * box.gravity, 0.}));
   }
 
 
@@ -253,8 +193,8 @@ namespace BlockSliding3D
     // The direction of sliding, while the block slides faster than 1 % of
     // v0 (near the stop the mean velocity is the elastic vibration's).
     const double along  = v * direction();
-    const double across = v[2] * std::cos(phi) - v[0] * std::sin(phi);
-    if (std::hypot(along, across) > 0.01 * speed)
+    const double across = v[2] * std::cos(box.phi) - v[0] * std::sin(box.phi);
+    if (std::hypot(along, across) > 0.01 * box.speed)
       largest_turn =
         std::max(largest_turn, std::abs(std::atan2(across, along)));
   }
@@ -267,14 +207,14 @@ namespace BlockSliding3D
                                        JsonObject   &summary) const
   {
     const Tensor<1, 3> v = block_mean(system().state().velocity.block(0));
-    out << "  Mass " << block_mean.mass() << " kg; launched at " << speed
-        << " m/s in the direction phi = " << phi << " rad" << std::endl
+    out << "  Mass " << block_mean.mass() << " kg; launched at " << box.speed
+        << " m/s in the direction phi = " << box.phi << " rad" << std::endl
         << "  Largest angle between the mean sliding velocity and the "
            "launch direction: "
         << format_figure(largest_turn, 1e-6) << " rad" << std::endl
         << "  Mean velocity at the end: " << format_figure(v.norm(), 1e-6)
         << " m/s" << std::endl;
-    summary.add("direction", phi)
+    summary.add("direction", box.phi)
       .add("largest_turn", largest_turn)
       .add("final_speed", v.norm());
   }
@@ -285,9 +225,9 @@ namespace BlockSliding3D
   BlockSliding3DProblem::report_checks(std::ostream &out,
                                        JsonObject   &summary) const
   {
-    const RigidSliding rigid(speed,
+    const RigidSliding rigid(box.speed,
                              0.,
-                             gravity,
+                             box.gravity,
                              friction_coefficient(),
                              parameters.time_stepping.end_time);
     const Tensor<1, 3> u = block_mean(system().state().displacement.block(0));
@@ -299,7 +239,7 @@ namespace BlockSliding3D
                               block_mean(system().state().velocity.block(0)) *
                                 direction(),
                               parameters.time_stepping.end_time,
-                              bounds,
+                              box.bounds,
                               sliding);
     summary.add("sliding", sliding);
     return ok;

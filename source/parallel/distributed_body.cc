@@ -73,6 +73,12 @@ namespace impactfe
                   ExcMessage("The distributed body has no cells."));
       dofs.distribute_dofs(fe);
       owned = dofs.locally_owned_dofs();
+      // ML's AMG and the partitioned vectors need DoFs on every rank
+      AssertThrow(Utilities::MPI::min(owned.n_elements(), mpi_communicator) > 0,
+                  ExcMessage("A rank owns no degree of freedom of the "
+                             "distributed body (" +
+                             std::to_string(mesh.n_global_active_cells()) +
+                             " cells): use fewer MPI ranks."));
       DoFTools::extract_locally_relevant_dofs(dofs, relevant);
 
       AffineConstraints<double> hanging;

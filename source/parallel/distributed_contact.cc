@@ -33,8 +33,10 @@ namespace impactfe
       const IndexSet                   &owned = body.locally_owned_dofs();
       std::set<types::global_dof_index> seen;
       std::vector<double>               mine;
+      // ghost cells too: a node this rank owns may lie on a boundary face
+      // of a neighbour's cell only (meshes read from files)
       for (const auto &cell : body.dof_handler().active_cell_iterators())
-        if (cell->is_locally_owned())
+        if (cell->is_locally_owned() || cell->is_ghost())
           for (const auto &face : cell->face_iterators())
             if (face->at_boundary() && face->boundary_id() == boundary_id)
               for (const unsigned int v : face->vertex_indices())

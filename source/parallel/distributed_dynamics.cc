@@ -9,6 +9,7 @@
 #include <impactfe/parallel/distributed_dynamics.h>
 #include <impactfe/utilities/program.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -16,6 +17,17 @@ namespace impactfe
 {
   namespace distributed
   {
+    void
+    DistributedRunStatistics::record(const lcp::ContactVerification &check)
+    {
+      largest_signorini =
+        std::max(largest_signorini, check.max_signorini_violation);
+      largest_cone    = std::max(largest_cone, check.max_cone_violation);
+      largest_sliding = std::max(largest_sliding, check.max_sliding_violation);
+    }
+
+
+
     void
     ParallelSolverParameters::declare_parameters(ParameterHandler &prm)
     {
@@ -263,8 +275,8 @@ namespace impactfe
           return;
         }
 
-      // 1/W_jj ~ the frame's diagonal of M~ at the node (M~ is nearly
-      // diagonal where the mass dominates: small steps)
+      // 1/W_jj ~ f_k^T M~_node f_k, the node's block of M~ in the frame
+      // (M~ is nearly block diagonal where the mass dominates)
       lcp_penalty.assign(n * nd, 0.);
       for (unsigned int a = 0; a < n; ++a)
         if (contact.owns(lcp_candidates[a]))
@@ -272,9 +284,10 @@ namespace impactfe
             const auto &cand = contact.candidate(lcp_candidates[a]);
             for (unsigned int k = 0; k < nd; ++k)
               for (unsigned int d = 0; d < dim; ++d)
-                lcp_penalty[a * nd + k] +=
-                  cand.frame[k][d] * cand.frame[k][d] *
-                  step_matrix.diag_element(cand.dofs[d]);
+                for (unsigned int e = 0; e < dim; ++e)
+                  lcp_penalty[a * nd + k] +=
+                    cand.frame[k][d] * cand.frame[k][e] *
+                    step_matrix.el(cand.dofs[d], cand.dofs[e]);
           }
       Utilities::MPI::sum(lcp_penalty, body.communicator(), lcp_penalty);
 
@@ -331,14 +344,13 @@ namespace impactfe
           solve_by_lemke();
           return;
         }
-      const lcp::ContactVerification &check = result.verification;
-      stats.largest_signorini =
-        std::max(stats.largest_signorini, check.max_signorini_violation);
-      stats.largest_cone =
-        std::max(stats.largest_cone, check.max_cone_violation);
-      stats.largest_sliding =
-        std::max(stats.largest_sliding, check.max_sliding_violation);
+      stats.record(result.verification);
       lcp_P = active_set_solver.impulses();
+      // with every contact open the solver makes no last product
+      if (std::all_of(lcp_P.begin(), lcp_P.end(), [](const double p) {
+            return p == 0.;
+          }))
+        correction = 0.;
       // the solver's last product was with lcp_P: correction = M~^{-1} H P
       for (unsigned int a = 0; a < n; ++a)
         last_states[lcp_candidates[a]] = active_set_solver.states()[a];
@@ -406,17 +418,13 @@ namespace impactfe
           "The contact LCP at t = " + format_number(report.time) + " s (" +
           std::to_string(n) + " candidates) was not solved: " +
           lcp::to_string(solution.lcp.status) + ". " + solution.lcp.message));
-      const lcp::ContactVerification check =
-        lcp::verify_contact_solution(problem, solution.P);
-      stats.largest_signorini =
-        std::max(stats.largest_signorini, check.max_signorini_violation);
-      stats.largest_cone =
-        std::max(stats.largest_cone, check.max_cone_violation);
-      stats.largest_sliding =
-        std::max(stats.largest_sliding, check.max_sliding_violation);
+      stats.record(lcp::verify_contact_solution(problem, solution.P));
       lcp_P = solution.P;
-      for (unsigned int a = 0; a < n && a < solution.states.size(); ++a)
-        last_states[lcp_candidates[a]] = solution.states[a];
+      const std::vector<ContactState> states =
+        solution.states.size() == n ? solution.states :
+                                      lcp::contact_states(problem, solution.P);
+      for (unsigned int a = 0; a < n; ++a)
+        last_states[lcp_candidates[a]] = states[a];
       // correction = M~^{-1} H P
       delassus_product(lcp_P, column);
     }

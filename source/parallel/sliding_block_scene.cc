@@ -19,6 +19,39 @@ namespace impactfe
 {
   namespace distributed
   {
+    namespace
+    {
+      // Rank 0 writes the files; an error there is thrown on every rank,
+      // so that no rank is left waiting in a collective operation.
+      template <typename Action>
+      void
+      on_rank_zero(const MPI_Comm comm, const Action &action)
+      {
+        std::string error;
+        if (Utilities::MPI::this_mpi_process(comm) == 0)
+          try
+            {
+              action();
+            }
+          catch (const ExceptionBase &e) // its message, not where it was
+            {
+              std::ostringstream message;
+              e.print_info(message);
+              error = message.str();
+              error.erase(0, error.find_first_not_of(" \n"));
+              error.erase(error.find_last_not_of(" \n") + 1);
+            }
+          catch (const std::exception &e)
+            {
+              error = e.what();
+            }
+        error = Utilities::MPI::broadcast(comm, error, 0);
+        AssertThrow(error.empty(), ExcMessage(error));
+      }
+    } // namespace
+
+
+
     // @sect3{Parameters}
     void
     SlidingBlockParameters::read(const std::string &file)
@@ -34,28 +67,7 @@ namespace impactfe
       ObstacleParameters::declare_parameters(prm, "0, 0, 0", "0, 1, 0", "0.5");
       MaterialParameters::declare_parameters(prm, 2); // 2D: a superset
       ParallelSolverParameters::declare_parameters(prm);
-      StabilityBounds::declare_parameters(prm);
-      prm.enter_subsection("Geometry");
-      prm.declare_entry("Length", "0.1", Patterns::Double(), "Along x [m].");
-      prm.declare_entry("Height", "0.01", Patterns::Double(), "Along y [m].");
-      prm.declare_entry("Width", "0.1", Patterns::Double(), "Along z [m].");
-      for (const char *axis : {"x", "z"})
-        prm.declare_entry(std::string("Number of cells along ") + axis,
-                          "4",
-                          Patterns::Integer(1),
-                          "Q1 cells [-].");
-      prm.declare_entry("Number of cells up", "1", Patterns::Integer(1), "[-]");
-      prm.leave_subsection();
-      prm.enter_subsection("Initial conditions");
-      prm.declare_entry("Sliding speed", "1", Patterns::Double(), "v0 [m/s].");
-      prm.declare_entry("Sliding direction",
-                        "0",
-                        Patterns::Double(),
-                        "phi [rad] (3D): along (cos phi, 0, sin phi).");
-      prm.leave_subsection();
-      prm.enter_subsection("Loads");
-      prm.declare_entry("Gravity", "9.81", Patterns::Double(), "g [m/s^2].");
-      prm.leave_subsection();
+      SlidingBoxParameters::declare_parameters(prm);
 
       AssertThrow(std::filesystem::exists(file),
                   ExcMessage("The parameter file '" + file +
@@ -67,32 +79,12 @@ namespace impactfe
       obstacle.parse_parameters(prm, dimension);
       material.parse_parameters(prm, dimension);
       linear_solver.parse_parameters(prm);
-      bounds.parse_parameters(prm);
-      prm.enter_subsection("Geometry");
-      length = prm.get_double("Length");
-      height = prm.get_double("Height");
-      width  = prm.get_double("Width");
-      nx     = prm.get_integer("Number of cells along x");
-      ny     = prm.get_integer("Number of cells up");
-      nz     = prm.get_integer("Number of cells along z");
-      prm.leave_subsection();
-      require_positive(length, "Geometry", "Length");
-      require_positive(height, "Geometry", "Height");
-      require_positive(width, "Geometry", "Width");
-      prm.enter_subsection("Initial conditions");
-      speed = prm.get_double("Sliding speed");
-      phi   = prm.get_double("Sliding direction");
-      prm.leave_subsection();
-      require_positive(speed, "Initial conditions", "Sliding speed");
-      AssertThrow(dimension == 3 || std::abs(std::sin(phi)) < 1e-12,
+      box.parse_parameters(prm);
+      AssertThrow(dimension == 3 || std::abs(std::sin(box.phi)) < 1e-12,
                   ExcMessage("Initial conditions: 'Sliding direction' must "
                              "be 0 or pi in 2D (the block slides along x), "
                              "got " +
-                             format_number(phi) + "."));
-      prm.enter_subsection("Loads");
-      gravity = prm.get_double("Gravity");
-      prm.leave_subsection();
-      require_positive(gravity, "Loads", "Gravity");
+                             format_number(box.phi) + "."));
       AssertThrow(scene.time_stepping.free_flight_step_factor == 1,
                   ExcMessage("Time stepping: 'Free-flight step factor' is "
                              "not available in block_sliding_mpi yet."));
@@ -130,18 +122,20 @@ namespace impactfe
       else if (dim == 3)
         GridGenerator::subdivided_hyper_rectangle(
           tria,
-          {parameters.nx, parameters.ny, parameters.nz},
-          Point<dim>(-0.5 * parameters.length, 0., -0.5 * parameters.width),
-          Point<dim>(0.5 * parameters.length,
-                     parameters.height,
-                     0.5 * parameters.width),
+          {parameters.box.nx, parameters.box.ny, parameters.box.nz},
+          Point<dim>(-0.5 * parameters.box.length,
+                     0.,
+                     -0.5 * parameters.box.width),
+          Point<dim>(0.5 * parameters.box.length,
+                     parameters.box.height,
+                     0.5 * parameters.box.width),
           true);
       else
         GridGenerator::subdivided_hyper_rectangle(
           tria,
-          {parameters.nx, parameters.ny},
-          Point<dim>(-0.5 * parameters.length, 0.),
-          Point<dim>(0.5 * parameters.length, parameters.height),
+          {parameters.box.nx, parameters.box.ny},
+          Point<dim>(-0.5 * parameters.box.length, 0.),
+          Point<dim>(0.5 * parameters.box.length, parameters.box.height),
           true);
       AssertThrow(tria.n_global_active_cells() >= n_ranks,
                   ExcMessage(
@@ -161,10 +155,10 @@ namespace impactfe
     {
       make_grid();
       Tensor<1, dim> g;
-      g[1] = -parameters.material.density * parameters.gravity;
+      g[1] = -parameters.material.density * parameters.box.gravity;
       body.set_body_force(g);
       body.setup();
-      obstacle = parameters.obstacle.create<dim>(parameters.length);
+      obstacle = parameters.obstacle.create<dim>(parameters.box.length);
       contact.setup(body,
                     parameters.mesh.contact_boundary_id,
                     *obstacle,
@@ -177,11 +171,11 @@ namespace impactfe
         parameters.linear_solver);
       solver->setup();
       work.reinit(body.locally_owned_dofs(), comm);
-      solver->set_initial_velocity(parameters.speed * direction());
+      solver->set_initial_velocity(parameters.box.speed * direction());
       normal[1] = 1.;
       tracker   = std::make_unique<RigidBlockTracker<dim>>(
         normal, direction(), parameters.scene.time_stepping.time_step);
-      tracker->start(parameters.speed * direction());
+      tracker->start(parameters.box.speed * direction());
 
       std::vector<std::string> columns = {"time",
                                           "normal_force",
@@ -194,12 +188,11 @@ namespace impactfe
       for (const char *c :
            {"kinetic_energy", "elastic_energy", "active_contacts"})
         columns.push_back(c);
-      if (Utilities::MPI::this_mpi_process(comm) == 0)
-        {
-          create_output_directory(parameters.scene.output.directory);
-          history = std::make_unique<HistoryWriter>(
-            parameters.scene.output.directory + "/history.csv", columns);
-        }
+      on_rank_zero(comm, [&]() {
+        create_output_directory(parameters.scene.output.directory);
+        history = std::make_unique<HistoryWriter>(
+          parameters.scene.output.directory + "/history.csv", columns);
+      });
     }
 
 
@@ -335,7 +328,7 @@ namespace impactfe
           const double         along  = mean * s;
           const double         across = (mean - along * s).norm();
           if (tracker->stop_time() < 0. &&
-              std::hypot(along, across) > 0.01 * parameters.speed)
+              std::hypot(along, across) > 0.01 * parameters.box.speed)
             largest_turn = std::max(largest_turn, std::atan2(across, along));
           output_results(step);
         }
@@ -375,8 +368,8 @@ namespace impactfe
           << "  Contact candidates owned per rank: " << owned_range.min
           << " to " << owned_range.max << "\n"
           << "  Mass " << format_figure(mass, 1e-9) << " kg; launched at "
-          << parameters.speed
-          << " m/s in the direction phi = " << parameters.phi << " rad\n"
+          << parameters.box.speed
+          << " m/s in the direction phi = " << parameters.box.phi << " rad\n"
           << "  Largest angle between the mean sliding velocity and the "
              "launch direction: "
           << format_figure(largest_turn, 1e-6) << " rad\n"
@@ -405,14 +398,19 @@ namespace impactfe
                     parameters.scene.verification.max_impulse_balance_error);
       ok &=
         print_check(out, "contact verification", largest_violation, "<=", 1e-8);
-      const RigidSliding rigid(parameters.speed,
+      const RigidSliding rigid(parameters.box.speed,
                                0.,
-                               parameters.gravity,
+                               parameters.box.gravity,
                                contact.friction_coefficient(),
                                ts.end_time);
       JsonObject         sliding;
-      ok &= tracker->report_sliding(
-        out, rigid, distance, along, ts.end_time, parameters.bounds, sliding);
+      ok &= tracker->report_sliding(out,
+                                    rigid,
+                                    distance,
+                                    along,
+                                    ts.end_time,
+                                    parameters.box.bounds,
+                                    sliding);
       if (parameters.scene.output.print_performance)
         out << "  Wall seconds: set-up " << setup_seconds << ", time loop "
             << loop_seconds << " (" << loop_seconds / n_steps << " per step); "
@@ -450,8 +448,9 @@ namespace impactfe
         .add("largest_violation", largest_violation)
         .add("sliding", sliding)
         .add("checks_passed", ok ? "yes" : "no");
-      if (Utilities::MPI::this_mpi_process(comm) == 0)
+      on_rank_zero(comm, [&]() {
         summary.write(parameters.scene.output.directory + "/summary.json");
+      });
       if (parameters.scene.output.print_performance)
         pcout << "RESULT program=block_sliding_mpi dim=" << dim
               << " ranks=" << n_ranks << " dofs=" << body.dof_handler().n_dofs()

@@ -8,6 +8,80 @@
 
 namespace impactfe
 {
+  // @sect3{The sliding block's entries}
+  void
+  SlidingBoxParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Geometry");
+    prm.declare_entry("Length", "0.1", Patterns::Double(), "Along x [m].");
+    prm.declare_entry("Height", "0.01", Patterns::Double(), "Along y [m].");
+    prm.declare_entry("Width", "0.1", Patterns::Double(), "Along z [m].");
+    prm.declare_entry("Number of cells along x",
+                      "4",
+                      Patterns::Integer(1),
+                      "Q1 cells along the length [-].");
+    prm.declare_entry("Number of cells up",
+                      "1",
+                      Patterns::Integer(1),
+                      "Q1 cells along the height [-].");
+    prm.declare_entry("Number of cells along z",
+                      "4",
+                      Patterns::Integer(1),
+                      "Q1 cells along the width [-].");
+    prm.leave_subsection();
+    prm.enter_subsection("Initial conditions");
+    prm.declare_entry("Sliding speed",
+                      "1",
+                      Patterns::Double(),
+                      "v0 [m/s], along the plane. Must be > 0.");
+    prm.declare_entry("Sliding direction",
+                      "0",
+                      Patterns::Double(),
+                      "phi [rad]: the block is launched along (cos phi, 0, "
+                      "sin phi).");
+    prm.leave_subsection();
+    prm.enter_subsection("Loads");
+    prm.declare_entry("Gravity",
+                      "9.81",
+                      Patterns::Double(),
+                      "g [m/s^2], towards the plane (-y). Must be > 0.");
+    prm.leave_subsection();
+    StabilityBounds::declare_parameters(prm);
+  }
+
+
+
+  void
+  SlidingBoxParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Geometry");
+    length = prm.get_double("Length");
+    height = prm.get_double("Height");
+    width  = prm.get_double("Width");
+    nx     = prm.get_integer("Number of cells along x");
+    ny     = prm.get_integer("Number of cells up");
+    nz     = prm.get_integer("Number of cells along z");
+    prm.leave_subsection();
+    require_positive(length, "Geometry", "Length");
+    require_positive(height, "Geometry", "Height");
+    require_positive(width, "Geometry", "Width");
+    prm.enter_subsection("Initial conditions");
+    speed = prm.get_double("Sliding speed");
+    phi   = prm.get_double("Sliding direction");
+    prm.leave_subsection();
+    require_positive(speed, "Initial conditions", "Sliding speed");
+    AssertThrow(std::isfinite(phi),
+                ExcMessage(
+                  "Initial conditions: 'Sliding direction' must be finite."));
+    prm.enter_subsection("Loads");
+    gravity = prm.get_double("Gravity");
+    prm.leave_subsection();
+    require_positive(gravity, "Loads", "Gravity");
+    bounds.parse_parameters(prm);
+  }
+
+
+
   void
   BlockParameters::declare_parameters(ParameterHandler  &prm,
                                       const std::string &what)

@@ -253,6 +253,12 @@ main()
              "subsection Initial conditions\n  set Sliding direction = "
              "0.6\nend\n",
            mpi);
+  // rank 0 cannot write its files: the others must not wait for it
+  run_case("mpi_unwritable_output_directory",
+           "subsection Output\n  set Output directory = "
+           "/proc/impactfe_cannot_write_here\n  set VTU output = false\n"
+           "end\n",
+           mpi);
   run_case("mpi_bad_solver_tolerance",
            with("Parallel solver", "Tolerance = 2"),
            mpi);

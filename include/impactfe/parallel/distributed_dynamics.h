@@ -45,12 +45,13 @@ namespace impactfe
                    lcp_resolves = 0, largest_lcp = 0;
       /// The worst verification violations of the accepted answers
       /// (relative, verify_contact_velocities()).
-      double largest_signorini = 0., largest_cone = 0., largest_sliding = 0.,
-             largest_complementarity = 0.;
+      double largest_signorini = 0., largest_cone = 0., largest_sliding = 0.;
       std::string last_fallback_reason;
-      /// Wall seconds in the solves with M~ (this rank), and in the
-      /// exchanges of replicated contact values (sums over the ranks).
-      double solve_seconds = 0., exchange_seconds = 0.;
+      /// Keep the worst of @p check's violations.
+      void
+      record(const lcp::ContactVerification &check);
+      /// Wall seconds in the solves with M~ (this rank).
+      double solve_seconds = 0.;
     };
 
     /**

@@ -35,10 +35,8 @@ namespace impactfe
       ObstacleParameters       obstacle;
       MaterialParameters       material;
       ParallelSolverParameters linear_solver;
-      StabilityBounds          bounds;
-      double                   length = 0.1, height = 0.01, width = 0.1;
-      unsigned int             nx = 4, ny = 1, nz = 4;
-      double                   speed = 1., phi = 0., gravity = 9.81;
+      /// The scene: the box (2D: its section), v0, phi, g, the bounds.
+      SlidingBoxParameters box;
 
       /// Declare every entry, read @p file and check the values (throws with
       /// the entry named).
@@ -79,9 +77,9 @@ namespace impactfe
       direction() const
       {
         Tensor<1, dim> s;
-        s[0] = std::cos(parameters.phi);
+        s[0] = std::cos(parameters.box.phi);
         if (dim == 3)
-          s[dim - 1] = std::sin(parameters.phi);
+          s[dim - 1] = std::sin(parameters.box.phi);
         return s;
       }
 

@@ -51,6 +51,29 @@ namespace impactfe
   get_vector(ParameterHandler &prm, const std::string &entry);
 
   /**
+   * The entries of the sliding-block scenes (block_sliding_3d and
+   * block_sliding_mpi): subsection `Geometry` (a box of length x height x
+   * width, in nx x ny x nz Q1 cells), `Initial conditions` (the speed v0
+   * and the direction phi of the launch along the plane), `Loads` (g) and
+   * the stability bounds of `Verification`.
+   */
+  struct SlidingBoxParameters
+  {
+    double          length = 0.1, height = 0.01, width = 0.1;
+    unsigned int    nx = 4, ny = 1, nz = 4;
+    double          speed = 1., phi = 0., gravity = 9.81;
+    StabilityBounds bounds;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    /// Parses and checks (lengths, v0 and g > 0, phi finite).
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
+
+
+  /**
    * The rigid-block model of sliding on a plane. Along the plane's tangent
    * t, with normal load N (pressing), tangential acceleration a_t of the
    * loads and initial velocity v0 = v(0).t: while sliding in the direction
