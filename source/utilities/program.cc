@@ -1,9 +1,8 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/multithread_info.h>
 
+#include <impactfe/utilities/blas_threads.h>
 #include <impactfe/utilities/program.h>
-
-#include <dlfcn.h>
 
 #include <charconv>
 #include <cmath>
@@ -115,21 +114,7 @@ namespace impactfe
   {
     dealii::MultithreadInfo::set_thread_limit(
       n_threads == 0 ? dealii::numbers::invalid_unsigned_int : n_threads);
-    if (n_threads == 0)
-      return;
-    using SetThreads = void (*)(int);
-    if (void *symbol = dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))
-      {
-        reinterpret_cast<SetThreads>(symbol)(static_cast<int>(n_threads));
-        // The workers started when the library was loaded spin for about
-        // 0.1 s before they sleep, during the set-up and the first steps.
-        // With one thread they are never used again: stop them (OpenBLAS
-        // starts them again if a later limit asks for threads).
-        using Shutdown = int (*)();
-        if (n_threads == 1)
-          if (void *stop = dlsym(RTLD_DEFAULT, "blas_thread_shutdown_"))
-            reinterpret_cast<Shutdown>(stop)();
-      }
+    set_blas_thread_limit(n_threads);
   }
 
 

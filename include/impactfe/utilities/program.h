@@ -54,14 +54,10 @@ namespace impactfe
 
   /**
    * Limit the threads of deal.II (TBB) and of the BLAS to @p n_threads
-   * (0: no limit). Debian's deal.II links the pthreads OpenBLAS, whose idle
-   * workers spin in sched_yield after each BLAS call (CHOLMOD's supernodal
-   * factors call it in every solve): with one core's worth of work, that
-   * doubled the process CPU of the plate's time loop (0.075 s to 0.145 s)
-   * and took a core from anything else running; the workers OpenBLAS
-   * starts when it is loaded spin for about 0.1 s even if never used, so
-   * with one thread they are stopped. The OpenBLAS calls are found at run
-   * time, so another BLAS is left as it is.
+   * (0: no limit); the BLAS through set_blas_thread_limit(). CHOLMOD's
+   * supernodal factors call the BLAS in every solve: the spinning OpenBLAS
+   * workers doubled the process CPU of the plate's time loop (0.075 s to
+   * 0.145 s).
    */
   void
   set_thread_limit(const unsigned int n_threads);
