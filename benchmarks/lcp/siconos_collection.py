@@ -24,7 +24,10 @@ fc2d_granularflowonwall_{00667_00000,02020_00213,07002_00801}.dat of
 Siconos' git repository (same folder; not in the 4.4.0 release).
 --peer: time Siconos' SICONOS_FRICTION_2D_LEMKE (Debian's python3-siconos)
 on the 2D files with compressed-column storage (CPU time, best of 2), and
-check its answer the same way (the exact-cone error).
+check its answer the same way (the exact-cone error); with --cone exact,
+also Siconos' exact-cone Newton solver SICONOS_FRICTION_3D_NSN_AC on the 3D
+text files, to --tolerance on its own error measure (printed in the cone
+error column; its iterations in the pivots column).
 
 Files Siconos' readers call friction-contact problems but impactfe does
 not solve (global text problems "GFC3D", rolling friction "RFC3D",
@@ -69,10 +72,12 @@ def fetch_debian_source(out):
 
 
 def run_ours(binary, path, facets, cone="facets", tolerance=1e-10,
-             timeout=None):
+             timeout=None, route="auto"):
     """One lcp-solve run; returns a dict of what it printed."""
     cmd = [binary, "--reference", "--facets", str(facets), "--cone", cone,
            "--tolerance", str(tolerance), path]
+    if cone == "exact":
+        cmd[1:1] = ["--route", route]
     t0 = time.time()
     try:
         p = subprocess.run(cmd, capture_output=True, text=True,
@@ -181,6 +186,59 @@ print("PEER", info, best, (num ** 0.5) / den if den > 0 else num ** 0.5)
     return row
 
 
+def run_peer_3d(path, tolerance):
+    """Siconos' exact-cone Newton solver (SICONOS_FRICTION_3D_NSN_AC,
+    Alart-Curnier's function) on a 3D text file, to the same tolerance on
+    its own error measure (sqrt(sum_c |r_c - P_K(r_c - u~_c)|^2) / |q|), at
+    most 1000 iterations; CPU time, best of 2, in a child process."""
+    code = r'''
+import sys, time
+import numpy as np
+import siconos.numerics as sn
+p = sn.frictionContact_newFromFile(sys.argv[1])
+m = p.dimension * p.numberOfContacts
+best = None
+for rep in range(2):
+    r = np.zeros(m); u = np.zeros(m)
+    so = sn.SolverOptions(sn.SICONOS_FRICTION_3D_NSN_AC)
+    so.iparam[sn.SICONOS_IPARAM_MAX_ITER] = 1000
+    so.dparam[sn.SICONOS_DPARAM_TOL] = float(sys.argv[2])
+    t0 = time.process_time()
+    info = sn.fc3d_driver(p, r, u, so)
+    t = time.process_time() - t0
+    best = t if best is None else min(best, t)
+print("PEER", info, best, so.dparam[sn.SICONOS_DPARAM_RESIDU],
+      so.iparam[sn.SICONOS_IPARAM_ITER_DONE])
+'''
+    row = {"file": os.path.basename(path), "code": "siconos-nsn-ac",
+           "status": "failed", "solve_s": "", "exact_cone_error": "",
+           "iterations": ""}
+    try:
+        p = subprocess.run(["/usr/bin/python3", "-c", code, path,
+                            str(tolerance)],
+                           capture_output=True, text=True, timeout=600)
+    except subprocess.TimeoutExpired:
+        row["status"] = "timeout"
+        return row
+    for line in p.stdout.split("\n"):
+        f = line.split()
+        if f and f[0] == "PEER":
+            row.update(status="solved" if f[1] == "0" else "info=" + f[1],
+                       solve_s=float(f[2]), exact_cone_error=f[3],
+                       iterations=f[4])
+    if p.returncode != 0:
+        row["status"] = "error: " + p.stderr.strip().split("\n")[-1][:120]
+    return row
+
+
+def is_3d_text(path):
+    try:
+        with open(path) as f:
+            return next(f).strip() == "3" and not path.endswith(".hdf5")
+    except (StopIteration, UnicodeDecodeError, OSError):
+        return False
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawTextHelpFormatter)
@@ -190,6 +248,9 @@ def main():
     ap.add_argument("--facets", type=int, default=8)
     ap.add_argument("--cone", choices=["facets", "exact"], default="facets")
     ap.add_argument("--tolerance", type=float, default=1e-10)
+    ap.add_argument("--route", choices=["auto", "facets", "interior-point"],
+                    default="auto",
+                    help="with --cone exact: lcp-solve's --route")
     ap.add_argument("--timeout", type=float, default=None,
                     help="seconds one lcp-solve run may take (status "
                          "'timeout' after that)")
@@ -210,7 +271,8 @@ def main():
           ("file", "n", "status", "pivots", "rel.err", "solve s", "cone err",
            "LCPs"))
     for path in files:
-        r = run_ours(binary, path, a.facets, a.cone, a.tolerance, a.timeout)
+        r = run_ours(binary, path, a.facets, a.cone, a.tolerance, a.timeout,
+                     a.route)
         rows.append(r)
         print("%-42s %6s %-16s %7s %10s %10s %10s %5s%s" % (
             r["file"][:42], r["n"], r["status"], r["pivots"],
@@ -220,6 +282,14 @@ def main():
             r["cone_iterations"] + ("" if r["converged"] != "no" else "!"),
             ("  " + r["message"][:60]) if r["status"] != "solved" else ""),
             flush=True)
+        if a.peer and a.cone == "exact" and is_3d_text(path) and \
+                r["status"] != "not read":
+            pr = run_peer_3d(path, a.tolerance)
+            rows.append(pr)
+            print("%-42s %6s %-16s %7s %10s %10s %10s" % (
+                "  siconos NSN_AC", "", pr["status"][:16], pr["iterations"],
+                "", "%.3g" % pr["solve_s"] if pr["solve_s"] != "" else "",
+                pr["exact_cone_error"]), flush=True)
         if a.peer and is_2d_csc(path):
             pr = run_peer(path)
             rows.append(pr)
@@ -248,7 +318,7 @@ def main():
     cone_errors = [float(r["exact_cone_error"]) for r in solved
                    if r["exact_cone_error"] not in ("", "-")]
     summary = {"commit": commit, "cpu": cpu, "facets": a.facets,
-               "cone": a.cone, "tolerance": a.tolerance,
+               "cone": a.cone, "route": a.route, "tolerance": a.tolerance,
                "converged": len(converged),
                "files": len(ours), "read": len(read), "solved": len(solved),
                "unsolved": [r["file"] for r in read if r["status"] != "solved"],
@@ -258,9 +328,11 @@ def main():
         json.dump(summary, f, indent=1)
     slowest = max((r["solve_s"] for r in solved), default=0.)
     print("RESULT files=%d read=%d solved=%d unsolved=%d facets=%d cone=%s "
-          "converged=%d max_cone_error=%.3g slowest_solve_seconds=%.3g" %
+          "route=%s converged=%d max_cone_error=%.3g "
+          "slowest_solve_seconds=%.3g" %
           (len(ours), len(read), len(solved), len(read) - len(solved),
-           a.facets, a.cone, len(converged) if a.cone == "exact" else 0,
+           a.facets, a.cone, a.route if a.cone == "exact" else "-",
+           len(converged) if a.cone == "exact" else 0,
            max(cone_errors, default=0.), slowest))
 
 

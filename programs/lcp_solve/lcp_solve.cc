@@ -3,15 +3,17 @@
 // solver.
 //
 //   lcp-solve [--solution] [--warm] [--form klarbring|facets|auto] [--facets k]
-//             [--cone facets|exact] [--tolerance e] [--reference] [--verbose]
-//             [--write-fclib OUT] FILE...
+//             [--cone facets|exact] [--route R] [--tolerance e] [--reference]
+//             [--verbose] [--threads t] [--write-fclib OUT] FILE...
 //
 // --cone exact solves contact problems with the circular Coulomb cone
-// (ExactConeSolver, group by group: facet LCPs re-aligned with the slip
-// directions until the exact-cone error is <= --tolerance, default 1e-10)
-// and prints a line "cone FILE exact iterations=I cone_error=E converged=yes";
-// a problem whose iteration does not converge counts as not solved. The
-// default, --cone facets, is the polygonal cone of --facets k facets.
+// (ExactConeSolver, group by group: the interior point route, then facet LCPs
+// re-aligned with the slip directions where it stops short, until the
+// natural-map residual is <= --tolerance, default 1e-10; --route changes the
+// order) and prints a line "cone FILE exact iterations=I cone_error=E
+// converged=yes"; a problem that does not converge counts as not solved.
+// The default, --cone facets, is the polygonal cone of --facets k facets.
+// The BLAS runs on --threads t threads (default 1).
 //
 // --reference prints, for contact problems, the exact-cone error of the
 // answer and, for FCLib files that carry a /solution, that solution's error
@@ -40,6 +42,7 @@
 #include <impactfe/lcp/fclib_io.h>
 #include <impactfe/lcp/lemke.h>
 #include <impactfe/lcp/problem_io.h>
+#include <impactfe/utilities/blas_threads.h>
 
 #include <chrono>
 #include <cmath>
@@ -68,6 +71,12 @@ namespace
          "  --cone C     facets (default: the polygonal cone) or exact (the circular\n"
          "               cone, by re-aligned facet LCPs; contact files)\n"
          "  --tolerance e  exact-cone error to reach with --cone exact (default 1e-10)\n"
+         "  --threads t  BLAS threads (default 1: the times are one core's)\n"
+         "  --route R    with --cone exact: auto (default) or interior-point-then-\n"
+         "               facets: the interior point route, the facet LCPs where it\n"
+         "               stops short; facets-then-interior-point: the other way\n"
+         "               round (the time loop's order); facets: facet LCPs only;\n"
+         "               interior-point: that route only\n"
          "  --verbose    print how each problem was solved (forms, routes, groups)\n"
          "  --reference  contact problems: print the exact-cone error of P, and for\n"
          "               FCLib files with a /solution that solution's error and\n"
@@ -91,10 +100,14 @@ int
 main(int argc, char **argv)
 {
   bool solution = false, warm = false, reference = false, verbose = false;
-  std::string              fclib_output;
-  ContactOptions           options;
-  ConeModel                cone = ConeModel::facets;
-  ExactConeOptions         cone_options;
+  unsigned int     blas_threads = 1;
+  std::string      fclib_output;
+  ContactOptions   options;
+  ConeModel        cone = ConeModel::facets;
+  ExactConeOptions cone_options;
+  // Cold problems (no last step's facets to start from): the interior point
+  // route first (doc/lcp.md).
+  cone_options.route = ExactConeRoute::interior_point_then_facets;
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i)
     {
@@ -142,6 +155,34 @@ main(int argc, char **argv)
               return 2;
             }
         }
+      else if (a == "--threads" && i + 1 < argc)
+        {
+          char      *end = nullptr;
+          const long t   = std::strtol(argv[++i], &end, 10);
+          if (*end != '\0' || t < 1 || t > 1024)
+            {
+              std::cerr
+                << "lcp-solve: error: --threads needs an integer >= 1\n";
+              return 2;
+            }
+          blas_threads = static_cast<unsigned int>(t);
+        }
+      else if (a == "--route" && i + 1 < argc)
+        {
+          const std::string route = argv[++i];
+          try
+            {
+              cone_options.route =
+                route == "auto" ? ExactConeRoute::interior_point_then_facets :
+                                  exact_cone_route_from_string(route);
+            }
+          catch (const std::invalid_argument &e)
+            {
+              std::cerr << "lcp-solve: error: --route: " << e.what()
+                        << " (or auto)\n";
+              return 2;
+            }
+        }
       else if (a == "--tolerance" && i + 1 < argc)
         {
           char *end              = nullptr;
@@ -172,6 +213,7 @@ main(int argc, char **argv)
       else
         files.push_back(a);
     }
+  impactfe::set_blas_thread_limit(blas_threads);
   if (files.empty())
     {
       usage(std::cerr);
@@ -257,7 +299,9 @@ main(int argc, char **argv)
               else
                 s = solve_contact_problem(p, options);
               n = s.lcp.z.size();
-              if (n == 0) // not solved: report the size of the assembled LCP
+              if (cone == ConeModel::exact) // the unknowns; no one LCP
+                n = p.W.n_rows();
+              else if (n == 0) // not solved: the size of the assembled LCP
                 n = assemble_contact_lcp(p, options).q.size();
               r         = s.lcp;
               r.message = s.message; // every route tried

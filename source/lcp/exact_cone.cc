@@ -1,5 +1,6 @@
 #include <impactfe/lcp/contact_routes.h>
 #include <impactfe/lcp/exact_cone.h>
+#include <impactfe/lcp/interior_point.h>
 #include <impactfe/lcp/lu.h>
 
 #include <algorithm>
@@ -16,6 +17,43 @@ namespace impactfe
     to_string(const ConeModel model)
     {
       return model == ConeModel::exact ? "exact" : "facets";
+    }
+
+
+
+    std::string
+    to_string(const ExactConeRoute route)
+    {
+      switch (route)
+        {
+          case ExactConeRoute::facets:
+            return "facets";
+          case ExactConeRoute::facets_then_interior_point:
+            return "facets-then-interior-point";
+          case ExactConeRoute::interior_point_then_facets:
+            return "interior-point-then-facets";
+          case ExactConeRoute::interior_point:
+            return "interior-point";
+        }
+      return "";
+    }
+
+
+
+    ExactConeRoute
+    exact_cone_route_from_string(const std::string &name)
+    {
+      for (const ExactConeRoute route :
+           {ExactConeRoute::facets,
+            ExactConeRoute::facets_then_interior_point,
+            ExactConeRoute::interior_point_then_facets,
+            ExactConeRoute::interior_point})
+        if (name == to_string(route))
+          return route;
+      throw std::invalid_argument(
+        "exact cone route '" + name +
+        "' is none of facets, facets-then-interior-point, "
+        "interior-point-then-facets, interior-point");
     }
 
 
@@ -100,78 +138,6 @@ namespace impactfe
       }
 
       /**
-       * The natural-map residual of the circular-cone problem in impulse
-       * units: max over contacts of |P_c - proj_K(P_c - rho_c u~_c)|, with
-       * u = W P + V_free (+ b_N), u~ = u + mu |u_T| e_N and rho_c = 1/W_cc
-       * (the mean of the contact's diagonal of W), relative to the impulse
-       * scale s_P = max(|P|, (|V_free| + |b_N|)/|W|) of
-       * verify_contact_solution() (infinity norms). It
-       * is 0 exactly at a solution. Unlike exact_cone_error() it does not
-       * compare impulses with velocities, whose sizes can differ by orders
-       * of magnitude (a free velocity of 1 m/s against impulses of a time
-       * step), so a tolerance on it is a tolerance on the impulses.
-       */
-      double
-      impulse_residual(const ContactProblem      &p,
-                       const std::vector<double> &P,
-                       std::vector<double>       &u)
-      {
-        const unsigned int d = p.n_directions;
-        p.W.vmult(u, P);
-        double largest = 0., residual = 0.;
-        for (std::size_t i = 0; i < u.size(); ++i)
-          {
-            u[i] += p.free_velocity[i];
-            largest = std::max(largest, std::abs(P[i]));
-          }
-        for (unsigned int c = 0; c < p.n_contacts; ++c)
-          {
-            const std::size_t r = std::size_t(d) * c;
-            double            w = 0.;
-            for (unsigned int k = 0; k < d; ++k)
-              w += p.W(r + k, r + k);
-            const double rho = w > 0. ? d / w : 0.;
-            const double mu  = d > 1 ? p.mu[c] : 0.;
-            double       uT  = 0.;
-            for (unsigned int k = 1; k < d; ++k)
-              uT += u[r + k] * u[r + k];
-            uT          = std::sqrt(uT);
-            double x[3] = {P[r] - rho * (u[r] + p.gap_term[c] + mu * uT),
-                           0.,
-                           0.};
-            double xT   = 0.;
-            for (unsigned int k = 1; k < d; ++k)
-              {
-                x[k] = P[r + k] - rho * u[r + k];
-                xT += x[k] * x[k];
-              }
-            xT             = std::sqrt(xT);
-            double proj[3] = {0., 0., 0.};
-            if (xT <= mu * x[0])
-              std::copy(x, x + d, proj);
-            else if (mu * xT > -x[0])
-              {
-                const double a = (mu * xT + x[0]) / (1. + mu * mu);
-                proj[0]        = a;
-                for (unsigned int k = 1; k < d; ++k)
-                  proj[k] = xT > 0. ? mu * a * x[k] / xT : 0.;
-              }
-            for (unsigned int k = 0; k < d; ++k)
-              residual = std::max(residual, std::abs(P[r + k] - proj[k]));
-          }
-        // The impulse scale of verify_contact_solution(): at a grazing
-        // step every impulse is round-off, and the velocities set the scale.
-        double free = 0., gaps = 0.;
-        for (const double v : p.free_velocity)
-          free = std::max(free, std::abs(v));
-        for (const double b : p.gap_term)
-          gaps = std::max(gaps, std::abs(b));
-        const double w     = p.W.linfty_norm();
-        const double scale = std::max(largest, w > 0. ? (free + gaps) / w : 0.);
-        return scale > 0. ? residual / scale : residual;
-      }
-
-      /**
        * Newton's method on the circular-cone equations at the contact
        * states of @p P, a facet answer whose polygon has its edges at
        * @p edge = cos(pi/k) of the circle's radius: open P_c = 0; closed
@@ -181,7 +147,7 @@ namespace impactfe
        * quadratically. Returns true
        * and the new impulses in @p P only if the states hold at the answer
        * (P_N >= 0, open contacts separate, sticking ones inside the cone)
-       * and its impulse_residual() is <= @p tolerance. Redundant contacts
+       * and its exact_cone_residual() is <= @p tolerance. Redundant contacts
        * make the Jacobian singular; the Levenberg-Marquardt steps then go
        * to one of the (equally valid) solutions.
        */
@@ -333,7 +299,7 @@ namespace impactfe
               return false;
           }
         std::vector<double> u;
-        if (!(impulse_residual(p, x, u) <= tolerance))
+        if (!(exact_cone_residual(p, x, u) <= tolerance))
           return false;
         P = x;
         return true;
@@ -366,7 +332,15 @@ namespace impactfe
       const ContactProblem &p  = scaled ? unit : problem;
       const unsigned int    nc = p.n_contacts;
       last_report              = ExactConeReport();
+      interior_point_tried     = false;
       angles.assign(nc, 0.);
+      const ExactConeRoute route = cone_options.route;
+      if (route == ExactConeRoute::interior_point)
+        {
+          solution = ContactSolution();
+          try_interior_point(problem, p, cone_options);
+          return solution;
+        }
       if (!has_friction(p))
         {
           solution               = state_guess.empty() ?
@@ -378,13 +352,30 @@ namespace impactfe
           if (solution.lcp.status == Status::solved)
             {
               last_report.cone_error = exact_cone_error(problem, solution.P);
-              last_report.residual  = impulse_residual(p, solution.P, velocity);
+              last_report.residual =
+                exact_cone_residual(p, solution.P, velocity);
               last_report.converged = true;
             }
+          else if (route != ExactConeRoute::facets)
+            try_interior_point(problem, p, cone_options);
           return solution;
         }
       if (initial_angles.size() == nc)
         angles = initial_angles;
+      // Cold problems: the interior point route first, whose cost does not
+      // depend on how degenerate the facet LCPs are. Where it stops short,
+      // the facets start from the given angles, not from its answer.
+      if (route == ExactConeRoute::interior_point_then_facets)
+        {
+          solution = ContactSolution();
+          try_interior_point(problem, p, cone_options);
+          if (last_report.converged)
+            return solution;
+          last_report.interior_point = false;
+          angles.assign(nc, 0.);
+          if (initial_angles.size() == nc)
+            angles = initial_angles;
+        }
       last_angle.assign(nc, 0.);
       last_residual.assign(nc, 0.);
       has_residual.assign(nc, false);
@@ -414,6 +405,8 @@ namespace impactfe
                   last_report.iterations = 1;
                   last_report.cone_error =
                     std::numeric_limits<double>::quiet_NaN();
+                  if (route != ExactConeRoute::facets)
+                    try_interior_point(problem, p, cone_options);
                   return solution;
                 }
               failure = "; facet LCP " + std::to_string(it) + " failed (" +
@@ -427,7 +420,7 @@ namespace impactfe
           for (std::size_t i = 0; i < s.lcp.z.size(); ++i)
             guess[i] = s.lcp.z[i] > 0.;
           last_report.iterations = it;
-          last_report.residual   = impulse_residual(p, solution.P, velocity);
+          last_report.residual   = exact_cone_residual(p, solution.P, velocity);
           if (last_report.residual <= cone_options.tolerance)
             {
               last_report.converged = true;
@@ -438,7 +431,8 @@ namespace impactfe
               polish_on_circular_cone(
                 p, solution.P, edge, cone_options.tolerance))
             {
-              last_report.residual  = impulse_residual(p, solution.P, velocity);
+              last_report.residual =
+                exact_cone_residual(p, solution.P, velocity);
               last_report.converged = true;
               polished              = true;
               break;
@@ -530,7 +524,54 @@ namespace impactfe
                      "NOT converged"));
       solution.message.append(text);
       solution.message.append(failure);
+      if (!last_report.converged && route != ExactConeRoute::facets)
+        try_interior_point(problem, p, cone_options);
       return solution;
+    }
+
+
+
+    // @sect3{The interior point route}
+    // Where the facet LCPs fail (rays on the rank-deficient W of redundant
+    // contacts) or stop short of the circular cone, the interior point
+    // route (interior_point.h) solves the circular-cone problem without an
+    // LCP. Its answer replaces the facet answer if it is verified and
+    // closer to the circular cone; the facets then start at the directions
+    // of its tangential impulses (a warm start for the next time step).
+    void
+    ExactConeSolver::try_interior_point(const ContactProblem   &problem,
+                                        const ContactProblem   &unit_problem,
+                                        const ExactConeOptions &cone_options)
+    {
+      if (!interior_point_tried)
+        {
+          InteriorPointOptions ip_options;
+          ip_options.tolerance = cone_options.tolerance;
+          interior_point_solver.solve(unit_problem, ip_options);
+          interior_point_tried = true;
+        }
+      const ContactSolution     &ip         = interior_point_solver.solution();
+      const InteriorPointReport &ip_report  = interior_point_solver.report();
+      last_report.interior_point_iterations = ip_report.iterations;
+      last_report.newton_iterations         = ip_report.newton_iterations;
+      const bool facet_answer = solution.lcp.status == Status::solved;
+      if (ip.lcp.status == Status::solved &&
+          (!facet_answer || ip_report.residual < last_report.residual))
+        {
+          const std::string facet_message = solution.message;
+          solution                        = ip;
+          solution.message = facet_message + "; taken instead: " + ip.message;
+          last_report.residual       = ip_report.residual;
+          last_report.converged      = ip_report.converged;
+          last_report.cone_error     = exact_cone_error(problem, ip.P);
+          last_report.interior_point = true;
+          const unsigned int d       = unit_problem.n_directions;
+          for (unsigned int c = 0; c < unit_problem.n_contacts && d == 3; ++c)
+            if (std::hypot(ip.P[3 * c + 1], ip.P[3 * c + 2]) > 0.)
+              angles[c] = std::atan2(ip.P[3 * c + 2], ip.P[3 * c + 1]);
+        }
+      else
+        solution.message += "; interior point route tried: " + ip.message;
     }
 
 
@@ -567,6 +608,7 @@ namespace impactfe
       out.n_groups          = static_cast<unsigned int>(groups.size());
       ContactProblem  group;
       ExactConeSolver solver;
+      std::string     not_converged;
       for (const auto &contacts : groups)
         {
           restrict_contact_problem(p, contacts, group);
@@ -576,6 +618,15 @@ namespace impactfe
             std::max(out.report.iterations, solver.report().iterations);
           out.report.converged =
             out.report.converged && solver.report().converged;
+          if (solver.report().interior_point)
+            ++out.n_interior_point;
+          out.report.interior_point_iterations =
+            std::max(out.report.interior_point_iterations,
+                     solver.report().interior_point_iterations);
+          if (!solver.report().converged)
+            not_converged += "; group of contact " +
+                             std::to_string(contacts.front()) + ": " +
+                             g.message;
           out.report.residual =
             std::max(out.report.residual, solver.report().residual);
           s.lcp.pivots += g.lcp.pivots;
@@ -601,17 +652,20 @@ namespace impactfe
             }
         }
       out.report.cone_error = exact_cone_error(p, s.P);
-      char text[160];
+      char text[200];
       std::snprintf(text,
                     sizeof(text),
                     "exact cone in %u groups: %u facet LCPs, at most %u in a "
-                    "group, cone error %.2e, %s",
+                    "group, %u group%s by the interior point route, cone "
+                    "error %.2e, %s",
                     out.n_groups,
                     out.total_iterations,
                     out.report.iterations,
+                    out.n_interior_point,
+                    out.n_interior_point == 1 ? "" : "s",
                     out.report.cone_error,
                     out.report.converged ? "converged" : "NOT converged");
-      s.message = text;
+      s.message = text + not_converged;
       return out;
     }
   } // namespace lcp

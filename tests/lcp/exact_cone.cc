@@ -27,6 +27,7 @@
 using namespace impactfe::lcp;
 using impactfe_tests::check;
 using impactfe_tests::rounded;
+using lcp_test::condensed;
 
 namespace
 {
@@ -39,32 +40,6 @@ namespace
     for (std::size_t i = 0; i < a.size(); ++i)
       d = std::max(d, std::abs(a[i] - b[i]));
     return d;
-  }
-
-  // W = G M^-1 G^T and V_free = G v for a body with generalized velocity v
-  // and diagonal mass matrix m_diag; G has one row per local direction.
-  ContactProblem
-  condensed(const std::vector<std::vector<double>> &G,
-            const std::vector<double>              &m_diag,
-            const std::vector<double>              &v,
-            const std::vector<double>              &mu)
-  {
-    ContactProblem p;
-    p.n_directions = 3;
-    p.n_contacts   = G.size() / 3;
-    p.W.reinit(G.size(), G.size());
-    p.free_velocity.assign(G.size(), 0.);
-    for (std::size_t i = 0; i < G.size(); ++i)
-      {
-        for (std::size_t j = 0; j < G.size(); ++j)
-          for (std::size_t d = 0; d < m_diag.size(); ++d)
-            p.W(i, j) += G[i][d] * G[j][d] / m_diag[d];
-        for (std::size_t d = 0; d < v.size(); ++d)
-          p.free_velocity[i] += G[i][d] * v[d];
-      }
-    p.gap_term.assign(p.n_contacts, 0.);
-    p.mu = mu;
-    return p;
   }
 
   void

@@ -213,6 +213,34 @@ namespace lcp_test
     return W;
   }
 
+  /// The contact problem of a body with generalized velocity @p v and
+  /// diagonal mass matrix @p m_diag: W = G M^-1 G^T and V_free = G v, with
+  /// one row of G per local direction (@p n_directions per contact).
+  inline impactfe::lcp::ContactProblem
+  condensed(const std::vector<std::vector<double>> &G,
+            const std::vector<double>              &m_diag,
+            const std::vector<double>              &v,
+            const std::vector<double>              &mu,
+            const unsigned int                      n_directions = 3)
+  {
+    impactfe::lcp::ContactProblem p;
+    p.n_directions = n_directions;
+    p.n_contacts   = G.size() / n_directions;
+    p.W.reinit(G.size(), G.size());
+    p.free_velocity.assign(G.size(), 0.);
+    for (std::size_t i = 0; i < G.size(); ++i)
+      {
+        for (std::size_t j = 0; j < G.size(); ++j)
+          for (std::size_t d = 0; d < m_diag.size(); ++d)
+            p.W(i, j) += G[i][d] * G[j][d] / m_diag[d];
+        for (std::size_t d = 0; d < v.size(); ++d)
+          p.free_velocity[i] += G[i][d] * v[d];
+      }
+    p.gap_term.assign(p.n_contacts, 0.);
+    p.mu = mu;
+    return p;
+  }
+
   /// max |a - b| over the impulse scale of verify_contact_solution():
   /// max(||b||, (||V_free|| + ||b_N||) / ||W||), so that answers that are
   /// both zero up to rounding compare equal.

@@ -8,6 +8,7 @@
 #define impactfe_lcp_exact_cone_h
 
 #include <impactfe/lcp/contact_problem.h>
+#include <impactfe/lcp/interior_point.h>
 
 #include <string>
 #include <vector>
@@ -34,6 +35,33 @@ namespace impactfe
     ConeModel
     cone_model_from_string(const std::string &name);
 
+    /// The order in which ExactConeSolver tries its two routes.
+    enum class ExactConeRoute
+    {
+      /// Facet LCPs re-aligned with the slip directions only.
+      facets,
+      /// Facet LCPs; the interior point route where they fail or stop
+      /// short of the tolerance. For a sequence of problems (time steps),
+      /// whose facets and states warm-start the next LCPs.
+      facets_then_interior_point,
+      /// The interior point route; the facet LCPs where it stops short of
+      /// the tolerance. For cold problems (problem files).
+      interior_point_then_facets,
+      /// The interior point route only (any dimension, with or without
+      /// friction).
+      interior_point
+    };
+
+    /// "facets", "facets-then-interior-point", "interior-point-then-facets",
+    /// "interior-point".
+    std::string
+    to_string(ExactConeRoute route);
+
+    /// From the names of to_string(ExactConeRoute); throws
+    /// std::invalid_argument otherwise.
+    ExactConeRoute
+    exact_cone_route_from_string(const std::string &name);
+
     /// Options of ExactConeSolver.
     struct ExactConeOptions
     {
@@ -48,6 +76,9 @@ namespace impactfe
       double tolerance = 1e-10;
       /// Facet LCPs solved at the most.
       unsigned int max_iterations = 30;
+      /// Which route first; the interior point route is
+      /// CoulombInteriorPointSolver.
+      ExactConeRoute route = ExactConeRoute::facets_then_interior_point;
     };
 
     /// What the last ExactConeSolver::solve() did.
@@ -63,6 +94,11 @@ namespace impactfe
       /// Whether residual <= tolerance (always, for a solved problem
       /// without friction in 3D, whose LCP cone is exact).
       bool converged = false;
+      /// Whether the answer is the interior point route's, and that route's
+      /// iterations (interior point, then semismooth Newton) if it was tried.
+      bool         interior_point            = false;
+      unsigned int interior_point_iterations = 0;
+      unsigned int newton_iterations         = 0;
     };
 
     /**
@@ -120,7 +156,14 @@ namespace impactfe
       facet_angles() const;
 
     private:
-      ContactSolver facet_solver;
+      void
+      try_interior_point(const ContactProblem   &problem,
+                         const ContactProblem   &unit_problem,
+                         const ExactConeOptions &cone_options);
+
+      ContactSolver              facet_solver;
+      CoulombInteriorPointSolver interior_point_solver;
+      bool                       interior_point_tried = false;
       /// The problem with W of unit size, and in the turned frames.
       ContactProblem      unit;
       ContactProblem      rotated;
@@ -149,6 +192,8 @@ namespace impactfe
       /// Facet LCPs solved over all groups.
       unsigned int total_iterations = 0;
       unsigned int n_groups         = 0;
+      /// Groups whose answer is the interior point route's.
+      unsigned int n_interior_point = 0;
     };
 
     /**
