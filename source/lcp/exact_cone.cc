@@ -343,6 +343,16 @@ namespace impactfe
         }
       if (!has_friction(p))
         {
+          // One LCP, whose cone is exact; cold problems try the interior
+          // point route first (it needs no pivots).
+          if (route == ExactConeRoute::interior_point_then_facets)
+            {
+              solution = ContactSolution();
+              try_interior_point(problem, p, cone_options);
+              if (last_report.converged)
+                return solution;
+              last_report.interior_point = false;
+            }
           solution               = state_guess.empty() ?
                                      facet_solver.solve(p, options) :
                                      facet_solver.solve(p, options, state_guess);
