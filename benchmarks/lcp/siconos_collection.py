@@ -239,6 +239,39 @@ def is_3d_text(path):
         return False
 
 
+def plot_against_peer(rows, path):
+    """Solve seconds of lcp-solve --cone exact against Siconos' NSN_AC, per
+    3D text file both ran (log-log; open markers: the peer did not reach
+    the tolerance within its 1000 iterations)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    ours = {r["file"]: r for r in rows if r["code"] == "impactfe"}
+    pairs = [(ours[r["file"]], r) for r in rows
+             if r["code"] == "siconos-nsn-ac" and r["solve_s"] != ""
+             and r["file"] in ours and ours[r["file"]]["solve_s"] != ""]
+    if not pairs:
+        return
+    fig, ax = plt.subplots(figsize=(6, 5))
+    for o, p in pairs:
+        ok = p["status"] == "solved"
+        ax.loglog(p["solve_s"], o["solve_s"], "o", color="C0",
+                  mfc="C0" if ok else "none")
+        if float(p["solve_s"]) > 0.1 or float(o["solve_s"]) > 0.1:
+            ax.annotate(o["file"].split("-i")[0].split(".")[0],
+                        (p["solve_s"], o["solve_s"]), fontsize=7,
+                        xytext=(3, 3), textcoords="offset points")
+    lo = min(min(float(o["solve_s"]), float(p["solve_s"])) for o, p in pairs)
+    hi = max(max(float(o["solve_s"]), float(p["solve_s"])) for o, p in pairs)
+    ax.loglog([lo, hi], [lo, hi], "k--", lw=0.8, label="equal time")
+    ax.set_xlabel("Siconos NSN_AC seconds (CPU; open: not converged)")
+    ax.set_ylabel("lcp-solve --cone exact seconds")
+    ax.set_title("Exact cone to 1e-10, Siconos' test collection (3D)")
+    ax.legend(loc="upper left")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawTextHelpFormatter)
@@ -326,6 +359,8 @@ def main():
                "runs": rows}
     with open(os.path.join(a.out, "summary.json"), "w") as f:
         json.dump(summary, f, indent=1)
+    if a.peer and a.cone == "exact":
+        plot_against_peer(rows, os.path.join(a.out, "exact_cone_vs_nsn.png"))
     slowest = max((r["solve_s"] for r in solved), default=0.)
     print("RESULT files=%d read=%d solved=%d unsolved=%d facets=%d cone=%s "
           "route=%s converged=%d max_cone_error=%.3g "
