@@ -97,30 +97,6 @@ namespace impactfe
           }
       }
 
-      /// The unit tangent directions d_j of the facet form: +t, -t in 2D,
-      /// k directions at angles 2 pi j / k in the (t1, t2) plane in 3D.
-      void
-      facet_directions(const unsigned int                dim,
-                       const unsigned int                k,
-                       std::vector<std::vector<double>> &D)
-      {
-        D.resize(dim == 2 ? 2 : k);
-        if (dim == 2)
-          {
-            D[0].assign(1, 1.);
-            D[1].assign(1, -1.);
-            return;
-          }
-        const double pi = std::acos(-1.);
-        for (unsigned int j = 0; j < k; ++j)
-          {
-            const double theta = 2. * pi * j / k;
-            D[j].resize(2);
-            D[j][0] = std::cos(theta);
-            D[j][1] = std::sin(theta);
-          }
-      }
-
       void
       assemble_facets(const ContactProblem &p,
                       const unsigned int    k_requested,
@@ -133,7 +109,7 @@ namespace impactfe
             "facet form: need at least 3 facets in 3D");
         lcp.form     = FrictionForm::facets;
         lcp.n_facets = k;
-        facet_directions(dim, k, lcp.directions);
+        internal::facet_directions(dim, k, lcp.directions);
         const auto        &D = lcp.directions;
         const unsigned int n = (k + 2) * nc;
         lcp.M.reinit(n, n);
@@ -305,6 +281,30 @@ namespace impactfe
 
     namespace internal
     {
+      void
+      facet_directions(const unsigned int                dim,
+                       const unsigned int                k,
+                       std::vector<std::vector<double>> &D)
+      {
+        D.resize(dim == 2 ? 2 : k);
+        if (dim == 2)
+          {
+            D[0].assign(1, 1.);
+            D[1].assign(1, -1.);
+            return;
+          }
+        const double pi = std::acos(-1.);
+        for (unsigned int j = 0; j < k; ++j)
+          {
+            const double theta = 2. * pi * j / k;
+            D[j].resize(2);
+            D[j][0] = std::cos(theta);
+            D[j][1] = std::sin(theta);
+          }
+      }
+
+
+
       FrictionForm
       resolved_form(const ContactProblem &p, const FrictionForm requested)
       {

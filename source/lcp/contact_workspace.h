@@ -100,6 +100,13 @@ namespace impactfe
 
     namespace internal
     {
+      /// The unit tangent directions d_j of the facet form: +t, -t in 2D,
+      /// k directions at angles 2 pi j / k in the (t1, t2) plane in 3D.
+      void
+      facet_directions(const unsigned int                dim,
+                       const unsigned int                k,
+                       std::vector<std::vector<double>> &D);
+
       /// assemble_contact_lcp() into @p lcp with the storage of @p ws.
       void
       assemble_contact_lcp(const ContactProblem     &p,

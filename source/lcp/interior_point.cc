@@ -1,4 +1,5 @@
 #include <impactfe/lcp/interior_point.h>
+#include <impactfe/lcp/lu.h>
 
 #include <algorithm>
 #include <cmath>
@@ -6,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "contact_workspace.h"
 #include "lapack.h"
 
 namespace impactfe
@@ -346,6 +348,46 @@ namespace impactfe
         for (const double x : v)
           s += x * x;
         return std::sqrt(s);
+      }
+
+      /**
+       * verify_contact_velocities() on @p P with the friction coefficients
+       * @p mu (zeros for a frictionless answer) and the polygon of
+       * @p n_facets (0: the circle), to 1e-8. The velocity scale |V_free|
+       * + |b_N| + |W| |P| is capped at 1e4 (|V_free| + |b_N|): where no
+       * solution exists along a direction of W's null space inside the cone
+       * (a contact pair pushing against each other, both approaching), the
+       * iterates of an interior point method run off along it and would
+       * pass relative checks with any velocity error.
+       */
+      ContactVerification
+      verify_interior_point_answer(const ContactProblem      &p,
+                                   const std::vector<double> &P,
+                                   const std::vector<double> &mu,
+                                   const unsigned int         n_facets)
+      {
+        if (!std::all_of(P.begin(), P.end(), [](const double v) {
+              return std::isfinite(v);
+            }))
+          return ContactVerification();
+        std::vector<double> V;
+        p.W.vmult(V, P);
+        for (std::size_t i = 0; i < V.size(); ++i)
+          V[i] += p.free_velocity[i];
+        const double data    = max_norm(p.free_velocity) + max_norm(p.gap_term),
+                     largest = max_norm(P);
+        double norm_W        = p.W.linfty_norm();
+        if (largest > 0. && data > 0.)
+          norm_W = std::min(norm_W, 1e4 * data / largest);
+        return verify_contact_velocities(p.n_directions,
+                                         p.free_velocity,
+                                         p.gap_term,
+                                         mu,
+                                         P,
+                                         V,
+                                         norm_W,
+                                         1e-8,
+                                         n_facets);
       }
     } // namespace
 
@@ -717,36 +759,8 @@ namespace impactfe
       // @sect3{Verification}
       last_report.converged  = last_report.residual <= options.tolerance;
       last_report.cone_error = exact_cone_error(problem, P);
-      const bool finite = std::all_of(P.begin(), P.end(), [](const double v) {
-        return std::isfinite(v);
-      });
-      // The verification's velocity scale |V_free| + |b_N| + |W| |P| is
-      // capped at 1e4 (|V_free| + |b_N|): iterates that run off along a
-      // direction of W's null space inside the cone (a contact pair pushing
-      // against each other, both approaching: no solution) would otherwise
-      // pass relative checks with any velocity error.
-      ContactVerification check;
-      if (finite)
-        {
-          std::vector<double> V(N);
-          problem.W.vmult(V, P);
-          for (std::size_t i = 0; i < N; ++i)
-            V[i] += problem.free_velocity[i];
-          const double data = max_norm(problem.free_velocity) +
-                              max_norm(problem.gap_term),
-                       largest = max_norm(P);
-          double norm_W        = problem.W.linfty_norm();
-          if (largest > 0. && data > 0.)
-            norm_W = std::min(norm_W, 1e4 * data / largest);
-          check = verify_contact_velocities(dim,
-                                            problem.free_velocity,
-                                            problem.gap_term,
-                                            problem.mu,
-                                            P,
-                                            V,
-                                            norm_W,
-                                            1e-8);
-        }
+      const ContactVerification check =
+        verify_interior_point_answer(problem, P, problem.mu, 0);
       char text[240];
       std::snprintf(text,
                     sizeof(text),
@@ -765,7 +779,7 @@ namespace impactfe
                   check.max_sliding_violation});
       answer.lcp.verification.tolerance = 1e-8;
       answer.lcp.verification.ok        = check.ok;
-      if (finite && check.ok)
+      if (check.ok)
         {
           answer.lcp.status = Status::solved;
           answer.P          = P;
@@ -775,6 +789,417 @@ namespace impactfe
         answer.message += "; the answer fails the verification";
       answer.lcp.message = answer.message;
       return answer;
+    }
+
+
+
+    // @sect3{The facet form by an interior point method}
+    ContactSolution
+    solve_facet_form_by_interior_point(const ContactProblem &problem,
+                                       const ContactOptions &options,
+                                       const unsigned int    max_iterations)
+    {
+      check_contact_problem(problem);
+      const unsigned int dim = problem.n_directions, nc = problem.n_contacts;
+      const bool friction = internal::resolved_form(problem, options.form) !=
+                            FrictionForm::frictionless;
+      const unsigned int k = !friction ? 0 : dim == 2 ? 2 : options.n_facets;
+      if (friction && dim == 3 && k < 3)
+        throw std::invalid_argument("facet form: need at least 3 facets in 3D");
+      std::vector<std::vector<double>> D;
+      if (friction)
+        internal::facet_directions(dim, k, D);
+      ContactSolution out;
+      out.form = friction ? FrictionForm::facets : FrictionForm::frictionless;
+      out.n_facets       = k;
+      out.lcp.status     = Status::numerical_failure;
+      out.lcp.start_path = StartPath::cold;
+
+      // Per contact a block of the form's unknowns: (P_N, beta_1..k, sigma)
+      // with friction, P_N alone without (a frictionless form, or mu = 0).
+      const std::size_t        N = std::size_t(dim) * nc;
+      std::vector<std::size_t> start(nc + 1, 0);
+      for (unsigned int c = 0; c < nc; ++c)
+        start[c + 1] = start[c] + (friction && problem.mu[c] > 0. ? k + 2 : 1);
+      const std::size_t nz   = start[nc];
+      auto              size = [&](unsigned int c) {
+        return static_cast<unsigned int>(start[c + 1] - start[c]);
+      };
+      std::vector<double> q(problem.free_velocity);
+      for (unsigned int c = 0; c < nc; ++c)
+        q[dim * c] += problem.gap_term[c];
+      const double w_scale = problem.W.max_abs(), q_scale = max_norm(q);
+      // P = G z and G^T u, per block.
+      auto to_impulses = [&](const std::vector<double> &z,
+                             std::vector<double>       &P) {
+        P.assign(N, 0.);
+        for (unsigned int c = 0; c < nc; ++c)
+          {
+            P[dim * c] = z[start[c]];
+            for (unsigned int j = 0; size(c) > 1 && j < k; ++j)
+              for (unsigned int a = 0; a + 1 < dim; ++a)
+                P[dim * c + 1 + a] += D[j][a] * z[start[c] + 1 + j];
+          }
+      };
+      auto transpose_product = [&](const std::vector<double> &u,
+                                   std::vector<double>       &out_z) {
+        out_z.assign(nz, 0.);
+        for (unsigned int c = 0; c < nc; ++c)
+          {
+            out_z[start[c]] = u[dim * c];
+            for (unsigned int j = 0; size(c) > 1 && j < k; ++j)
+              for (unsigned int a = 0; a + 1 < dim; ++a)
+                out_z[start[c] + 1 + j] += D[j][a] * u[dim * c + 1 + a];
+          }
+      };
+      // W u / scale (W row-major: as a column-major array it is W^T).
+      const int n_int = static_cast<int>(N), one = 1;
+      auto      W_times = [&](const std::vector<double> &u,
+                         std::vector<double>       &Wu,
+                         const double               scale) {
+        Wu.assign(N, 0.);
+        const double zero = 0.;
+        dgemv_("T",
+               &n_int,
+               &n_int,
+               &scale,
+               problem.W.row(0),
+               &n_int,
+               u.data(),
+               &one,
+               &zero,
+               Wu.data(),
+               &one);
+      };
+      // M z + q_z for the form of W / w_scale and q / q_scale.
+      std::vector<double> P, u, Gu, qz;
+      transpose_product(q, qz);
+      for (double &x : qz)
+        x /= q_scale > 0. ? q_scale : 1.;
+      auto form_product = [&](const std::vector<double> &z,
+                              std::vector<double>       &w) {
+        to_impulses(z, P);
+        W_times(P, u, 1. / w_scale);
+        transpose_product(u, w);
+        for (unsigned int c = 0; c < nc; ++c)
+          if (size(c) > 1)
+            {
+              const std::size_t s        = start[c];
+              double            beta_sum = 0.;
+              for (unsigned int j = 0; j < k; ++j)
+                {
+                  w[s + 1 + j] += z[s + k + 1]; // + sigma
+                  beta_sum += z[s + 1 + j];
+                }
+              w[s + k + 1] = problem.mu[c] * z[s] - beta_sum;
+            }
+        for (std::size_t i = 0; i < nz; ++i)
+          w[i] += qz[i];
+      };
+
+      // Newton's matrix M + Z^-1 W_z = G^T W G + B, B = L + Z^-1 W_z block
+      // diagonal, is solved through the impulses of the contacts' blocks
+      // (P_N, and P_T where there is friction): with K_c = [B_c G_c^T; G_c
+      // 0], B_c dz_c + G_c^T y_c = g_c and G_c dz_c = u_c give y = K^-1_21 g
+      // + K^-1_22 u locally, and y = W u globally, so
+      //   (W + T) u = K^-1_21 g,  T_c = -K^-1_22 = (G_c B_c^-1 G_c^T)^-1,
+      //   dz_c = K^-1_11 g_c + K^-1_12 u_c.
+      // K_c stays nonsingular where B_c does not (a sliding contact's basic
+      // P_N, beta_j and sigma leave B_c's rows of them near zero), so T is
+      // formed without B_c^-1: the form of the monotone methods, W plus the
+      // barrier's blocks.
+      std::vector<std::size_t> reduced_start(nc + 1, 0), reduced;
+      for (unsigned int c = 0; c < nc; ++c)
+        {
+          const unsigned int d_c = size(c) > 1 ? dim : 1;
+          for (unsigned int a = 0; a < d_c; ++a)
+            reduced.push_back(std::size_t(dim) * c + a);
+          reduced_start[c + 1] = reduced_start[c] + d_c;
+        }
+      const std::size_t nr     = reduced.size();
+      const int         nr_int = static_cast<int>(nr);
+
+      const double to_impulse =
+        w_scale > 0. && q_scale > 0. ? q_scale / w_scale : 0.;
+      const std::vector<double> mu_checked =
+        friction ? problem.mu : std::vector<double>(nc, 0.);
+      auto answer_is_verified = [&](const std::vector<double> &zz) {
+        to_impulses(zz, P);
+        for (double &x : P)
+          x *= to_impulse;
+        return verify_interior_point_answer(problem,
+                                            P,
+                                            mu_checked,
+                                            dim == 3 ? k : 0)
+          .ok;
+      };
+
+      std::vector<double> z(nz, 1.), w(nz, 1.);
+      unsigned int        it   = 0;
+      std::string         stop = "converged";
+      if (q_scale > 0. && w_scale > 0.)
+        {
+          const double        tolerance = 1e-10;
+          std::vector<double> r(nz), gz(nz), dz(nz), dw(nz), dza(nz), dwa(nz),
+            rc(nz), Mz(nz), rhs(nr), H(nr * nr);
+          std::vector<std::size_t> K_start(nc + 1, 0);
+          for (unsigned int c = 0; c < nc; ++c)
+            {
+              const std::size_t m =
+                size(c) + reduced_start[c + 1] - reduced_start[c];
+              K_start[c + 1] = K_start[c] + m * m;
+            }
+          std::vector<double> K_inverse(K_start[nc]), x;
+          std::vector<int>    pivots(nr);
+          DenseMatrix         K_c, K_c_inverse;
+          LUFactorization     lu;
+          auto                newton = [&](std::vector<double> &ddz) {
+            // rhs = K^-1_21 g per contact; (W + T) u = rhs; dz.
+            for (unsigned int c = 0; c < nc; ++c)
+              {
+                const unsigned int mb = size(c),
+                                   d_c = static_cast<unsigned int>(
+                                     reduced_start[c + 1] - reduced_start[c]),
+                                   m = mb + d_c;
+                const double *Ki     = &K_inverse[K_start[c]];
+                for (unsigned int a = 0; a < d_c; ++a)
+                  {
+                    double y = 0.;
+                    for (unsigned int b = 0; b < mb; ++b)
+                      y += Ki[(mb + a) * m + b] * gz[start[c] + b];
+                    rhs[reduced_start[c] + a] = y;
+                  }
+              }
+            int info = 0;
+            dgetrs_("N",
+                    &nr_int,
+                    &one,
+                    H.data(),
+                    &nr_int,
+                    pivots.data(),
+                    rhs.data(),
+                    &nr_int,
+                    &info);
+            for (unsigned int c = 0; c < nc; ++c)
+              {
+                const unsigned int mb = size(c),
+                                   d_c = static_cast<unsigned int>(
+                                     reduced_start[c + 1] - reduced_start[c]),
+                                   m = mb + d_c;
+                const double *Ki     = &K_inverse[K_start[c]];
+                for (unsigned int a = 0; a < mb; ++a)
+                  {
+                    double y = 0.;
+                    for (unsigned int b = 0; b < mb; ++b)
+                      y += Ki[a * m + b] * gz[start[c] + b];
+                    for (unsigned int b = 0; b < d_c; ++b)
+                      y += Ki[a * m + mb + b] * rhs[reduced_start[c] + b];
+                    ddz[start[c] + a] = y;
+                  }
+              }
+          };
+          // Predictor, then corrector: z dw + w dz = rc and dw - M dz = -r,
+          // so (M + Z^-1 W_z) dz = Z^-1 rc + r.
+          auto direction = [&](std::vector<double> &ddz,
+                               std::vector<double> &ddw) {
+            for (std::size_t i = 0; i < nz; ++i)
+              gz[i] = rc[i] / z[i] + r[i];
+            newton(ddz);
+            for (std::size_t i = 0; i < nz; ++i)
+              ddw[i] = (rc[i] - w[i] * ddz[i]) / z[i];
+          };
+          auto ratio = [&](const std::vector<double> &ddz,
+                           const std::vector<double> &ddw) {
+            double alpha = 1.;
+            for (std::size_t i = 0; i < nz; ++i)
+              {
+                if (ddz[i] < 0.)
+                  alpha = std::min(alpha, -z[i] / ddz[i]);
+                if (ddw[i] < 0.)
+                  alpha = std::min(alpha, -w[i] / ddw[i]);
+              }
+            return alpha;
+          };
+          for (;; ++it)
+            {
+              form_product(z, Mz);
+              double gap = 0.;
+              for (std::size_t i = 0; i < nz; ++i)
+                {
+                  r[i] = w[i] - Mz[i];
+                  gap += z[i] * w[i];
+                }
+              const double nu = gap / nz;
+              // Near the end, stop as soon as the impulses pass the
+              // verification (a degenerate contact keeps z_i and w_i near
+              // sqrt(nu), so a tolerance on nu alone can stop short of it).
+              if (max_norm(r) <= tolerance * (1. + max_norm(qz)) &&
+                  nu <= tolerance && answer_is_verified(z))
+                break;
+              if (it == max_iterations)
+                {
+                  stop = "iteration limit";
+                  break;
+                }
+              // K_c = [B_c G_c^T; G_c 0] and its inverse; H = W + T.
+              for (std::size_t j = 0; j < nr; ++j)
+                for (std::size_t i = 0; i < nr; ++i)
+                  H[i + nr * j] = problem.W(reduced[i], reduced[j]) / w_scale;
+              bool singular = false;
+              for (unsigned int c = 0; c < nc && !singular; ++c)
+                {
+                  const unsigned int mb  = size(c),
+                                     d_c = static_cast<unsigned int>(
+                                       reduced_start[c + 1] - reduced_start[c]),
+                                     m = mb + d_c;
+                  const std::size_t s  = start[c];
+                  K_c.reinit(m, m);
+                  for (unsigned int a = 0; a < mb; ++a)
+                    K_c(a, a) = w[s + a] / z[s + a];
+                  if (mb > 1)
+                    {
+                      for (unsigned int j = 0; j < k; ++j)
+                        {
+                          K_c(1 + j, k + 1) += 1.;
+                          K_c(k + 1, 1 + j) -= 1.;
+                          for (unsigned int a = 0; a + 1 < dim; ++a) // G_T
+                            {
+                              K_c(1 + j, mb + 1 + a) = D[j][a];
+                              K_c(mb + 1 + a, 1 + j) = D[j][a];
+                            }
+                        }
+                      K_c(k + 1, 0) += problem.mu[c];
+                    }
+                  K_c(0, mb) = K_c(mb, 0) = 1.; // G_N
+                  if (!lu.factorize(K_c, 0.))
+                    {
+                      singular = true;
+                      break;
+                    }
+                  lu.inverse(K_c_inverse);
+                  double *Ki = &K_inverse[K_start[c]];
+                  for (unsigned int a = 0; a < m; ++a)
+                    for (unsigned int b = 0; b < m; ++b)
+                      Ki[a * m + b] = K_c_inverse(a, b);
+                  for (unsigned int a = 0; a < d_c; ++a)
+                    for (unsigned int b = 0; b < d_c; ++b)
+                      H[(reduced_start[c] + a) + nr * (reduced_start[c] + b)] -=
+                        K_c_inverse(mb + a, mb + b);
+                }
+              int info = 0;
+              if (!singular)
+                dgetrf_(
+                  &nr_int, &nr_int, H.data(), &nr_int, pivots.data(), &info);
+              if (singular || info != 0)
+                {
+                  stop = "singular Newton matrix";
+                  break;
+                }
+              for (std::size_t i = 0; i < nz; ++i)
+                rc[i] = -z[i] * w[i];
+              direction(dza, dwa);
+              const double alpha_affine = ratio(dza, dwa);
+              double       gap_affine   = 0.;
+              for (std::size_t i = 0; i < nz; ++i)
+                gap_affine += (z[i] + alpha_affine * dza[i]) *
+                              (w[i] + alpha_affine * dwa[i]);
+              const double sigma =
+                std::pow(std::clamp(gap_affine / gap, 0., 1.), 3);
+              for (std::size_t i = 0; i < nz; ++i)
+                rc[i] = -z[i] * w[i] - dza[i] * dwa[i] + sigma * nu;
+              direction(dz, dw);
+              const double alpha = std::min(1., 0.99 * ratio(dz, dw));
+              if (!(alpha > 1e-10))
+                {
+                  stop = "stalled";
+                  break;
+                }
+              for (std::size_t i = 0; i < nz; ++i)
+                {
+                  z[i] += alpha * dz[i];
+                  w[i] += alpha * dw[i];
+                }
+            }
+        }
+      else
+        std::fill(z.begin(), z.end(), 0.);
+
+      // The impulses and the form's variables of the problem as given.
+      to_impulses(z, P);
+      for (double &x : P)
+        x *= to_impulse;
+      const ContactVerification check =
+        verify_interior_point_answer(problem, P, mu_checked, dim == 3 ? k : 0);
+      char text[200];
+      std::snprintf(text,
+                    sizeof(text),
+                    "interior point on the %s: %u iterations (%s)",
+                    friction ?
+                      ("facet form, k = " + std::to_string(k)).c_str() :
+                      "frictionless form",
+                    it,
+                    stop.c_str());
+      out.message = text;
+      out.lcp.verification.relative_error =
+        std::max({check.max_signorini_violation,
+                  check.max_cone_violation,
+                  check.max_sliding_violation});
+      out.lcp.verification.tolerance = 1e-8;
+      out.lcp.verification.ok        = check.ok;
+      if (!check.ok)
+        {
+          out.message += "; the answer fails the verification";
+          out.lcp.message = out.message;
+          return out;
+        }
+      // z and w in the layout of assemble_contact_lcp(): all P_N, then the
+      // beta of each contact, then all sigma (sigma of a contact without
+      // friction: the least that keeps its facet rows >= 0).
+      std::vector<double> V;
+      problem.W.vmult(V, P);
+      for (std::size_t i = 0; i < N; ++i)
+        V[i] += q[i];
+      const std::size_t n_form = friction ? std::size_t(k + 2) * nc : nc;
+      out.lcp.z.assign(n_form, 0.);
+      out.lcp.w.assign(n_form, 0.);
+      for (unsigned int c = 0; c < nc; ++c)
+        {
+          out.lcp.z[c] = P[dim * c];
+          out.lcp.w[c] = V[dim * c];
+          if (!friction)
+            continue;
+          double sigma = 0.;
+          if (size(c) > 1)
+            sigma = z[start[c] + k + 1] * q_scale;
+          else
+            for (unsigned int j = 0; j < k; ++j)
+              {
+                double dv = 0.;
+                for (unsigned int a = 0; a + 1 < dim; ++a)
+                  dv += D[j][a] * V[dim * c + 1 + a];
+                sigma = std::max(sigma, -dv);
+              }
+          double beta_sum = 0.;
+          for (unsigned int j = 0; j < k; ++j)
+            {
+              const double beta =
+                size(c) > 1 ? z[start[c] + 1 + j] * to_impulse : 0.;
+              double dv = 0.;
+              for (unsigned int a = 0; a + 1 < dim; ++a)
+                dv += D[j][a] * V[dim * c + 1 + a];
+              out.lcp.z[nc + std::size_t(c) * k + j] = beta;
+              out.lcp.w[nc + std::size_t(c) * k + j] = dv + sigma;
+              beta_sum += beta;
+            }
+          out.lcp.z[nc + std::size_t(nc) * k + c] = sigma;
+          out.lcp.w[nc + std::size_t(nc) * k + c] =
+            problem.mu[c] * P[dim * c] - beta_sum;
+        }
+      out.lcp.status  = Status::solved;
+      out.lcp.message = out.message;
+      out.P           = P;
+      out.states      = contact_states(problem, P);
+      return out;
     }
 
 

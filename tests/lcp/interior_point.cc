@@ -23,6 +23,11 @@
 // 6. ExactConeSolver takes the interior point answer where its facet route
 //    stops short; route names.
 // 7. exact_cone_residual() on a hand-computed case.
+// 8. solve_facet_form_by_interior_point(): random problems (3D with 8
+//    facets, 2D, frictionless) give Lemke's impulses on the same form (to
+//    1e-6), and z,
+//    w solve the form as assemble_contact_lcp() writes it; no answer where
+//    there is no solution.
 #include <impactfe/lcp/exact_cone.h>
 #include <impactfe/lcp/interior_point.h>
 
@@ -423,6 +428,86 @@ namespace
                     << rounded(exact_cone_residual(p, {0.5, -0.25, 0.}, u))
                     << " (0)" << std::endl;
   }
+  void
+  facet_form()
+  {
+    dealii::deallog << "8. The facet form by the interior point method"
+                    << std::endl;
+    lcp_test::Rng rng(20261128);
+    for (const unsigned int n_directions : {3u, 2u, 1u})
+      {
+        unsigned int agree = 0, n = 0;
+        std::string  detail;
+        for (unsigned int trial = 0; trial < 20; ++trial)
+          {
+            const unsigned int   nc = 2 + rng.integer(9);
+            const ContactProblem p  = random_problem(rng, n_directions, nc, 0.);
+            ContactOptions       options;
+            options.form     = FrictionForm::facets;
+            options.n_facets = 8;
+            if (n_directions == 1)
+              options.form = FrictionForm::frictionless;
+            const ContactSolution lemke = solve_contact_problem(p, options);
+            if (lemke.lcp.status != Status::solved)
+              continue;
+            ++n;
+            const ContactSolution s =
+              solve_facet_form_by_interior_point(p, options);
+            // z and w in the layout of the assembled form: w = M z + q,
+            // z, w >= 0, z.w = 0, to 1e-8 of their scales.
+            const ContactLCP    lcp = assemble_contact_lcp(p, options);
+            std::vector<double> Mz;
+            double              layout = 1.;
+            if (s.lcp.status == Status::solved &&
+                s.lcp.z.size() == lcp.q.size())
+              {
+                lcp.M.vmult(Mz, s.lcp.z);
+                const double scale =
+                  lcp_test::linfty(lcp.q) +
+                  lcp.M.linfty_norm() * lcp_test::linfty(s.lcp.z);
+                layout = 0.;
+                for (std::size_t i = 0; i < Mz.size(); ++i)
+                  layout =
+                    std::max({layout,
+                              std::abs(s.lcp.w[i] - Mz[i] - lcp.q[i]),
+                              -s.lcp.z[i],
+                              -s.lcp.w[i],
+                              std::abs(s.lcp.z[i] * s.lcp.w[i]) / scale});
+                layout /= scale;
+              }
+            // (1e-6: two solutions of the form to 1e-14 differ by up to 2e-7
+            // where a contact sits at a corner of its polygon)
+            if (s.lcp.status == Status::solved && layout < 1e-8 &&
+                relative_difference(p, s.P, lemke.P) < 1e-6)
+              ++agree;
+            else if (detail.empty())
+              {
+                std::ostringstream m;
+                m << s.message << ", layout " << layout << ", difference "
+                  << relative_difference(p, s.P, lemke.P);
+                detail = m.str();
+              }
+          }
+        std::ostringstream name;
+        name << (n_directions == 3 ? "3D, 8 facets" :
+                 n_directions == 2 ? "2D" :
+                                     "frictionless")
+             << ": " << agree << " of " << n
+             << " random problems: Lemke's impulses to 1e-6, z and w a "
+                "solution of the assembled form to 1e-8";
+        check(agree == n && n >= 15, name.str(), detail);
+      }
+    ContactProblem p;
+    p.n_directions  = 1;
+    p.n_contacts    = 2;
+    p.W             = lcp_test::matrix({{1., -1.}, {-1., 1.}});
+    p.free_velocity = {-1., -1.};
+    p.gap_term      = {0., 0.};
+    p.mu            = {0., 0.};
+    check(solve_facet_form_by_interior_point(p, {}).lcp.status !=
+            Status::solved,
+          "opposite contacts both approaching: not solved");
+  }
 } // namespace
 
 
@@ -438,5 +523,6 @@ main()
   no_solution();
   exact_cone_solver();
   residual_by_hand();
+  facet_form();
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
 }

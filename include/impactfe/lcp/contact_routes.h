@@ -9,10 +9,13 @@
 //     positive semidefinite W it is copositive, and Lemke's method processes
 //     it whenever q^T u >= 0 for every u in the polygonal cone with W u = 0
 //     (e.g. q = H^T v + b with b_N >= 0 for W = H^T M^{-1} H);
-//  3. the same with a pivot tolerance 100 times smaller (near a singular
+//  3. the same form by the interior point method of interior_point.h (no
+//     pivots: degenerate forms do not stop it), accepted if its impulses
+//     pass the contact verification, else its point warm-starts Lemke;
+//  4. the same with a pivot tolerance 100 times smaller (near a singular
 //     basis the default one hides true positive entries: false rays);
-//  4. the same with another covering vector;
-//  5. the facet form of W + eps ||W|| I (positive definite: Lemke always
+//  5. the same with another covering vector;
+//  6. the facet form of W + eps ||W|| I (positive definite: Lemke always
 //     processes it), then Lemke on the original facet form warm-started from
 //     that solution's basis, reduced to linearly independent columns where
 //     the basis is singular (redundant contacts);
@@ -35,8 +38,9 @@ namespace impactfe
     /// One route tried by solve_contact_problem_by_routes().
     struct RouteAttempt
     {
-      /// "requested", "copositive", "small-tolerance", "covering",
-      /// "regularised" or "feasibility": which of the routes above.
+      /// "requested", "copositive", "interior-point", "small-tolerance",
+      /// "covering", "regularised" or "feasibility": which of the routes
+      /// above.
       std::string  kind;
       std::string  route;
       Status       status = Status::numerical_failure;
@@ -68,7 +72,7 @@ namespace impactfe
                            ContactProblem       &scaled);
 
     /**
-     * Routes 1 to 5 above (route 1 is @p first_attempt if given), then (if all failed) the feasibility test. On
+     * Routes 1 to 6 above (route 1 is @p first_attempt if given), then (if all failed) the feasibility test. On
      * success solution.lcp.status == solved and solution.P the impulses; if
      * the facet form was proven infeasible, solution.lcp.status ==
      * Status::infeasible; otherwise the status of the last route. The

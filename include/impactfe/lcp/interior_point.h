@@ -100,6 +100,33 @@ namespace impactfe
     };
 
     /**
+     * The facet form of a contact problem (assemble_contact_lcp() with
+     * FrictionForm::facets: per contact z = (P_N, beta_1..k, sigma),
+     * P_T = sum_j beta_j d_j, k = options.n_facets in 3D and 2 in 2D, where
+     * the polygon is the exact cone), or its frictionless LCP if
+     * options.form is frictionless or there is no friction, by a primal-dual
+     * interior point method (Mehrotra's predictor and corrector on
+     * w = M z + q, z o w = nu e). The form's matrix is M = G^T W G + L, G
+     * the map z -> P and L the local rows of sigma and mu P_N, so Newton's
+     * matrix M + Z^-1 W_z is solved through (I + S W) u = G B^-1 g, with B =
+     * L + Z^-1 W_z and S = G B^-1 G^T block diagonal: one LU of the order
+     * of W (n_directions n_c), not of the form's ((k + 2) n_c). It needs no
+     * pivots, so the degenerate facet LCPs of rank-deficient W, on which
+     * Lemke's method can end in a ray (Siconos' KaplasTower: 13795 pivots
+     * over the routes), do not stop it.
+     *
+     * The answer is solved only if its impulses pass
+     * verify_contact_velocities() with the polygon (n_facets = k in 3D) to
+     * 1e-8, with the velocity scale capped at 1e4 (|V_free| + |b_N|) as in
+     * CoulombInteriorPointSolver; lcp.z and lcp.w are then the form's
+     * variables (z_i > 0 warm-starts Lemke on the form), lcp.pivots = 0.
+     */
+    ContactSolution
+    solve_facet_form_by_interior_point(const ContactProblem &problem,
+                                       const ContactOptions &options,
+                                       unsigned int max_iterations = 200);
+
+    /**
      * The natural-map residual of the circular-cone problem in impulse
      * units: max over contacts of |P_c - proj_K(P_c - rho_c u~_c)|, with u =
      * W P + V_free (+ b_N), u~ = u + mu |u_T| e_N and rho_c = 1/W_cc (the
