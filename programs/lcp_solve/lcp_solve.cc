@@ -1,41 +1,19 @@
 // lcp-solve: solve LCP and frictional contact problem files (Siconos numerics
-// text formats and FCLib HDF5 files, see doc/lcp.md) with impactfe's Lemke
-// solver.
+// text formats and FCLib HDF5 files) with impactfe's LCP module; the options
+// are in usage() below, the methods and the output in doc/lcp.md, "lcp-solve".
 //
-//   lcp-solve [--solution] [--warm] [--form klarbring|facets|auto] [--facets k]
-//             [--cone facets|exact] [--route R] [--tolerance e] [--reference]
-//             [--verbose] [--threads t] [--write-fclib OUT] FILE...
-//
-// --cone exact solves contact problems with the circular Coulomb cone
-// (ExactConeSolver, group by group: the interior point route, then facet LCPs
-// re-aligned with the slip directions where it stops short, until the
-// natural-map residual is <= --tolerance, default 1e-10; --route changes the
-// order) and prints a line "cone FILE exact iterations=I cone_error=E
-// converged=yes"; a problem that does not converge counts as not solved.
-// The default, --cone facets, is the polygonal cone of --facets k facets.
-// The BLAS runs on --threads t threads (default 1).
-//
-// --reference prints, for contact problems, the exact-cone error of the
-// answer and, for FCLib files that carry a /solution, that solution's error
-// and its distance to ours. --write-fclib writes the (single) contact
-// problem, with our solution, as an FCLib file: a converter from the text
-// formats.
-//
-// One line per problem: "file n status pivots relative_error seconds"
-// (relative_error: Verification::relative_error, complementarity, residual
-// and sign conditions in one scale-invariant number)
-// (n is the size of the LCP actually solved; "-" when not solved), then with
-// --solution the solution z (LCP files) or the impulses P (contact files).
-// With --form auto (the default) a contact problem is split into the groups
-// of contacts that W does not couple (solve_contact_problem_by_groups()), and
-// a group that the first form does not solve is tried by the other routes of
-// contact_routes.h; every route is listed on stderr if none succeeds. n is
-// then the total size of the groups' LCPs. Status "infeasible" means proven to
-// have no solution; "ray-termination" and the others mean Lemke's method did
-// not find one (and, for contact problems with --form auto, the problem is
-// feasible or that could not be decided).
-// Exit code: 0 if every problem was solved, 1 if one was not, 2 on a bad
-// command line or an unreadable/malformed file.
+// One line per problem: "file n status pivots relative_error seconds" (n is
+// the size of the LCP solved, or the unknowns with --cone exact;
+// relative_error the verification's scale-invariant violation), then with
+// --solution z (LCP files) or the impulses P (contact files). Contact files
+// are solved group by group (the contacts W couples); with --form auto a
+// group the first form does not solve goes through the routes of
+// contact_routes.h, listed on stderr if none succeeds. "infeasible" means
+// proven to have no solution; "ray-termination" and the others mean none was
+// found. --cone exact prints "cone FILE exact iterations=I cone_error=E
+// converged=yes|no". Exit code: 0 if every problem was solved (and, with
+// --cone exact, converged), 1 if one was not, 2 on a bad command line or an
+// unreadable or malformed file.
 #include <impactfe/lcp/contact_problem.h>
 #include <impactfe/lcp/contact_routes.h>
 #include <impactfe/lcp/exact_cone.h>
@@ -84,6 +62,23 @@ namespace
          "  --write-fclib OUT  write the (one) contact problem and P to the FCLib\n"
          "               HDF5 file OUT\n"
          "Output per problem: file n status pivots relative_error seconds\n";
+  }
+
+  /// The message of a bad command line; exit code 2.
+  int
+  bad_argument(const std::string &what)
+  {
+    std::cerr << "lcp-solve: error: " << what << "\n";
+    return 2;
+  }
+
+  /// The integer in @p text if it is one in [lo, hi], else -1.
+  long
+  integer_in(const char *text, const long lo, const long hi)
+  {
+    char      *end = nullptr;
+    const long v   = std::strtol(text, &end, 10);
+    return *end == '\0' && v >= lo && v <= hi ? v : -1;
   }
 
   void
@@ -137,71 +132,45 @@ main(int argc, char **argv)
           else if (f == "auto" || f == "automatic")
             options.form = FrictionForm::automatic;
           else
-            {
-              std::cerr << "lcp-solve: error: unknown form '" << f
-                        << "' (klarbring, facets or auto)\n";
-              return 2;
-            }
+            return bad_argument("unknown form '" + f +
+                                "' (klarbring, facets or auto)");
         }
-      else if (a == "--cone" && i + 1 < argc)
+      else if ((a == "--cone" || a == "--route") && i + 1 < argc)
         {
+          const std::string value = argv[++i];
           try
             {
-              cone = cone_model_from_string(argv[++i]);
+              if (a == "--cone")
+                cone = cone_model_from_string(value);
+              else
+                cone_options.route =
+                  value == "auto" ? ExactConeRoute::interior_point_then_facets :
+                                    exact_cone_route_from_string(value);
             }
           catch (const std::invalid_argument &e)
             {
-              std::cerr << "lcp-solve: error: --cone: " << e.what() << "\n";
-              return 2;
+              return bad_argument(a + ": " + e.what());
             }
         }
       else if (a == "--threads" && i + 1 < argc)
         {
-          char      *end = nullptr;
-          const long t   = std::strtol(argv[++i], &end, 10);
-          if (*end != '\0' || t < 1 || t > 1024)
-            {
-              std::cerr
-                << "lcp-solve: error: --threads needs an integer >= 1\n";
-              return 2;
-            }
+          const long t = integer_in(argv[++i], 1, 1024);
+          if (t < 0)
+            return bad_argument("--threads needs an integer >= 1");
           blas_threads = static_cast<unsigned int>(t);
-        }
-      else if (a == "--route" && i + 1 < argc)
-        {
-          const std::string route = argv[++i];
-          try
-            {
-              cone_options.route =
-                route == "auto" ? ExactConeRoute::interior_point_then_facets :
-                                  exact_cone_route_from_string(route);
-            }
-          catch (const std::invalid_argument &e)
-            {
-              std::cerr << "lcp-solve: error: --route: " << e.what()
-                        << " (or auto)\n";
-              return 2;
-            }
         }
       else if (a == "--tolerance" && i + 1 < argc)
         {
           char *end              = nullptr;
           cone_options.tolerance = std::strtod(argv[++i], &end);
           if (*end != '\0' || !(cone_options.tolerance > 0.))
-            {
-              std::cerr << "lcp-solve: error: --tolerance needs a number > 0\n";
-              return 2;
-            }
+            return bad_argument("--tolerance needs a number > 0");
         }
       else if (a == "--facets" && i + 1 < argc)
         {
-          char      *end = nullptr;
-          const long k   = std::strtol(argv[++i], &end, 10);
-          if (*end != '\0' || k < 2 || k > 10000)
-            {
-              std::cerr << "lcp-solve: error: --facets needs an integer >= 2\n";
-              return 2;
-            }
+          const long k = integer_in(argv[++i], 2, 10000);
+          if (k < 0)
+            return bad_argument("--facets needs an integer >= 2");
           options.n_facets = static_cast<unsigned int>(k);
         }
       else if (!a.empty() && a[0] == '-')
@@ -225,22 +194,6 @@ main(int argc, char **argv)
                    "file, "
                 << files.size() << " given\n";
       return 2;
-    }
-
-  // The first solve of a process binds symbols and touches pages of the
-  // libraries (about 1 ms): made once here, on a one-contact problem, so
-  // that the seconds printed are the problems' own.
-  if (cone == ConeModel::exact)
-    {
-      ContactProblem warm_up;
-      warm_up.n_directions = 3;
-      warm_up.n_contacts   = 1;
-      warm_up.W            = DenseMatrix(3, 3);
-      warm_up.W(0, 0) = warm_up.W(1, 1) = warm_up.W(2, 2) = 1.;
-      warm_up.free_velocity                               = {-1., 1., 0.};
-      warm_up.gap_term                                    = {0.};
-      warm_up.mu                                          = {0.5};
-      solve_exact_cone_by_groups(warm_up, options, cone_options);
     }
 
   int exit_code = 0;

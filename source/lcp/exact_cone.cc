@@ -334,25 +334,21 @@ namespace impactfe
       last_report              = ExactConeReport();
       interior_point_tried     = false;
       angles.assign(nc, 0.);
+      // Cold problems: the interior point route first, whose cost does not
+      // depend on how degenerate the LCPs are (it needs no pivots).
       const ExactConeRoute route = cone_options.route;
-      if (route == ExactConeRoute::interior_point)
+      if (route == ExactConeRoute::interior_point ||
+          route == ExactConeRoute::interior_point_then_facets)
         {
           solution = ContactSolution();
           try_interior_point(problem, p, cone_options);
-          return solution;
+          if (route == ExactConeRoute::interior_point || last_report.converged)
+            return solution;
+          last_report.interior_point = false;
         }
       if (!has_friction(p))
         {
-          // One LCP, whose cone is exact; cold problems try the interior
-          // point route first (it needs no pivots).
-          if (route == ExactConeRoute::interior_point_then_facets)
-            {
-              solution = ContactSolution();
-              try_interior_point(problem, p, cone_options);
-              if (last_report.converged)
-                return solution;
-              last_report.interior_point = false;
-            }
+          // One LCP, whose cone is exact.
           solution               = state_guess.empty() ?
                                      facet_solver.solve(p, options) :
                                      facet_solver.solve(p, options, state_guess);
@@ -370,22 +366,11 @@ namespace impactfe
             try_interior_point(problem, p, cone_options);
           return solution;
         }
+      // The facets start from the given angles (not from an interior point
+      // answer that stopped short).
+      angles.assign(nc, 0.);
       if (initial_angles.size() == nc)
         angles = initial_angles;
-      // Cold problems: the interior point route first, whose cost does not
-      // depend on how degenerate the facet LCPs are. Where it stops short,
-      // the facets start from the given angles, not from its answer.
-      if (route == ExactConeRoute::interior_point_then_facets)
-        {
-          solution = ContactSolution();
-          try_interior_point(problem, p, cone_options);
-          if (last_report.converged)
-            return solution;
-          last_report.interior_point = false;
-          angles.assign(nc, 0.);
-          if (initial_angles.size() == nc)
-            angles = initial_angles;
-        }
       last_angle.assign(nc, 0.);
       last_residual.assign(nc, 0.);
       has_residual.assign(nc, false);

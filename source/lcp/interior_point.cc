@@ -916,8 +916,12 @@ namespace impactfe
             reduced.push_back(std::size_t(dim) * c + a);
           reduced_start[c + 1] = reduced_start[c] + d_c;
         }
-      const std::size_t nr     = reduced.size();
-      const int         nr_int = static_cast<int>(nr);
+      const std::size_t nr           = reduced.size();
+      const int         nr_int       = static_cast<int>(nr);
+      auto              impulse_size = [&](const unsigned int c) {
+        return static_cast<unsigned int>(reduced_start[c + 1] -
+                                         reduced_start[c]);
+      };
 
       const double to_impulse =
         w_scale > 0. && q_scale > 0. ? q_scale / w_scale : 0.;
@@ -945,11 +949,10 @@ namespace impactfe
           std::vector<std::size_t> K_start(nc + 1, 0);
           for (unsigned int c = 0; c < nc; ++c)
             {
-              const std::size_t m =
-                size(c) + reduced_start[c + 1] - reduced_start[c];
-              K_start[c + 1] = K_start[c] + m * m;
+              const std::size_t m = size(c) + impulse_size(c);
+              K_start[c + 1]      = K_start[c] + m * m;
             }
-          std::vector<double> K_inverse(K_start[nc]), x;
+          std::vector<double> K_inverse(K_start[nc]);
           std::vector<int>    pivots(nr);
           DenseMatrix         K_c, K_c_inverse;
           LUFactorization     lu;
@@ -957,9 +960,7 @@ namespace impactfe
             // rhs = K^-1_21 g per contact; (W + T) u = rhs; dz.
             for (unsigned int c = 0; c < nc; ++c)
               {
-                const unsigned int mb = size(c),
-                                   d_c = static_cast<unsigned int>(
-                                     reduced_start[c + 1] - reduced_start[c]),
+                const unsigned int mb = size(c), d_c = impulse_size(c),
                                    m = mb + d_c;
                 const double *Ki     = &K_inverse[K_start[c]];
                 for (unsigned int a = 0; a < d_c; ++a)
@@ -982,9 +983,7 @@ namespace impactfe
                     &info);
             for (unsigned int c = 0; c < nc; ++c)
               {
-                const unsigned int mb = size(c),
-                                   d_c = static_cast<unsigned int>(
-                                     reduced_start[c + 1] - reduced_start[c]),
+                const unsigned int mb = size(c), d_c = impulse_size(c),
                                    m = mb + d_c;
                 const double *Ki     = &K_inverse[K_start[c]];
                 for (unsigned int a = 0; a < mb; ++a)
@@ -1048,9 +1047,7 @@ namespace impactfe
               bool singular = false;
               for (unsigned int c = 0; c < nc && !singular; ++c)
                 {
-                  const unsigned int mb  = size(c),
-                                     d_c = static_cast<unsigned int>(
-                                       reduced_start[c + 1] - reduced_start[c]),
+                  const unsigned int mb = size(c), d_c = impulse_size(c),
                                      m = mb + d_c;
                   const std::size_t s  = start[c];
                   K_c.reinit(m, m);
