@@ -48,7 +48,8 @@ namespace
          "  --facets k   facets of the friction cone in 3D (default 8)\n"
          "  --cone C     facets (default: the polygonal cone) or exact (the circular\n"
          "               cone, by re-aligned facet LCPs; contact files)\n"
-         "  --tolerance e  exact-cone error to reach with --cone exact (default 1e-10)\n"
+         "  --tolerance e  exact-cone error to reach with --cone exact, and the\n"
+         "               relative natural-map residual (default 1e-10)\n"
          "  --threads t  BLAS threads (default 1: the times are one core's)\n"
          "  --route R    with --cone exact: auto (default) or interior-point-then-\n"
          "               facets: the interior point route, the facet LCPs where it\n"
@@ -103,6 +104,7 @@ main(int argc, char **argv)
   // Cold problems (no last step's facets to start from): the interior point
   // route first (doc/lcp.md).
   cone_options.route = ExactConeRoute::interior_point_then_facets;
+  cone_options.cone_error_tolerance = cone_options.tolerance;
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i)
     {
@@ -165,6 +167,7 @@ main(int argc, char **argv)
           cone_options.tolerance = std::strtod(argv[++i], &end);
           if (*end != '\0' || !(cone_options.tolerance > 0.))
             return bad_argument("--tolerance needs a number > 0");
+          cone_options.cone_error_tolerance = cone_options.tolerance;
         }
       else if (a == "--facets" && i + 1 < argc)
         {

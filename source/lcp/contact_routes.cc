@@ -66,12 +66,14 @@ namespace impactfe
 
       /**
        * The guess "z_i basic" reduced to a set whose principal block of M is
-       * nonsingular: indices are taken greedily in order of decreasing z_i
-       * (relative to the largest z of the same kind of variable), and one is
-       * kept only if the block stays nonsingular. Redundant contacts (W u = 0
-       * for some u != 0) make the block of a regularised solution singular;
-       * dropping the dependent columns keeps W P, hence the velocities.
-       * O(g^4) for g guessed indices: only used for g <= max_size.
+       * nonsingular: indices are taken greedily in order of decreasing z_i,
+       * and one is kept only if the block stays nonsingular (its Schur
+       * complement on the kept block, |d - r B^{-1} c|, above 1e-11 max|M|;
+       * B^{-1} is updated by bordering, O(g^3) for g guessed indices, used
+       * only for g <= max_size). Redundant contacts (W u = 0 for some
+       * u != 0) make the block of a regularised or interior solution
+       * singular; dropping the dependent columns keeps W P, hence the
+       * velocities.
        */
       std::vector<bool>
       independent_guess(const DenseMatrix         &M,
@@ -94,17 +96,38 @@ namespace impactfe
                          [&](std::size_t a, std::size_t b) {
                            return z[a] > z[b];
                          });
+        const double             tol = 1e-11 * M.max_abs();
+        const std::size_t        g   = candidates.size();
         std::vector<std::size_t> kept;
+        std::vector<double>      inverse(g * g), u(g), v(g); // stride g
         for (const std::size_t i : candidates)
           {
+            const std::size_t k = kept.size();
+            for (std::size_t a = 0; a < k; ++a)
+              {
+                double ua = 0., va = 0.;
+                for (std::size_t b = 0; b < k; ++b)
+                  {
+                    ua += inverse[a * g + b] * M(kept[b], i);
+                    va += M(i, kept[b]) * inverse[b * g + a];
+                  }
+                u[a] = ua;
+                v[a] = va;
+              }
+            double schur = M(i, i);
+            for (std::size_t a = 0; a < k; ++a)
+              schur -= M(i, kept[a]) * u[a];
+            if (!(std::abs(schur) > tol))
+              continue;
+            for (std::size_t a = 0; a < k; ++a)
+              {
+                for (std::size_t b = 0; b < k; ++b)
+                  inverse[a * g + b] += u[a] * v[b] / schur;
+                inverse[a * g + k] = -u[a] / schur;
+                inverse[k * g + a] = -v[a] / schur;
+              }
+            inverse[k * g + k] = 1. / schur;
             kept.push_back(i);
-            DenseMatrix block(kept.size(), kept.size());
-            for (std::size_t a = 0; a < kept.size(); ++a)
-              for (std::size_t b = 0; b < kept.size(); ++b)
-                block(a, b) = M(kept[a], kept[b]);
-            LUFactorization lu;
-            if (!lu.factorize(block, 1e-11))
-              kept.pop_back();
           }
         for (const std::size_t i : kept)
           guess[i] = true;
@@ -374,24 +397,65 @@ namespace impactfe
       //    not stop it. Where its point misses the verification (a contact
       //    degenerate at the solution keeps both z_i and w_i near sqrt(nu)),
       //    its guess z_i > w_i starts Lemke's method on the form.
+      //    A verified point is accurate to the verification's 1e-8 only,
+      //    which stops the exact cone's facet re-alignment short: on forms
+      //    of at most largest_polished rows Lemke warm-started from it (its
+      //    independent basic columns) looks for the exact basic solution,
+      //    and where that fails, routes 4 and 5 do before the point is
+      //    taken (BoxesStack1 of Siconos' collection: route 4 solves it).
+      ContactSolution       verified_interior_point;
+      constexpr std::size_t largest_polished = 4000;
       {
         ContactSolution s = solve_facet_form_by_interior_point(p, copositive);
-        if (s.lcp.status != Status::solved && !s.lcp.z.empty())
+        if (!s.lcp.z.empty() && (s.lcp.status != Status::solved ||
+                                 lcp.q.size() <= largest_polished))
           {
-            std::vector<bool> guess(s.lcp.z.size());
-            for (std::size_t i = 0; i < guess.size(); ++i)
-              guess[i] = s.lcp.z[i] > s.lcp.w[i];
+            std::vector<double> basic(s.lcp.z.size(), 0.);
+            for (std::size_t i = 0; i < basic.size(); ++i)
+              if (s.lcp.z[i] > s.lcp.w[i])
+                basic[i] = s.lcp.z[i];
+            const std::vector<bool> guess =
+              independent_guess(lcp.M, basic, largest_polished / 2);
             ContactSolution warm = solve_assembled(
               p, lcp, solve_lemke_warm(lcp.M, lcp.q, guess, options.lemke));
             warm.lcp.message =
               s.message + "; Lemke warm-started from it: " + warm.lcp.message;
-            s = std::move(warm);
+            if (s.lcp.status != Status::solved)
+              s = std::move(warm);
+            else if (warm.lcp.status == Status::solved &&
+                     objection_to(p, options, warm, false).empty())
+              {
+                warm.lcp.pivots += s.lcp.pivots;
+                s = std::move(warm);
+              }
+            else if (objection_to(p, options, s, false).empty())
+              {
+                RouteAttempt a;
+                a.kind   = "interior-point";
+                a.route  = form_name(lcp) + ", interior point";
+                a.status = Status::solved;
+                a.pivots = warm.lcp.pivots;
+                a.message =
+                  "verified, kept while routes 4 and 5 look for the exact basic solution";
+                total_pivots += warm.lcp.pivots;
+                out.attempts.push_back(a);
+                verified_interior_point = std::move(s);
+              }
           }
-        if (record("interior-point",
+        if (verified_interior_point.lcp.status != Status::solved &&
+            record("interior-point",
                    form_name(lcp) + ", interior point",
                    std::move(s)))
           return finish();
       }
+      const auto take_interior_point = [&]() {
+        out.successful_route = -1;
+        for (std::size_t i = 0; i < out.attempts.size(); ++i)
+          if (out.attempts[i].kind == "interior-point")
+            out.successful_route = static_cast<int>(i);
+        out.solution = std::move(verified_interior_point);
+        return finish();
+      };
 
       // 4. A smaller pivot tolerance. The candidate test y_p > tol * eps *
       //     ||a|| * max|B^{-1}| scales with the largest entry of the basis
@@ -419,6 +483,8 @@ namespace impactfe
                    solve_assembled(p, lcp, solve_lemke(lcp.M, lcp.q, o))))
           return finish();
       }
+      if (verified_interior_point.lcp.status == Status::solved)
+        return take_interior_point();
 
       // 6. Regularised: W + eps max|W| I is positive definite (for a W whose
       //    symmetric part is semidefinite up to its asymmetry), so Lemke's

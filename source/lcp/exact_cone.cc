@@ -306,6 +306,13 @@ namespace impactfe
       }
 
       bool
+      meets_cone_error(const ExactConeOptions &options, const double error)
+      {
+        return !(options.cone_error_tolerance > 0.) ||
+               error <= options.cone_error_tolerance;
+      }
+
+      bool
       has_friction(const ContactProblem &p)
       {
         return p.n_directions == 3 &&
@@ -360,7 +367,8 @@ namespace impactfe
               last_report.cone_error = exact_cone_error(problem, solution.P);
               last_report.residual =
                 exact_cone_residual(p, solution.P, velocity);
-              last_report.converged = true;
+              last_report.converged =
+                meets_cone_error(cone_options, last_report.cone_error);
             }
           else if (route != ExactConeRoute::facets)
             try_interior_point(problem, p, cone_options);
@@ -416,7 +424,9 @@ namespace impactfe
             guess[i] = s.lcp.z[i] > 0.;
           last_report.iterations = it;
           last_report.residual   = exact_cone_residual(p, solution.P, velocity);
-          if (last_report.residual <= cone_options.tolerance)
+          if (last_report.residual <= cone_options.tolerance &&
+              meets_cone_error(cone_options,
+                               exact_cone_error(problem, solution.P)))
             {
               last_report.converged = true;
               break;
@@ -424,7 +434,9 @@ namespace impactfe
           // Close to the circular cone: try Newton at these states.
           if (last_report.residual < 1e-3 &&
               polish_on_circular_cone(
-                p, solution.P, edge, cone_options.tolerance))
+                p, solution.P, edge, cone_options.tolerance) &&
+              meets_cone_error(cone_options,
+                               exact_cone_error(problem, solution.P)))
             {
               last_report.residual =
                 exact_cone_residual(p, solution.P, velocity);
@@ -556,9 +568,11 @@ namespace impactfe
           const std::string facet_message = solution.message;
           solution                        = ip;
           solution.message = facet_message + "; taken instead: " + ip.message;
-          last_report.residual       = ip_report.residual;
-          last_report.converged      = ip_report.converged;
-          last_report.cone_error     = exact_cone_error(problem, ip.P);
+          last_report.residual   = ip_report.residual;
+          last_report.cone_error = exact_cone_error(problem, ip.P);
+          last_report.converged =
+            ip_report.converged &&
+            meets_cone_error(cone_options, last_report.cone_error);
           last_report.interior_point = true;
           const unsigned int d       = unit_problem.n_directions;
           for (unsigned int c = 0; c < unit_problem.n_contacts && d == 3; ++c)
@@ -647,6 +661,9 @@ namespace impactfe
             }
         }
       out.report.cone_error = exact_cone_error(p, s.P);
+      out.report.converged =
+        out.report.converged &&
+        meets_cone_error(cone_options, out.report.cone_error);
       char text[200];
       std::snprintf(text,
                     sizeof(text),

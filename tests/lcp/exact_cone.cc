@@ -12,7 +12,9 @@
 //    all corners stay closed and the box slides on, so rigid-body mechanics
 //    gives the totals (the corners' shares are not unique): sum P_N = m,
 //    sum P_T = -mu m s, and every corner slides with V_T = (2 - mu) s. The
-//    polygonal cone does not give them (shown for k = 8).
+//    polygonal cone does not give them (shown for k = 8). The cold route
+//    (interior point first) with the exact-cone error as a target: the
+//    error, recomputed in this file, meets it whenever converged is set.
 // 3. A random coupled problem (8 contacts of a random body), then the same
 //    problem with every tangent frame turned by a random angle: with the
 //    exact cone the impulses are the same vectors (to 1e-8); Signorini and
@@ -80,6 +82,54 @@ namespace
           }
   }
 
+  // The exact-cone error of issue 12, written out here independently of
+  // exact_cone_error(): u = W r + q, u~ = u + mu |u_T| e_N, and
+  // sqrt(sum |r - P_K(r - u~)|^2) / max(|q|, |r|, |u|).
+  double
+  standard_cone_error(const ContactProblem &p, const std::vector<double> &r)
+  {
+    const std::size_t   n = r.size();
+    std::vector<double> u(n);
+    double              sum = 0., q2 = 0., r2 = 0., u2 = 0.;
+    for (std::size_t i = 0; i < n; ++i)
+      {
+        u[i] = p.free_velocity[i] + (i % 3 == 0 ? p.gap_term[i / 3] : 0.);
+        for (std::size_t j = 0; j < n; ++j)
+          u[i] += p.W(i, j) * r[j];
+        q2 +=
+          std::pow(p.free_velocity[i] + (i % 3 == 0 ? p.gap_term[i / 3] : 0.),
+                   2);
+        r2 += r[i] * r[i];
+        u2 += u[i] * u[i];
+      }
+    for (std::size_t c = 0; c < n / 3; ++c)
+      {
+        const double mu   = p.mu[c];
+        const double x[3] = {r[3 * c] - u[3 * c] -
+                               mu * std::hypot(u[3 * c + 1], u[3 * c + 2]),
+                             r[3 * c + 1] - u[3 * c + 1],
+                             r[3 * c + 2] - u[3 * c + 2]};
+        // projection of x on |x_T| <= mu x_N
+        const double t = std::hypot(x[1], x[2]);
+        double       y[3];
+        if (t <= mu * x[0])
+          y[0] = x[0], y[1] = x[1], y[2] = x[2];
+        else if (mu * t <= -x[0])
+          y[0] = y[1] = y[2] = 0.;
+        else
+          {
+            const double a = (x[0] + mu * t) / (1. + mu * mu);
+            y[0]           = a;
+            y[1]           = mu * a * x[1] / t;
+            y[2]           = mu * a * x[2] / t;
+          }
+        for (unsigned int d = 0; d < 3; ++d)
+          sum += std::pow(r[3 * c + d] - y[d], 2);
+      }
+    return std::sqrt(sum) /
+           std::max({std::sqrt(q2), std::sqrt(r2), std::sqrt(u2)});
+  }
+
   void
   box_on_corners()
   {
@@ -140,6 +190,23 @@ namespace
                 total_error < 1e-8 && slip_error < 1e-8,
               name.str(),
               s.message);
+
+        // The cold route of lcp-solve with the standard measure as a
+        // target too: converged means the measure, computed here on its
+        // own, is met.
+        ExactConeOptions cold;
+        cold.route                = ExactConeRoute::interior_point_then_facets;
+        cold.cone_error_tolerance = 1e-10;
+        ExactConeSolver        cold_solver;
+        const ContactSolution &t = cold_solver.solve(p, {}, cold);
+        const double           error =
+          t.lcp.status == Status::solved ? standard_cone_error(p, t.P) : 1.;
+        check(cold_solver.report().converged && error <= 1e-10 &&
+                std::abs(error - cold_solver.report().cone_error) <=
+                  1e-3 * error + 1e-16,
+              "  interior point first, cone error target 1e-10: converged, "
+              "and the cone error recomputed here meets it",
+              t.message);
 
         // The polygonal cone, k = 8: its total friction impulse misses
         // mu m s unless s is a facet direction (0 and pi/4 here).

@@ -74,6 +74,14 @@ namespace impactfe
        * impulses with velocities, is reported beside it.
        */
       double tolerance = 1e-10;
+      /**
+       * If > 0, converged also needs exact_cone_error() <= this (the
+       * standard measure, for the problem as given; lcp-solve's
+       * --tolerance sets both). The two measures scale differently: on
+       * BoxesStack1 of Siconos' collection a residual of 2e-14 comes with
+       * an exact-cone error of 2e-8.
+       */
+      double cone_error_tolerance = 0.;
       /// Facet LCPs solved at the most.
       unsigned int max_iterations = 30;
       /// Which route first; the interior point route is
@@ -91,8 +99,9 @@ namespace impactfe
       double cone_error = 0.;
       /// The residual of ExactConeOptions::tolerance (impulse units).
       double residual = 0.;
-      /// Whether residual <= tolerance (always, for a solved problem
-      /// without friction in 3D, whose LCP cone is exact).
+      /// Whether residual <= tolerance and, if it is set,
+      /// cone_error <= cone_error_tolerance (the residual is 0 for a solved
+      /// problem without friction in 3D, whose LCP cone is exact).
       bool converged = false;
       /// Whether the answer is the interior point route's, and that route's
       /// iterations (interior point, then semismooth Newton) if it was tried.
