@@ -102,6 +102,17 @@ namespace impactfe
     AssertThrow(triangulation.n_active_cells() > 0,
                 ExcMessage("Mesh: the mesh file '" + path.string() +
                            "' has no cells."));
+    // Q1 elements need quadrilaterals (hexahedra in 3D); GridIn also reads
+    // triangles, tetrahedra, wedges and pyramids, on which FE_Q fails.
+    AssertThrow(triangulation.all_reference_cells_are_hyper_cube(),
+                ExcMessage("Mesh: the mesh file '" + path.string() +
+                           "' has cells that are not " +
+                           (dim == 3 ? std::string("hexahedra") :
+                            dim == 2 ? std::string("quadrilaterals") :
+                                       std::string("lines")) +
+                           " (triangles, tetrahedra, wedges or pyramids); "
+                           "impactfe's Q1 elements need " +
+                           (dim == 3 ? "hexahedra." : "quadrilaterals.")));
   }
 
 

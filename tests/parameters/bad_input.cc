@@ -121,6 +121,21 @@ main()
            with("Obstacle", "Normal = 0, 1, 0"),
            plate);
 
+  // Meshes of simplices (GridIn reads them): Q1 needs quadrilaterals and
+  // hexahedra. The tetrahedron used to crash block_sliding_3d.
+  std::ofstream("triangle.msh")
+    << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n"
+       "2 1 0 0\n3 0 1 0\n$EndNodes\n$Elements\n1\n1 2 2 1 1 1 2 3\n"
+       "$EndElements\n";
+  run_case("triangle_mesh", with("Mesh", "Mesh file = triangle.msh"), cylinder);
+  std::ofstream("tetrahedron.msh")
+    << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n"
+       "2 0.1 0 0\n3 0 0.01 0\n4 0 0 0.1\n$EndNodes\n$Elements\n1\n"
+       "1 4 2 1 1 1 2 3 4\n$EndElements\n";
+  run_case("tetrahedral_mesh",
+           with("Mesh", "Mesh file = tetrahedron.msh"),
+           BLOCK_SLIDING_3D_EXECUTABLE);
+
   // The 3D plate: the friction cone and the contact boundary.
   const std::string plate_3d = OBLIQUE_PLATE_3D_EXECUTABLE;
   run_case("odd_number_of_facets",
