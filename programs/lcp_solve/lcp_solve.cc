@@ -299,10 +299,11 @@ main(int argc, char **argv)
                     {
                       std::fprintf(stderr,
                                    "lcp-solve: %s: the exact cone was not "
-                                   "reached: cone error %.3e > tolerance "
-                                   "%.1e (%s)\n",
+                                   "reached: cone error %.3e, residual "
+                                   "%.3e (tolerance %.1e on both) (%s)\n",
                                    file.c_str(),
                                    exact.report.cone_error,
+                                   exact.report.residual,
                                    cone_options.tolerance,
                                    s.message.c_str());
                       exit_code = std::max(exit_code, 1);

@@ -107,12 +107,13 @@ namespace impactfe
     AssertThrow(triangulation.all_reference_cells_are_hyper_cube(),
                 ExcMessage("Mesh: the mesh file '" + path.string() +
                            "' has cells that are not " +
-                           (dim == 3 ? std::string("hexahedra") :
-                            dim == 2 ? std::string("quadrilaterals") :
-                                       std::string("lines")) +
-                           " (triangles, tetrahedra, wedges or pyramids); "
-                           "impactfe's Q1 elements need " +
-                           (dim == 3 ? "hexahedra." : "quadrilaterals.")));
+                           (dim == 3 ?
+                              std::string("hexahedra (tetrahedra, wedges or "
+                                          "pyramids); impactfe's Q1 "
+                                          "elements need hexahedra.") :
+                              std::string("quadrilaterals (triangles); "
+                                          "impactfe's Q1 elements need "
+                                          "quadrilaterals."))));
   }
 
 

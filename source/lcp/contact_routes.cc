@@ -73,7 +73,9 @@ namespace impactfe
        * only for g <= max_size). Redundant contacts (W u = 0 for some
        * u != 0) make the block of a regularised or interior solution
        * singular; dropping the dependent columns keeps W P, hence the
-       * velocities.
+       * velocities. With an ill-conditioned kept block a dependent column
+       * can pass the test: the result is a guess, which Lemke's method
+       * checks.
        */
       std::vector<bool>
       independent_guess(const DenseMatrix         &M,
@@ -103,16 +105,17 @@ namespace impactfe
         for (const std::size_t i : candidates)
           {
             const std::size_t k = kept.size();
+            std::fill(v.begin(), v.begin() + k, 0.);
             for (std::size_t a = 0; a < k; ++a)
               {
-                double ua = 0., va = 0.;
+                double       ua = 0.;
+                const double ra = M(i, kept[a]);
                 for (std::size_t b = 0; b < k; ++b)
                   {
                     ua += inverse[a * g + b] * M(kept[b], i);
-                    va += M(i, kept[b]) * inverse[b * g + a];
+                    v[b] += ra * inverse[a * g + b];
                   }
                 u[a] = ua;
-                v[a] = va;
               }
             double schur = M(i, i);
             for (std::size_t a = 0; a < k; ++a)
@@ -416,8 +419,13 @@ namespace impactfe
                 basic[i] = s.lcp.z[i];
             const std::vector<bool> guess =
               independent_guess(lcp.M, basic, largest_polished / 2);
-            ContactSolution warm = solve_assembled(
-              p, lcp, solve_lemke_warm(lcp.M, lcp.q, guess, options.lemke));
+            // routes 1 and 2 were the cold solve
+            LemkeOptions warm_only  = options.lemke;
+            warm_only.cold_fallback = false;
+            ContactSolution warm =
+              solve_assembled(p,
+                              lcp,
+                              solve_lemke_warm(lcp.M, lcp.q, guess, warm_only));
             warm.lcp.message =
               s.message + "; Lemke warm-started from it: " + warm.lcp.message;
             if (s.lcp.status != Status::solved)

@@ -432,12 +432,14 @@ namespace impactfe
               break;
             }
           // Close to the circular cone: try Newton at these states.
+          polished_impulses = solution.P;
           if (last_report.residual < 1e-3 &&
               polish_on_circular_cone(
-                p, solution.P, edge, cone_options.tolerance) &&
+                p, polished_impulses, edge, cone_options.tolerance) &&
               meets_cone_error(cone_options,
-                               exact_cone_error(problem, solution.P)))
+                               exact_cone_error(problem, polished_impulses)))
             {
+              solution.P = polished_impulses;
               last_report.residual =
                 exact_cone_residual(p, solution.P, velocity);
               last_report.converged = true;
@@ -562,14 +564,21 @@ namespace impactfe
       last_report.interior_point_iterations = ip_report.iterations;
       last_report.newton_iterations         = ip_report.newton_iterations;
       const bool facet_answer = solution.lcp.status == Status::solved;
+      // With the standard measure as a target too, the smaller of it
+      // decides (the residuals of the two answers can rank them otherwise).
+      const bool   by_cone_error = cone_options.cone_error_tolerance > 0.;
+      const double ip_cone_error =
+        ip.lcp.status == Status::solved ? exact_cone_error(problem, ip.P) : 0.;
       if (ip.lcp.status == Status::solved &&
-          (!facet_answer || ip_report.residual < last_report.residual))
+          (!facet_answer ||
+           (by_cone_error ? ip_cone_error < last_report.cone_error :
+                            ip_report.residual < last_report.residual)))
         {
           const std::string facet_message = solution.message;
           solution                        = ip;
           solution.message = facet_message + "; taken instead: " + ip.message;
           last_report.residual   = ip_report.residual;
-          last_report.cone_error = exact_cone_error(problem, ip.P);
+          last_report.cone_error = ip_cone_error;
           last_report.converged =
             ip_report.converged &&
             meets_cone_error(cone_options, last_report.cone_error);
@@ -625,14 +634,20 @@ namespace impactfe
           out.total_iterations += solver.report().iterations;
           out.report.iterations =
             std::max(out.report.iterations, solver.report().iterations);
-          out.report.converged =
-            out.report.converged && solver.report().converged;
+          // With the standard measure as a target, a group's own (relative
+          // to the group's sizes) is not the whole problem's: the whole's is
+          // checked after the loop.
+          const bool group_converged =
+            solver.report().converged ||
+            (cone_options.cone_error_tolerance > 0. &&
+             solver.report().residual <= cone_options.tolerance);
+          out.report.converged = out.report.converged && group_converged;
           if (solver.report().interior_point)
             ++out.n_interior_point;
           out.report.interior_point_iterations =
             std::max(out.report.interior_point_iterations,
                      solver.report().interior_point_iterations);
-          if (!solver.report().converged)
+          if (!group_converged)
             not_converged += "; group of contact " +
                              std::to_string(contacts.front()) + ": " +
                              g.message;

@@ -1143,15 +1143,11 @@ namespace impactfe
                   check.max_sliding_violation});
       out.lcp.verification.tolerance = 1e-8;
       out.lcp.verification.ok        = check.ok;
-      if (!check.ok)
-        {
-          out.message += "; the answer fails the verification";
-          out.lcp.message = out.message;
-          return out;
-        }
       // z and w in the layout of assemble_contact_lcp(): all P_N, then the
       // beta of each contact, then all sigma (sigma of a contact without
-      // friction: the least that keeps its facet rows >= 0).
+      // friction: the least that keeps its facet rows >= 0). Also for a
+      // point that fails the verification: z_i > w_i is the guess that
+      // warm-starts Lemke's method then (route 3 of contact_routes.h).
       std::vector<double> V;
       problem.W.vmult(V, P);
       for (std::size_t i = 0; i < N; ++i)
@@ -1191,6 +1187,12 @@ namespace impactfe
           out.lcp.z[nc + std::size_t(nc) * k + c] = sigma;
           out.lcp.w[nc + std::size_t(nc) * k + c] =
             problem.mu[c] * P[dim * c] - beta_sum;
+        }
+      if (!check.ok)
+        {
+          out.message += "; the answer fails the verification";
+          out.lcp.message = out.message;
+          return out;
         }
       out.lcp.status  = Status::solved;
       out.lcp.message = out.message;

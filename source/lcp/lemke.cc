@@ -1122,6 +1122,15 @@ namespace impactfe
         result.refactorisations = engine.refactorisations;
       }
 
+      if (!options.cold_fallback)
+        {
+          if (result.status == Status::solved)
+            result.status = Status::numerical_failure;
+          result.z.clear();
+          result.w.clear();
+          result.message = "guess rejected (" + why + "); no cold start";
+          return result;
+        }
       const unsigned int warm_pivots = result.pivots;
       const unsigned int warm_refac  = result.refactorisations;
       clear(result);

@@ -180,6 +180,9 @@ namespace impactfe
       ExactConeReport     last_report;
       std::vector<double> angles;
       std::vector<double> velocity;
+      /// Newton's impulses at the facet answer's states, kept only if they
+      /// meet both targets.
+      std::vector<double> polished_impulses;
       std::vector<bool>   guess;
       /// Per contact: the angle and residual of the last iterate, for the
       /// secant step, and whether they are valid (it slid then).

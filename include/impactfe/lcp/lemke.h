@@ -139,6 +139,9 @@ namespace impactfe
       double tie_tolerance_factor = 1e3;
       /// Passed to verify().
       double verification_tolerance_factor = 1e3;
+      /// solve_lemke_warm(): solve cold where the guess fails. false: return
+      /// that failure (for a caller whose cold solve already failed).
+      bool cold_fallback = true;
     };
 
     /// The outcome of solve_lemke() / solve_lemke_warm().
