@@ -75,9 +75,9 @@ def run_ours(binary, path, facets, cone="facets", tolerance=1e-10,
              timeout=None, route="auto"):
     """One lcp-solve run; returns a dict of what it printed."""
     cmd = [binary, "--reference", "--facets", str(facets), "--cone", cone,
-           "--tolerance", str(tolerance), path]
+           path]
     if cone == "exact":
-        cmd[1:1] = ["--route", route]
+        cmd[1:1] = ["--route", route, "--tolerance", str(tolerance)]
     t0 = time.time()
     try:
         p = subprocess.run(cmd, capture_output=True, text=True,

@@ -27,6 +27,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -106,9 +107,14 @@ main(int argc, char **argv)
   cone_options.route = ExactConeRoute::interior_point_then_facets;
   cone_options.cone_error_tolerance = cone_options.tolerance;
   std::vector<std::string> files;
+  bool                     route_given = false, tolerance_given = false;
   for (int i = 1; i < argc; ++i)
     {
       const std::string a = argv[i];
+      if (i + 1 == argc &&
+          (a == "--write-fclib" || a == "--threads" || a == "--tolerance" ||
+           a == "--facets" || a == "--form" || a == "--cone" || a == "--route"))
+        return bad_argument(a + " needs a value");
       if (a == "--solution")
         solution = true;
       else if (a == "--warm")
@@ -145,6 +151,7 @@ main(int argc, char **argv)
               if (a == "--cone")
                 cone = cone_model_from_string(value);
               else
+                route_given = true,
                 cone_options.route =
                   value == "auto" ? ExactConeRoute::interior_point_then_facets :
                                     exact_cone_route_from_string(value);
@@ -158,7 +165,7 @@ main(int argc, char **argv)
         {
           const long t = integer_in(argv[++i], 1, 1024);
           if (t < 0)
-            return bad_argument("--threads needs an integer >= 1");
+            return bad_argument("--threads needs an integer in [1, 1024]");
           blas_threads = static_cast<unsigned int>(t);
         }
       else if (a == "--tolerance" && i + 1 < argc)
@@ -168,12 +175,15 @@ main(int argc, char **argv)
           if (*end != '\0' || !(cone_options.tolerance > 0.))
             return bad_argument("--tolerance needs a number > 0");
           cone_options.cone_error_tolerance = cone_options.tolerance;
+          tolerance_given                   = true;
         }
       else if (a == "--facets" && i + 1 < argc)
         {
-          const long k = integer_in(argv[++i], 2, 10000);
+          const long k = integer_in(argv[++i], 2, 256);
           if (k < 0)
-            return bad_argument("--facets needs an integer >= 2");
+            return bad_argument(
+              "--facets needs an integer in [2, 256] (--cone exact for the "
+              "circular cone)");
           options.n_facets = static_cast<unsigned int>(k);
         }
       else if (!a.empty() && a[0] == '-')
@@ -185,6 +195,9 @@ main(int argc, char **argv)
       else
         files.push_back(a);
     }
+  if ((route_given || tolerance_given) && cone != ConeModel::exact)
+    return bad_argument(std::string(route_given ? "--route" : "--tolerance") +
+                        " applies to --cone exact only");
   impactfe::set_blas_thread_limit(blas_threads);
   if (files.empty())
     {
@@ -385,6 +398,15 @@ main(int argc, char **argv)
                                      info,
                                      P.empty() ? nullptr : &s);
             }
+        }
+      catch (const std::bad_alloc &)
+        {
+          std::fflush(stdout);
+          std::cerr << "lcp-solve: error: " << file
+                    << ": out of memory (its matrices, held dense, do not fit "
+                       "in this machine's memory)"
+                    << std::endl;
+          exit_code = 2;
         }
       catch (const std::exception &e)
         {

@@ -80,7 +80,7 @@ namespace impactfe
                 ExcMessage(subsection +
                            ": 'Poisson's ratio' must be in [0, 0.5), "
                            "got " +
-                           format_number(poissons_ratio) + "."));
+                           format_input(poissons_ratio) + "."));
     require_non_negative(viscosity, subsection, "Viscosity");
     AssertThrow(rayleigh_mass >= 0. && rayleigh_stiffness >= 0.,
                 ExcMessage(subsection +

@@ -80,12 +80,13 @@ namespace impactfe
       "the slip directions until the exact-cone error is below 'Exact cone "
       "tolerance' (doc/lcp.md); 'facets', the polygonal cone of 'Number of "
       "facets' facets inscribed in it (one LCP per step).");
-    prm.declare_entry("Number of facets",
-                      "8",
-                      Patterns::Integer(),
-                      "k [-], even and >= 4: facets of the polygonal cone in "
-                      "3D, for both cone models (the exact one re-aligns "
-                      "them).");
+    prm.declare_entry(
+      "Number of facets",
+      "8",
+      Patterns::Integer(),
+      "k [-], even, in [4, 256]: facets of the polygonal cone in "
+      "3D, for both cone models (the exact one re-aligns "
+      "them).");
     prm.declare_entry("Exact cone tolerance",
                       "1e-10",
                       Patterns::Double(),
@@ -118,9 +119,10 @@ namespace impactfe
     const int k   = prm.get_integer("Number of facets");
     exact_cone_tolerance = prm.get_double("Exact cone tolerance");
     prm.leave_subsection();
-    AssertThrow(k >= 4 && k % 2 == 0,
+    AssertThrow(k >= 4 && k <= 256 && k % 2 == 0,
                 ExcMessage("Contact solver: 'Number of facets' must be even "
-                           "and >= 4, got " +
+                           "and in [4, 256] ('Friction cone = exact' for the "
+                           "circular cone), got " +
                            std::to_string(k) + "."));
     n_facets = static_cast<unsigned int>(k);
     AssertThrow(exact_cone_tolerance > 0. &&

@@ -79,7 +79,8 @@ namespace impactfe
 
     if (!node_file.empty())
       {
-        node_output = std::make_unique<std::ofstream>(node_file);
+        node_file_name = node_file;
+        node_output    = std::make_unique<std::ofstream>(node_file);
         AssertThrow(*node_output,
                     ExcMessage("Output: cannot write " + node_file));
         *node_output << "time,candidate";
@@ -340,6 +341,9 @@ namespace impactfe
               append_csv_number(node_line, x, ',');
             append_csv_number(node_line, contact_mode(s), '\n');
             node_output->write(node_line.data(), node_line.size());
+            AssertThrow(*node_output,
+                        ExcMessage("Output: writing " + node_file_name +
+                                   " failed (disk full or an I/O error)."));
           }
       }
 
@@ -601,6 +605,21 @@ namespace impactfe
     ok &= print_check(
       out, "energy ratio", s.energy_ratio, "<=", bounds.max_energy_ratio);
     return ok;
+  }
+
+
+
+  template <int dim>
+  void
+  ContactMonitor<dim>::close_node_file()
+  {
+    if (!node_output)
+      return;
+    node_output->close();
+    AssertThrow(!node_output->fail(),
+                ExcMessage("Output: writing " + node_file_name +
+                           " failed (disk full or an I/O error)."));
+    node_output.reset();
   }
 
 

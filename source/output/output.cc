@@ -93,7 +93,8 @@ namespace impactfe
 
   HistoryWriter::HistoryWriter(const std::string              &file_name,
                                const std::vector<std::string> &columns)
-    : out(file_name)
+    : file_name(file_name)
+    , out(file_name)
     , column_names(columns)
   {
     AssertThrow(out, ExcMessage("Output: cannot write " + file_name));
@@ -119,6 +120,20 @@ namespace impactfe
         append_csv_number(line, values[i], i + 1 == values.size() ? '\n' : ',');
       }
     out.write(line.data(), line.size());
+    AssertThrow(out,
+                ExcMessage("Output: writing " + file_name +
+                           " failed (disk full or an I/O error)."));
+  }
+
+
+
+  void
+  HistoryWriter::close()
+  {
+    out.close();
+    AssertThrow(!out.fail(),
+                ExcMessage("Output: writing " + file_name +
+                           " failed (disk full or an I/O error)."));
   }
 
 
@@ -189,6 +204,10 @@ namespace impactfe
     std::ofstream out(file_name);
     AssertThrow(out, ExcMessage("Output: cannot write " + file_name));
     out << str() << "\n";
+    out.close();
+    AssertThrow(!out.fail(),
+                ExcMessage("Output: writing " + file_name +
+                           " failed (disk full or an I/O error)."));
   }
 
 

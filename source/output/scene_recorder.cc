@@ -49,7 +49,10 @@ namespace impactfe
   void
   SceneRecorder<dim>::finish()
   {
+    if (history)
+      history->close();
     history.reset();
+    contact_monitor.close_node_file();
   }
 
 

@@ -166,6 +166,11 @@ namespace impactfe
     set_initial_state(multibody_system->state());
 
     create_output_directory(parameters.output.directory);
+    // A summary.json of an earlier run would stand beside this run's files
+    // until this run writes its own, and stay there if this one fails.
+    std::error_code not_removed; // then writing it fails with a message
+    std::filesystem::remove(parameters.output.directory + "/summary.json",
+                            not_removed);
     multibody_system->set_dump_directory(parameters.output.directory);
     // Where the time goes (a few clock reads per step, so only when asked).
     multibody_system->enable_cost_breakdown(

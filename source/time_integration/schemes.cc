@@ -52,7 +52,7 @@ namespace impactfe
     prm.declare_entry("Theta",
                       "0.55",
                       Patterns::Double(),
-                      "theta of the theta-schemes [-], in (0, 1]. 0.5 is "
+                      "theta of the theta-schemes [-], in [0.5, 1]. 0.5 is "
                       "the trapezoidal rule; larger values damp.");
     prm.declare_entry("Newmark beta",
                       "0.25",
@@ -69,7 +69,9 @@ namespace impactfe
     prm.declare_entry("End time",
                       "1",
                       Patterns::Double(),
-                      "End time T [s]. Must be > 0.");
+                      "End time T [s]. Must be >= the time step. The run "
+                      "makes ceil(T / h) steps: it ends at the first "
+                      "multiple of h at or after T.");
     prm.declare_entry(
       "Free-flight step factor",
       "1",
@@ -102,19 +104,27 @@ namespace impactfe
     free_flight_step_factor = prm.get_integer("Free-flight step factor");
     prm.leave_subsection();
 
-    AssertThrow(theta > 0. && theta <= 1.,
-                ExcMessage("Time stepping: 'Theta' must be in (0, 1], got " +
-                           format_number(theta) + "."));
+    // Below 1/2 the schemes are only conditionally stable: a step above
+    // the limit gives energies of 1e18 and no error.
+    AssertThrow(theta >= 0.5 && theta <= 1.,
+                ExcMessage("Time stepping: 'Theta' must be in [0.5, 1] (the "
+                           "schemes are unconditionally stable there), got " +
+                           format_input(theta) + "."));
     AssertThrow(newmark_beta > 0. && newmark_beta <= 0.5,
                 ExcMessage("Time stepping: 'Newmark beta' must be in "
                            "(0, 0.5], got " +
-                           format_number(newmark_beta) + "."));
+                           format_input(newmark_beta) + "."));
     AssertThrow(newmark_gamma >= 0.5 && newmark_gamma <= 1.,
                 ExcMessage("Time stepping: 'Newmark gamma' must be in "
                            "[0.5, 1], got " +
-                           format_number(newmark_gamma) + "."));
+                           format_input(newmark_gamma) + "."));
     require_positive(time_step, "Time stepping", "Time step");
     require_positive(end_time, "Time stepping", "End time");
+    AssertThrow(time_step <= end_time,
+                ExcMessage(
+                  "Time stepping: 'Time step' = " + format_number(time_step) +
+                  " s is longer than 'End time' = " + format_number(end_time) +
+                  " s."));
     AssertThrow(end_time / time_step < 1e9,
                 ExcMessage("Time stepping: 'End time' / 'Time step' = " +
                            format_number(end_time / time_step) +

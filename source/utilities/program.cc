@@ -9,6 +9,7 @@
 #include <ctime>
 #include <iomanip>
 #include <iostream>
+#include <new>
 #include <sstream>
 
 namespace impactfe
@@ -18,6 +19,24 @@ namespace impactfe
   {
     std::ostringstream s;
     s << value;
+    return s.str();
+  }
+
+
+
+  std::string
+  format_input(const double value)
+  {
+    std::ostringstream s;
+    for (int digits = 6; digits <= 17; ++digits)
+      {
+        s.str("");
+        s.precision(digits);
+        s << value;
+        if (!std::isfinite(value) ||
+            std::strtod(s.str().c_str(), nullptr) == value)
+          break;
+      }
     return s.str();
   }
 
@@ -88,6 +107,11 @@ namespace impactfe
     if (const auto *deal_exc =
           dynamic_cast<const dealii::ExceptionBase *>(&exc))
       deal_exc->print_info(std::cerr);
+    else if (dynamic_cast<const std::bad_alloc *>(&exc) != nullptr)
+      std::cerr << "    Out of memory: the problem is too large for this "
+                   "machine (check the numbers of cells, the refinement and "
+                   "'Number of facets')."
+                << std::endl;
     else
       std::cerr << exc.what() << std::endl;
     std::cerr << "Aborting!" << std::endl

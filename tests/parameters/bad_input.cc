@@ -69,6 +69,12 @@ main()
   run_case("unknown_scheme", with("Time stepping", "Scheme = runge-kutta"));
   run_case("theta_zero", with("Time stepping", "Theta = 0"));
   run_case("theta_above_one", with("Time stepping", "Theta = 1.5"));
+  // below 1/2 only conditionally stable; the value is printed as given
+  run_case("theta_below_half", with("Time stepping", "Theta = 0.3"));
+  run_case("theta_just_above_one", with("Time stepping", "Theta = 1.0000001"));
+  // no step would end within the run (it used to make 0 steps, exit 0)
+  run_case("time_step_longer_than_end_time",
+           with("Time stepping", "Time step = 0.1\n  set End time = 0.02"));
   run_case("theta_not_a_number", with("Time stepping", "Theta = abc"));
   run_case("negative_time_step", with("Time stepping", "Time step = -1e-6"));
   run_case("zero_end_time", with("Time stepping", "End time = 0"));
@@ -140,6 +146,9 @@ main()
   const std::string plate_3d = OBLIQUE_PLATE_3D_EXECUTABLE;
   run_case("odd_number_of_facets",
            with("Contact solver", "Number of facets = 5"),
+           plate_3d);
+  run_case("too_many_facets",
+           with("Contact solver", "Number of facets = 258"),
            plate_3d);
   run_case("two_facets_in_3d",
            with("Contact solver", "Number of facets = 2"),

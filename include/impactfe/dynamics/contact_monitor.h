@@ -169,6 +169,10 @@ namespace impactfe
     void
     record(const StepReport &report);
 
+    /** Close the node file; throws if a write failed (disk full). */
+    void
+    close_node_file();
+
     /**
      * State of candidate @p c after the last step; a sliding candidate
      * slips along +t1 or -t1 (frictionless: slip_positive).
@@ -196,6 +200,7 @@ namespace impactfe
   private:
     const MultibodySystem<dim>    &system;
     std::unique_ptr<std::ofstream> node_output;
+    std::string                    node_file_name;
     /// The row of contact_nodes.csv being written (reused).
     std::string node_line;
 

@@ -52,10 +52,14 @@ namespace impactfe
                   const std::vector<std::string> &columns);
     void
     add_row(const std::vector<double> &values);
+    /// Flush and close the file; throws if a write failed (disk full).
+    void
+    close();
     const std::vector<std::string> &
     columns() const;
 
   private:
+    std::string              file_name;
     std::ofstream            out;
     std::vector<std::string> column_names;
     /// The row being written, kept so that a row does not allocate.

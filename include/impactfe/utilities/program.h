@@ -11,6 +11,14 @@ namespace impactfe
   format_number(const double value);
 
   /**
+   * An input value in a range error: six digits where they give the value
+   * back, more where they do not (1.0000001 must not read "1" beside
+   * "must be in [0.5, 1]").
+   */
+  std::string
+  format_input(const double value);
+
+  /**
    * A figure of merit as a report prints it: three significant digits, and
    * values below @p round_off as "< round_off", so that the output does not
    * depend on the last bits.
