@@ -102,6 +102,14 @@ namespace impactfe
     AssertThrow(triangulation.n_active_cells() > 0,
                 ExcMessage("Mesh: the mesh file '" + path.string() +
                            "' has no cells."));
+    // Cells of zero or negative measure (all nodes in a plane, or wrongly
+    // ordered) would give a singular or indefinite mass matrix.
+    for (const auto &cell : triangulation.active_cell_iterators())
+      AssertThrow(
+        !cell->reference_cell().is_hyper_cube() || cell->measure() > 0.,
+        ExcMessage("Mesh: cell " + std::to_string(cell->active_cell_index()) +
+                   " of '" + path.string() + "' has zero or negative " +
+                   (dim == 3 ? "volume." : "area.")));
     // Q1 elements need quadrilaterals (hexahedra in 3D); GridIn also reads
     // triangles, tetrahedra, wedges and pyramids, on which FE_Q fails.
     AssertThrow(triangulation.all_reference_cells_are_hyper_cube(),

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -503,6 +504,8 @@ namespace impactfe
     ProblemFile
     read_problem_file(const std::string &filename)
     {
+      if (std::filesystem::is_directory(filename))
+        throw std::runtime_error(filename + ": is a directory, not a file");
       if (is_hdf5_file(filename))
         {
           ProblemFile file;

@@ -76,7 +76,7 @@ namespace impactfe
       "Free-flight step factor",
       "1",
       Patterns::Integer(1),
-      "k >= 1 [-]: a step in which no contact is active and no candidate "
+      "1 <= k <= 1000 [-]: a step in which no contact is active and no candidate "
       "can touch is made k times longer (k h), with its own factorised "
       "step matrix; it is kept only if its free velocities close no gap "
       "(the Signorini condition of k h), otherwise the step is made with h. "
@@ -118,6 +118,10 @@ namespace impactfe
                 ExcMessage("Time stepping: 'Newmark gamma' must be in "
                            "[0.5, 1], got " +
                            format_input(newmark_gamma) + "."));
+    AssertThrow(free_flight_step_factor <= 1000,
+                ExcMessage("Time stepping: 'Free-flight step factor' must be "
+                           "at most 1000, got " +
+                           std::to_string(free_flight_step_factor) + "."));
     require_positive(time_step, "Time stepping", "Time step");
     require_positive(end_time, "Time stepping", "End time");
     AssertThrow(time_step <= end_time,

@@ -81,6 +81,8 @@ main()
   run_case("newmark_beta_zero", with("Time stepping", "Newmark beta = 0"));
   run_case("free_flight_factor_zero",
            with("Time stepping", "Free-flight step factor = 0"));
+  run_case("free_flight_factor_huge",
+           with("Time stepping", "Free-flight step factor = 2000000000"));
   run_case("newmark_mass_redistribution",
            with("Time stepping", "Scheme = newmark") +
              "subsection Discretization\n  set Mass redistribution = true\n"
@@ -140,6 +142,15 @@ main()
        "1 4 2 1 1 1 2 3 4\n$EndElements\n";
   run_case("tetrahedral_mesh",
            with("Mesh", "Mesh file = tetrahedron.msh"),
+           BLOCK_SLIDING_3D_EXECUTABLE);
+  // A hexahedron with all its nodes in the plane y = 0: zero volume.
+  std::ofstream("flat_hexahedron.msh")
+    << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n8\n1 0 0 0\n"
+       "2 0.1 0 0\n3 0.1 0 0.1\n4 0 0 0.1\n5 0 0 0\n6 0.1 0 0\n"
+       "7 0.1 0 0.1\n8 0 0 0.1\n$EndNodes\n$Elements\n1\n"
+       "1 5 2 1 1 1 2 3 4 5 6 7 8\n$EndElements\n";
+  run_case("flat_hexahedral_mesh",
+           with("Mesh", "Mesh file = flat_hexahedron.msh"),
            BLOCK_SLIDING_3D_EXECUTABLE);
 
   // The 3D plate: the friction cone and the contact boundary.
