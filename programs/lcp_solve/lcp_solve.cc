@@ -1,19 +1,8 @@
 // lcp-solve: solve LCP and frictional contact problem files (Siconos numerics
-// text formats and FCLib HDF5 files) with impactfe's LCP module; the options
-// are in usage() below, the methods and the output in doc/lcp.md, "lcp-solve".
-//
-// One line per problem: "file n status pivots relative_error seconds" (n is
-// the size of the LCP solved, or the unknowns with --cone exact;
-// relative_error the verification's scale-invariant violation), then with
-// --solution z (LCP files) or the impulses P (contact files). Contact files
-// are solved group by group (the contacts W couples); with --form auto a
-// group the first form does not solve goes through the routes of
-// contact_routes.h, listed on stderr if none succeeds. "infeasible" means
-// proven to have no solution; "ray-termination" and the others mean none was
-// found. --cone exact prints "cone FILE exact iterations=I cone_error=E
-// converged=yes|no". Exit code: 0 if every problem was solved (and, with
-// --cone exact, converged), 1 if one was not, 2 on a bad command line or an
-// unreadable or malformed file.
+// text formats and FCLib HDF5 files) with impactfe's LCP module. The options
+// are in usage() below; the output lines, the exit codes (0 solved, 1 not
+// solved or not converged, 2 bad command line or file) and the methods are in
+// doc/lcp.md, "lcp-solve".
 #include <impactfe/lcp/contact_problem.h>
 #include <impactfe/lcp/contact_routes.h>
 #include <impactfe/lcp/exact_cone.h>
@@ -52,11 +41,9 @@ namespace
          "  --tolerance e  exact-cone error to reach with --cone exact, and the\n"
          "               relative natural-map residual (default 1e-10)\n"
          "  --threads t  BLAS threads (default 1: the times are one core's)\n"
-         "  --route R    with --cone exact: auto (default) or interior-point-then-\n"
-         "               facets: the interior point route, the facet LCPs where it\n"
-         "               stops short; facets-then-interior-point: the other way\n"
-         "               round (the time loop's order); facets: facet LCPs only;\n"
-         "               interior-point: that route only\n"
+         "  --route R    with --cone exact: auto (default: interior-point-then-facets),\n"
+         "               facets-then-interior-point, facets or interior-point\n"
+         "               (the order of the two routes; doc/lcp.md)\n"
          "  --verbose    print how each problem was solved (forms, routes, groups)\n"
          "  --reference  contact problems: print the exact-cone error of P, and for\n"
          "               FCLib files with a /solution that solution's error and\n"
@@ -205,12 +192,8 @@ main(int argc, char **argv)
       return 2;
     }
   if (!fclib_output.empty() && files.size() != 1)
-    {
-      std::cerr << "lcp-solve: error: --write-fclib needs exactly one input "
-                   "file, "
-                << files.size() << " given\n";
-      return 2;
-    }
+    return bad_argument("--write-fclib needs exactly one input file, " +
+                        std::to_string(files.size()) + " given");
 
   int exit_code = 0;
   for (const std::string &file : files)
@@ -231,12 +214,11 @@ main(int argc, char **argv)
           if (!fclib_output.empty() && f.type != ProblemType::friction_contact)
             throw std::runtime_error(
               file + ": --write-fclib needs a friction-contact problem");
-          const auto t0 = std::chrono::steady_clock::now();
           // the seconds of the solve, before anything is printed
-          auto seconds_since_start = [&t0]() {
-            return std::chrono::duration<double>(
-                     std::chrono::steady_clock::now() - t0)
-              .count();
+          using Clock                    = std::chrono::steady_clock;
+          const auto t0                  = Clock::now();
+          auto       seconds_since_start = [&t0]() {
+            return std::chrono::duration<double>(Clock::now() - t0).count();
           };
           double              seconds = 0.;
           Result              r;
@@ -399,19 +381,15 @@ main(int argc, char **argv)
                                      P.empty() ? nullptr : &s);
             }
         }
-      catch (const std::bad_alloc &)
-        {
-          std::fflush(stdout);
-          std::cerr << "lcp-solve: error: " << file
-                    << ": out of memory (its matrices, held dense, do not fit "
-                       "in this machine's memory)"
-                    << std::endl;
-          exit_code = 2;
-        }
       catch (const std::exception &e)
         {
           std::fflush(stdout);
-          std::cerr << "lcp-solve: error: " << e.what() << std::endl;
+          std::cerr << "lcp-solve: error: "
+                    << (dynamic_cast<const std::bad_alloc *>(&e) == nullptr ?
+                          std::string(e.what()) :
+                          file + ": out of memory (its matrices, held dense, "
+                                 "do not fit in this machine's memory)")
+                    << std::endl;
           exit_code = 2;
         }
     }
