@@ -593,25 +593,26 @@ namespace impactfe
         // symmetric), not full ones.
         for (unsigned int b = 0; b < n_bodies; ++b)
           {
-            const SparseMatrix<double> &A   = *step_matrices[b];
-            Vector<double>             &y_C = schur_nodal.block(b);
-            Vector<double>             &t   = schur_product.block(b);
-            Vector<double>             &u   = schur_interior.block(b);
-            t                               = 0.;
-            for (const auto d : schur_contact_dofs[b])
-              if (const double y_d = y_C(d); y_d != 0.)
-                for (auto it = A.begin(d); it != A.end(d); ++it)
-                  t(it->column()) += it->value() * y_d;
+            const auto        &dofs = schur_contact_dofs[b];
+            const ContactRows &rows = schur_rows[b];
+            Vector<double>    &y_C  = schur_nodal.block(b);
+            Vector<double>    &t    = schur_product.block(b);
+            Vector<double>    &u    = schur_interior.block(b);
+            t                       = 0.;
+            for (std::size_t k = 0; k < dofs.size(); ++k)
+              if (const double y_d = y_C(dofs[k]); y_d != 0.)
+                for (std::size_t e = rows.start[k]; e < rows.start[k + 1]; ++e)
+                  t(rows.column[e]) += rows.value[e] * y_d;
             u = t;
-            for (const auto d : schur_contact_dofs[b])
+            for (const auto d : dofs)
               u(d) = 0.;
             interior_solvers[b]->solve(u);
-            for (const auto d : schur_contact_dofs[b])
+            for (std::size_t k = 0; k < dofs.size(); ++k)
               {
                 double s = 0.;
-                for (auto it = A.begin(d); it != A.end(d); ++it)
-                  s += it->value() * u(it->column());
-                t(d) -= s;
+                for (std::size_t e = rows.start[k]; e < rows.start[k + 1]; ++e)
+                  s += rows.value[e] * u(rows.column[e]);
+                t(dofs[k]) -= s;
               }
           }
         y.resize(n * nd);
@@ -798,8 +799,22 @@ namespace impactfe
                                      body_list[b]->name() + "'");
         return;
       }
+    schur_rows.assign(n_bodies, ContactRows());
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
+        ContactRows &rows = schur_rows[b];
+        rows.start.assign(1, 0);
+        for (const auto d : schur_contact_dofs[b])
+          {
+            for (auto it = step_matrices[b]->begin(d);
+                 it != step_matrices[b]->end(d);
+                 ++it)
+              {
+                rows.column.push_back(it->column());
+                rows.value.push_back(it->value());
+              }
+            rows.start.push_back(rows.column.size());
+          }
         auto matrix = std::make_unique<SparseMatrix<double>>(
           body_list[b]->sparsity_pattern());
         matrix->copy_from(*step_matrices[b]);
@@ -813,9 +828,12 @@ namespace impactfe
             else
               it->value() = 1.;
         auto solver = std::make_unique<SparseCholesky>();
+        // without the zeroed entries: the factor of M~_II alone, not one
+        // with the fill of all of M~
         solver->factorize(*matrix,
                           "the interior step matrix of body '" +
-                            body_list[b]->name() + "'");
+                            body_list[b]->name() + "'",
+                          true);
         interior_matrices.push_back(std::move(matrix));
         interior_solvers.push_back(std::move(solver));
       }

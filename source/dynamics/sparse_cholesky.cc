@@ -86,7 +86,8 @@ namespace impactfe
       std::vector<double> values;
       cholmod_sparse      view;
 
-      explicit UpperTriangle(const SparseMatrix<double> &matrix)
+      explicit UpperTriangle(const SparseMatrix<double> &matrix,
+                             const bool                  drop_zeros = false)
         : column_start(matrix.m() + 1, 0)
       {
         const unsigned int n = matrix.m();
@@ -95,7 +96,8 @@ namespace impactfe
         for (unsigned int j = 0; j < n; ++j)
           {
             for (auto entry = matrix.begin(j); entry != matrix.end(j); ++entry)
-              if (entry->column() <= j)
+              if (entry->column() <= j &&
+                  !(drop_zeros && entry->column() != j && entry->value() == 0.))
                 {
                   row_index.push_back(entry->column());
                   values.push_back(entry->value());
@@ -124,13 +126,14 @@ namespace impactfe
 
   void
   SparseCholesky::factorize(const SparseMatrix<double> &matrix,
-                            const std::string          &name)
+                            const std::string          &name,
+                            const bool                  drop_zeros)
   {
     AssertThrow(matrix.m() == matrix.n(),
                 ExcMessage("Cholesky factorisation of " + name +
                            ": the matrix is not square."));
     data->free_all();
-    UpperTriangle upper(matrix);
+    UpperTriangle upper(matrix, drop_zeros);
     data->factor = cholmod_analyze(&upper.view, &data->common);
     AssertThrow(data->factor != nullptr,
                 ExcMessage("Cholesky factorisation of " + name +

@@ -255,7 +255,14 @@ namespace impactfe
           {
             const unsigned int row = unknowns[k];
             if (is_slip_row(row))
-              out[k] = c[row] * in[k];
+              {
+                // block triangular: the slip rows' main term is
+                // P_T - mu n P_N, with P_N from the normal rows
+                const unsigned int a = row / 3;
+                out[k]               = c[row] * in[k] + mu[a] *
+                                            direction[2 * a + row % 3 - 1] *
+                                            full_out[3 * a];
+              }
             else if (is_edge_row(row))
               {
                 edge_tangent(row / 3, t1, t2);
@@ -291,6 +298,7 @@ namespace impactfe
           // a refinement's start: K 0 = 0, W P = 0 without a product
           std::copy(rhs.begin(), rhs.begin() + m, r.begin());
           std::fill(work.begin(), work.end(), 0.);
+          product_valid = false;
         }
       else
         {
@@ -381,8 +389,13 @@ namespace impactfe
                                            std::vector<double>       &out)
     {
       expand(in, mu, P);
-      W(P, work);
-      ++last_report.operator_applications;
+      if (!product_valid || P != product_P)
+        {
+          W(P, work);
+          ++last_report.operator_applications;
+          product_P     = P;
+          product_valid = true;
+        }
       for (std::size_t k = 0; k < unknowns.size(); ++k)
         {
           const unsigned int row = unknowns[k];
@@ -469,11 +482,14 @@ namespace impactfe
           saved_residual = residual;
           rhs            = residual;
           x.assign(m, 0.);
+          // one pass should do: aim a tenth below the target
           bool stalled = false;
           gmres(W,
                 preconditioner,
                 mu,
-                1e-3,
+                std::clamp(0.1 * options.refinement_tolerance / error,
+                           1e-10,
+                           1e-2),
                 options.max_linear_iterations,
                 options.restart,
                 stalled);
@@ -481,6 +497,7 @@ namespace impactfe
             x[k] += saved_x[k];
           for (std::size_t i = 0; i < work.size(); ++i)
             work[i] += saved_work[i];
+          product_valid = false;
           expand(x, mu, P);
           saved_rhs.swap(rhs);
           const double new_error = relative_to_impulses();
@@ -489,6 +506,7 @@ namespace impactfe
             {
               x.swap(saved_x);
               work.swap(saved_work);
+              product_valid = false;
               residual.swap(saved_residual);
               expand(x, mu, P);
               break;
@@ -529,7 +547,8 @@ namespace impactfe
       if (q.size() != n_rows || (nd > 1 && mu.size() != n) ||
           penalty.size() != n_rows)
         throw std::invalid_argument("ActiveSetSolver: inconsistent sizes");
-      last_report = ActiveSetReport();
+      last_report   = ActiveSetReport();
+      product_valid = false;
       seen.clear();
       cycles = 0;
       P.assign(n_rows, 0.);
@@ -906,7 +925,9 @@ namespace impactfe
             }
           state   = new_state;
           feature = new_feature;
-          tight   = settled_once;
+          // only the slip directions moved: the next solve, a Newton step
+          // of the same states, stays as tight as this one
+          tight = settled_once || (tight && same);
         }
       if (!last_report.converged && last_report.message.empty())
         last_report.message = "the contact states did not settle in " +

@@ -375,6 +375,16 @@ namespace impactfe
     std::vector<std::vector<types::global_dof_index>>  schur_contact_dofs;
     std::vector<std::unique_ptr<SparseMatrix<double>>> interior_matrices;
     std::vector<std::unique_ptr<SparseCholesky>>       interior_solvers;
+    /// The rows of M~ on C of each body, copied once in compressed rows
+    /// (k-th DoF of schur_contact_dofs[b]: entries start[k] to start[k+1]),
+    /// for the preconditioner's sparse products.
+    struct ContactRows
+    {
+      std::vector<std::size_t>             start;
+      std::vector<types::global_dof_index> column;
+      std::vector<double>                  value;
+    };
+    std::vector<ContactRows> schur_rows;
     /// Or, when they are the cheaper products, the dense Schur complements
     /// S and S^{-1} of each body on C (then W = H^T S^{-1} H exactly), with
     /// their work vectors.

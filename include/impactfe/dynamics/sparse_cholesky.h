@@ -39,11 +39,15 @@ namespace impactfe
 
     /**
      * Factorise @p matrix (only its upper triangle is read). Throws with a
-     * message naming @p name if the matrix is not positive definite.
+     * message naming @p name if the matrix is not positive definite. With
+     * @p drop_zeros, entries off the diagonal that are exactly zero are
+     * left out of the pattern (rows and columns made those of the
+     * identity then cost no fill).
      */
     void
     factorize(const SparseMatrix<double> &matrix,
-              const std::string          &name = "matrix");
+              const std::string          &name       = "matrix",
+              const bool                  drop_zeros = false);
 
     /**
      * Factorise @p matrix with the unknowns @p trailing eliminated last and

@@ -180,6 +180,11 @@ namespace impactfe
       /// Flexible GMRES: the preconditioned basis vectors Z v_j.
       std::vector<std::vector<double>> preconditioned;
       std::vector<double> hessenberg, givens_cos, givens_sin, g, y_small;
+      /// The P of the last product W P, if work still holds that product:
+      /// a product of the same P (after the slip directions moved, or to
+      /// start a refinement) is then not made again.
+      std::vector<double> product_P;
+      bool                product_valid = false;
 
       void
       expand(const std::vector<double> &x_unknowns,
