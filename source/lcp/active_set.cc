@@ -783,6 +783,35 @@ namespace impactfe
           direction = new_direction;
           beta      = new_beta;
         }
+      // New states and slip directions from (P, V); returns how far the
+      // directions of the contacts that keep sliding moved (3D circular
+      // cone; in 2D they are the states' signs) and sets @p same if no
+      // state changed. The directions are taken over.
+      auto update_and_turn = [&](const bool after_tight_solve, bool &same) {
+        // after an inexact solve, only changes well above its error
+        update_states(
+          (after_tight_solve ? 1e-10 : 1e2 * options.inexact_linear_tolerance) *
+          std::max(max_abs(P), impulse_scale_free));
+        if (new_state != state || new_feature != feature)
+          damp_cycles();
+        double turn = 0.;
+        for (unsigned int a = 0; a < n && nd == 3 && n_facets == 0; ++a)
+          if (is_sliding(state[a]) && is_sliding(new_state[a]))
+            turn = std::max(turn,
+                            std::hypot(new_direction[2 * a] - direction[2 * a],
+                                       new_direction[2 * a + 1] -
+                                         direction[2 * a + 1]));
+        same = new_state == state && new_feature == feature;
+        for (unsigned int a = 0; a < n; ++a)
+          if (is_sliding(new_state[a]))
+            {
+              for (unsigned int k = 0; k < nt; ++k)
+                direction[a * nt + k] = new_direction[a * nt + k];
+              beta[a] = new_beta[a];
+            }
+        return turn;
+      };
+
       // Inexact Newton: while the states change, the linear systems are
       // solved to inexact_linear_tolerance only; once they settle, once
       // more to linear_tolerance (at once from a warm start, which is
@@ -852,31 +881,8 @@ namespace impactfe
                 }
             }
 
-          const double p_max = max_abs(P);
-          // after an inexact solve, only changes well above its error
-          update_states(
-            (tight ? 1e-10 : 1e2 * options.inexact_linear_tolerance) *
-            std::max(p_max, impulse_scale_free));
-          if (new_state != state || new_feature != feature)
-            damp_cycles();
-          // 3D: how far the slip directions of the sliding contacts moved
-          // (they settle like the states; in 2D they are the states' signs)
-          double turn = 0.;
-          for (unsigned int a = 0; a < n && nd == 3 && n_facets == 0; ++a)
-            if (is_sliding(state[a]) && is_sliding(new_state[a]))
-              turn =
-                std::max(turn,
-                         std::hypot(new_direction[2 * a] - direction[2 * a],
-                                    new_direction[2 * a + 1] -
-                                      direction[2 * a + 1]));
-          const bool same = new_state == state && new_feature == feature;
-          for (unsigned int a = 0; a < n; ++a)
-            if (is_sliding(new_state[a]))
-              {
-                for (unsigned int k = 0; k < nt; ++k)
-                  direction[a * nt + k] = new_direction[a * nt + k];
-                beta[a] = new_beta[a];
-              }
+          bool   same = false;
+          double turn = update_and_turn(tight, same);
           if (same && !tight && m > 0 &&
               turn <= options.inexact_direction_tolerance)
             {
@@ -884,12 +890,31 @@ namespace impactfe
               settled_once = true;
               continue;
             }
-          if (same && turn <= options.direction_tolerance)
+          // The slip directions converge quadratically (Newton): after a
+          // tight solve that moved them by at most the square root of
+          // their tolerance, one more Newton step settles them, and the
+          // refinement at the moved directions is that step; whether it
+          // did is checked below.
+          const bool one_step_away =
+            same && tight && m > 0 &&
+            turn <= std::sqrt(options.direction_tolerance);
+          if ((same && turn <= options.direction_tolerance) || one_step_away)
             {
               // at the settled states and directions (those just updated)
               if (m > 0)
                 last_report.linear_residual =
                   refine(W, preconditioner, q, b, mu, options);
+              if (turn > options.direction_tolerance)
+                {
+                  turn = update_and_turn(true, same);
+                  if (!same || turn > options.direction_tolerance)
+                    {
+                      state   = new_state;
+                      feature = new_feature;
+                      tight   = settled_once || same;
+                      continue;
+                    }
+                }
               const double p_max  = max_abs(P);
               double       wp_max = 0.;
               for (std::size_t i = 0; i < n_rows; ++i)
