@@ -8,6 +8,8 @@
 // - S y from its definition, with A_II^{-1} by a solve with A whose rows and
 //   columns of C are the identity's;
 // - S S^{-1} y = y;
+// - A_II^{-1} by a factorisation that leaves the zeroed entries out of its
+//   pattern equals the one that keeps them, with fewer factor entries;
 // and the unknowns returned are C, a repeated unknown is refused with a
 // message naming the matrix and leaves the object as it was, every unknown
 // trailing gives S = A, and none an empty complement.
@@ -141,6 +143,25 @@ main()
       scale                 = std::max(scale, std::abs(expected));
     }
   check(error <= 1e-13 * scale, "S y = A_CC y - A_CI A_II^{-1} A_IC y");
+
+  // The same interior factor without the zeroed entries in its pattern (the
+  // active set method's preconditioner): the same solves, less fill.
+  SparseCholesky interior_without_zeros;
+  interior_without_zeros.factorize(interior, "A_II alone", true);
+  Vector<double> u_dropped(t);
+  for (const auto d : C)
+    u_dropped[d] = 0.;
+  interior_without_zeros.solve(u_dropped);
+  double drop_error = 0., drop_scale = 0.;
+  for (unsigned int p = 0; p < n; ++p)
+    {
+      drop_error = std::max(drop_error, std::abs(u_dropped[p] - u[p]));
+      drop_scale = std::max(drop_scale, std::abs(u[p]));
+    }
+  check(drop_error <= 1e-13 * drop_scale &&
+          interior_without_zeros.n_factor_entries() <
+            interior_factor.n_factor_entries(),
+        "zeros left out of the pattern: the same A_II^{-1}, fewer entries");
 
   schur.vmult(Sinv_y.data(), back.data());
   error = 0.;
