@@ -297,7 +297,6 @@ namespace impactfe
     for (const auto &matrix : step_matrices)
       step_matrix_list.push_back(matrix.get());
     interior_solvers.clear();
-    interior_matrices.clear();
     dense_schur.clear();
     active_set_stats = ActiveSetStatistics();
     last_impulses.assign(n_columns, 0.);
@@ -772,7 +771,6 @@ namespace impactfe
     schur_nodal                 = make_block_vector();
     schur_product               = make_block_vector();
     schur_interior              = make_block_vector();
-    interior_matrices.clear();
     interior_solvers.clear();
     dense_schur.clear();
     // The dense Schur complements, if every candidate is against a rigid
@@ -815,14 +813,14 @@ namespace impactfe
               }
             rows.start.push_back(rows.column.size());
           }
-        auto matrix = std::make_unique<SparseMatrix<double>>(
-          body_list[b]->sparsity_pattern());
-        matrix->copy_from(*step_matrices[b]);
+        // only for the factorisation, which copies what it needs
+        SparseMatrix<double> interior(body_list[b]->sparsity_pattern());
+        interior.copy_from(*step_matrices[b]);
         for (const auto d : schur_contact_dofs[b])
-          for (auto it = matrix->begin(d); it != matrix->end(d); ++it)
+          for (auto it = interior.begin(d); it != interior.end(d); ++it)
             if (it->column() != d)
               {
-                matrix->set(it->column(), d, 0.);
+                interior.set(it->column(), d, 0.);
                 it->value() = 0.;
               }
             else
@@ -830,11 +828,10 @@ namespace impactfe
         auto solver = std::make_unique<SparseCholesky>();
         // without the zeroed entries: the factor of M~_II alone, not one
         // with the fill of all of M~
-        solver->factorize(*matrix,
+        solver->factorize(interior,
                           "the interior step matrix of body '" +
                             body_list[b]->name() + "'",
                           true);
-        interior_matrices.push_back(std::move(matrix));
         interior_solvers.push_back(std::move(solver));
       }
   }

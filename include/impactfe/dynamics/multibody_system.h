@@ -371,10 +371,9 @@ namespace impactfe
     /// (the velocity correction, valid if impulse_velocity_ready); the
     /// previous step's impulses (its warm start); the problem data on the
     /// candidates.
-    lcp::ActiveSetSolver                               active_set_solver;
-    std::vector<std::vector<types::global_dof_index>>  schur_contact_dofs;
-    std::vector<std::unique_ptr<SparseMatrix<double>>> interior_matrices;
-    std::vector<std::unique_ptr<SparseCholesky>>       interior_solvers;
+    lcp::ActiveSetSolver                              active_set_solver;
+    std::vector<std::vector<types::global_dof_index>> schur_contact_dofs;
+    std::vector<std::unique_ptr<SparseCholesky>>      interior_solvers;
     /// The rows of M~ on C of each body, copied once in compressed rows
     /// (k-th DoF of schur_contact_dofs[b]: entries start[k] to start[k+1]),
     /// for the preconditioner's sparse products.
