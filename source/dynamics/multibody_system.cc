@@ -296,7 +296,9 @@ namespace impactfe
     step_matrix_list.clear();
     for (const auto &matrix : step_matrices)
       step_matrix_list.push_back(matrix.get());
-    interior_solvers.clear();
+    schur_complements.clear();
+    normal_schur_complements.clear();
+    schur_preconditioner_ready = false;
     dense_schur.clear();
     active_set_stats = ActiveSetStatistics();
     last_impulses.assign(n_columns, 0.);
@@ -533,8 +535,7 @@ namespace impactfe
     const unsigned int nd = contact_set.n_directions();
     const unsigned int n  = lcp_candidates.size();
     // set up by do_time_step(), where its cost is counted
-    Assert(!interior_solvers.empty() || !dense_schur.empty(),
-           ExcInternalError());
+    Assert(schur_preconditioner_ready, ExcInternalError());
     contact_set.inverse_delassus_diagonal(step_matrix_list,
                                           lcp_candidates,
                                           lcp_penalty);
@@ -570,57 +571,19 @@ namespace impactfe
       solve_step_matrix(impulse_velocity);
       lcp_column_dots(impulse_velocity, y);
     };
-    // S_CC y = M~_CC y - M~_CI M~_II^{-1} M~_IC y for y = H x on C; rows of
-    // candidates between two bodies get c_j x_j.
+    // The Schur complement preconditioners (schur_preconditioner_product()).
+    // Frictionless: the normal one is the exact inverse of W.
+    const bool has_full = !schur_complements.empty() || !dense_schur.empty();
     const lcp::DelassusProduct preconditioner =
-      [&](const std::vector<double> &x, std::vector<double> &y) {
+      [&, has_full](const std::vector<double> &x, std::vector<double> &y) {
         if (!dense_schur.empty())
-          {
-            dense_schur_product(x, y, true);
-            return;
-          }
-        const unsigned int n_bodies = body_list.size();
-        schur_nodal                 = 0.;
-        for (unsigned int j = 0; j < n * nd; ++j)
-          if (x[j] != 0. && contact_set.candidate(lcp_candidates[j / nd])
-                              .against_rigid_obstacle())
-            contact_set.add_column(lcp_candidates[j / nd] * nd + j % nd,
-                                   x[j],
-                                   schur_nodal);
-        // M~_IC y and M~_CC y touch only the rows next to C, and
-        // M~_CI u only the rows of C: sparse products over C's rows (M~ is
-        // symmetric), not full ones.
-        for (unsigned int b = 0; b < n_bodies; ++b)
-          {
-            const auto        &dofs = schur_contact_dofs[b];
-            const ContactRows &rows = schur_rows[b];
-            Vector<double>    &y_C  = schur_nodal.block(b);
-            Vector<double>    &t    = schur_product.block(b);
-            Vector<double>    &u    = schur_interior.block(b);
-            t                       = 0.;
-            for (std::size_t k = 0; k < dofs.size(); ++k)
-              if (const double y_d = y_C(dofs[k]); y_d != 0.)
-                for (std::size_t e = rows.start[k]; e < rows.start[k + 1]; ++e)
-                  t(rows.column[e]) += rows.value[e] * y_d;
-            u = t;
-            for (const auto d : dofs)
-              u(d) = 0.;
-            interior_solvers[b]->solve(u);
-            for (std::size_t k = 0; k < dofs.size(); ++k)
-              {
-                double s = 0.;
-                for (std::size_t e = rows.start[k]; e < rows.start[k + 1]; ++e)
-                  s += rows.value[e] * u(rows.column[e]);
-                t(dofs[k]) -= s;
-              }
-          }
-        y.resize(n * nd);
-        for (unsigned int j = 0; j < n * nd; ++j)
-          y[j] = contact_set.candidate(lcp_candidates[j / nd])
-                     .against_rigid_obstacle() ?
-                   contact_set.column_dot(lcp_candidates[j / nd] * nd + j % nd,
-                                          schur_product) :
-                   lcp_penalty[j] * x[j];
+          dense_schur_product(x, y, true);
+        else
+          schur_preconditioner_product(x, y, !has_full);
+      };
+    const lcp::DelassusProduct normal_preconditioner =
+      [&](const std::vector<double> &x, std::vector<double> &y) {
+        schur_preconditioner_product(x, y, true);
       };
     lcp::ActiveSetOptions options;
     options.max_iterations = solver_parameters.active_set_iterations;
@@ -636,7 +599,9 @@ namespace impactfe
       lcp_mu,
       solver_parameters.warm_start ? state_guess : std::vector<ContactState>(),
       solver_parameters.warm_start ? lcp_impulse_guess : std::vector<double>(),
-      options);
+      options,
+      has_full && !normal_schur_complements.empty() ? normal_preconditioner :
+                                                      lcp::DelassusProduct());
     ActiveSetStatistics &stats = active_set_stats;
     ++stats.solves;
     stats.iterations += result.iterations;
@@ -771,8 +736,10 @@ namespace impactfe
     schur_nodal                 = make_block_vector();
     schur_product               = make_block_vector();
     schur_interior              = make_block_vector();
-    interior_solvers.clear();
+    schur_complements.clear();
+    normal_schur_complements.clear();
     dense_schur.clear();
+    schur_preconditioner_ready = true;
     // The dense Schur complements, if every candidate is against a rigid
     // obstacle (so that C holds every DoF of H) and they are the cheaper
     // products (typically in 3D).
@@ -797,42 +764,98 @@ namespace impactfe
                                      body_list[b]->name() + "'");
         return;
       }
-    schur_rows.assign(n_bodies, ContactRows());
+    const unsigned int nd      = contact_set.n_directions();
+    // The normal Schur complements: each obstacle candidate's node in its
+    // contact frame, the normal component in the slot of the node's first
+    // DoF. Not if a node has two such candidates (or the rotation does not
+    // fit the matrices' patterns): then only the full ones.
+    normal_slot.assign(contact_set.n_candidates(),
+                       numbers::invalid_dof_index);
+    std::vector<std::vector<SparseSchurComplement::NodeFrame>> frames(n_bodies);
+    std::vector<std::vector<types::global_dof_index>> normal_dofs(n_bodies);
+    std::vector<types::global_dof_index>              node_dofs;
+    std::vector<double>                               node_normal;
+    for (unsigned int c = 0; c < contact_set.n_candidates(); ++c)
+      if (contact_set.candidate(c).against_rigid_obstacle())
+        {
+          const unsigned int b = contact_set.candidate(c).body_a;
+          contact_set.obstacle_normal_column(c, node_dofs, node_normal);
+          frames[b].push_back(
+            SparseSchurComplement::NodeFrame::with_normal(node_dofs,
+                                                          node_normal));
+          normal_slot[c] = node_dofs[0];
+          normal_dofs[b].push_back(node_dofs[0]);
+        }
+    bool normal = true;
+    normal_schur_complements.resize(n_bodies);
+    for (unsigned int b = 0; b < n_bodies && normal; ++b)
+      if (!normal_dofs[b].empty())
+        normal = normal_schur_complements[b].initialize(
+          *step_matrices[b],
+          normal_dofs[b],
+          "the step matrix of body '" + body_list[b]->name() +
+            "' without its contact normals",
+          frames[b]);
+    if (!normal)
+      normal_schur_complements.clear();
+    // Frictionless, the normal ones are the exact inverse of W: nothing
+    // else is needed.
+    if (nd == 1 && normal)
+      return;
+
+    schur_complements.resize(n_bodies);
     for (unsigned int b = 0; b < n_bodies; ++b)
+      if (!schur_contact_dofs[b].empty())
+        schur_complements[b].initialize(*step_matrices[b],
+                                        schur_contact_dofs[b],
+                                        "the interior step matrix of body '" +
+                                          body_list[b]->name() + "'");
+  }
+
+
+
+  // S_CC y = M~_CC y - M~_CI M~_II^{-1} M~_IC y for y = H x on C, or the
+  // same with the normal Schur complement on the normal slots.
+  template <int dim>
+  void
+  MultibodySystem<dim>::schur_preconditioner_product(
+    const std::vector<double> &x,
+    std::vector<double>       &y,
+    const bool                 normal) const
+  {
+    const unsigned int nd = contact_set.n_directions();
+    const unsigned int n  = lcp_candidates.size();
+    const auto &complements = normal ? normal_schur_complements :
+                                       schur_complements;
+    schur_nodal = 0.;
+    for (unsigned int j = 0; j < n * nd; ++j)
+      if (const unsigned int c = lcp_candidates[j / nd];
+          x[j] != 0. && contact_set.candidate(c).against_rigid_obstacle())
+        {
+          if (!normal)
+            contact_set.add_column(c * nd + j % nd, x[j], schur_nodal);
+          else if (j % nd == 0)
+            schur_nodal.block(contact_set.candidate(c).body_a)(normal_slot[c]) =
+              x[j];
+        }
+    for (unsigned int b = 0; b < complements.size(); ++b)
+      if (!complements[b].dofs().empty())
+        complements[b].vmult(schur_nodal.block(b),
+                             schur_product.block(b),
+                             schur_interior.block(b));
+    y.resize(n * nd);
+    for (unsigned int j = 0; j < n * nd; ++j)
       {
-        ContactRows &rows = schur_rows[b];
-        rows.start.assign(1, 0);
-        for (const auto d : schur_contact_dofs[b])
-          {
-            for (auto it = step_matrices[b]->begin(d);
-                 it != step_matrices[b]->end(d);
-                 ++it)
-              {
-                rows.column.push_back(it->column());
-                rows.value.push_back(it->value());
-              }
-            rows.start.push_back(rows.column.size());
-          }
-        // only for the factorisation, which copies what it needs
-        SparseMatrix<double> interior(body_list[b]->sparsity_pattern());
-        interior.copy_from(*step_matrices[b]);
-        for (const auto d : schur_contact_dofs[b])
-          for (auto it = interior.begin(d); it != interior.end(d); ++it)
-            if (it->column() != d)
-              {
-                interior.set(it->column(), d, 0.);
-                it->value() = 0.;
-              }
-            else
-              it->value() = 1.;
-        auto solver = std::make_unique<SparseCholesky>();
-        // without the zeroed entries: the factor of M~_II alone, not one
-        // with the fill of all of M~
-        solver->factorize(interior,
-                          "the interior step matrix of body '" +
-                            body_list[b]->name() + "'",
-                          true);
-        interior_solvers.push_back(std::move(solver));
+        const unsigned int      c         = lcp_candidates[j / nd];
+        const ContactCandidate &candidate = contact_set.candidate(c);
+        if (!candidate.against_rigid_obstacle())
+          y[j] = lcp_penalty[j] * x[j];
+        else if (!normal)
+          y[j] = contact_set.column_dot(c * nd + j % nd, schur_product);
+        else
+          y[j] = j % nd == 0 ?
+                   schur_product.block(candidate.body_a)(normal_slot[c]) :
+                   0.;
       }
   }
 
@@ -1019,8 +1042,8 @@ namespace impactfe
         // The active set method (large sets): no W, its answer verified;
         // Lemke's method otherwise, and when it does not converge.
         impulse_velocity_ready = false;
-        if (use_active_set(lcp_candidates.size()) && interior_solvers.empty() &&
-            dense_schur.empty())
+        if (use_active_set(lcp_candidates.size()) &&
+            !schur_preconditioner_ready)
           {
             clock.charge(costs.lcp);
             setup_schur_preconditioner();

@@ -5,6 +5,9 @@
 #include <impactfe/dynamics/schur_complement.h>
 #include <impactfe/dynamics/sparse_cholesky.h>
 
+#include <algorithm>
+#include <cmath>
+
 // y = alpha A x + beta y for a symmetric A of which one triangle is read
 // (BLAS level 2; deal.II's lapack_templates.h has no symv).
 extern "C" void
@@ -176,5 +179,282 @@ namespace impactfe
     return n_contact_dofs > 0 &&
            squared * (2 * sizeof(double) + sizeof(float)) <= memory_limit &&
            squared < 4 * n_factor_entries;
+  }
+
+
+
+  namespace
+  {
+    // A := Q A Q^T for the block-diagonal orthogonal Q of @p frames (the
+    // identity off their DoFs), in A's own pattern. False if the rows of a
+    // node's DoFs do not have the same columns (then A' would need entries
+    // that A's pattern lacks).
+    bool
+    rotate_to_frames(
+      SparseMatrix<double>                                &A,
+      const std::vector<SparseSchurComplement::NodeFrame> &frames)
+    {
+      const std::size_t n = A.m();
+      std::vector<int>  frame_of(n, -1);
+      std::vector<int>  slot_of(n, 0);
+      for (std::size_t f = 0; f < frames.size(); ++f)
+        {
+          if (frames[f].dofs.empty() || frames[f].dofs.size() > 3)
+            return false;
+          for (std::size_t p = 0; p < frames[f].dofs.size(); ++p)
+            {
+              const auto d = frames[f].dofs[p];
+              if (d >= n || frame_of[d] != -1)
+                return false;
+              frame_of[d] = static_cast<int>(f);
+              slot_of[d]  = static_cast<int>(p);
+            }
+        }
+
+      // Rows: row k of a node becomes sum_p R[k][p] (row p).
+      std::vector<int>                     position(n, -1);
+      std::vector<types::global_dof_index> columns;
+      std::array<std::vector<double>, 3>   values;
+      for (const auto &frame : frames)
+        {
+          const std::size_t d = frame.dofs.size();
+          columns.clear();
+          for (auto it = A.begin(frame.dofs[0]); it != A.end(frame.dofs[0]);
+               ++it)
+            {
+              position[it->column()] = static_cast<int>(columns.size());
+              columns.push_back(it->column());
+            }
+          bool same = true;
+          for (std::size_t p = 0; p < d; ++p)
+            {
+              values[p].assign(columns.size(), 0.);
+              std::size_t count = 0;
+              for (auto it = A.begin(frame.dofs[p]); it != A.end(frame.dofs[p]);
+                   ++it, ++count)
+                if (position[it->column()] < 0)
+                  same = false;
+                else
+                  values[p][position[it->column()]] = it->value();
+              same = same && count == columns.size();
+            }
+          for (std::size_t k = 0; k < d && same; ++k)
+            for (auto it = A.begin(frame.dofs[k]); it != A.end(frame.dofs[k]);
+                 ++it)
+              {
+                const int e   = position[it->column()];
+                double    sum = 0.;
+                for (std::size_t p = 0; p < d; ++p)
+                  sum += frame.rotation[k][p] * values[p][e];
+                it->value() = sum;
+              }
+          for (const auto c : columns)
+            position[c] = -1;
+          if (!same)
+            return false;
+        }
+
+      // Columns: entry (i, node slot l) becomes sum_q (i, slot q) R[l][q].
+      std::vector<int>                   group_of(frames.size(), -1);
+      std::vector<std::array<double, 3>> group_values, group_rotated;
+      std::vector<std::size_t>           group_frame, group_count;
+      for (std::size_t i = 0; i < n; ++i)
+        {
+          group_frame.clear();
+          group_count.clear();
+          group_values.clear();
+          for (auto it = A.begin(i); it != A.end(i); ++it)
+            if (const int f = frame_of[it->column()]; f >= 0)
+              {
+                if (group_of[f] < 0)
+                  {
+                    group_of[f] = static_cast<int>(group_frame.size());
+                    group_frame.push_back(f);
+                    group_count.push_back(0);
+                    group_values.push_back({{0., 0., 0.}});
+                  }
+                group_values[group_of[f]][slot_of[it->column()]] = it->value();
+                ++group_count[group_of[f]];
+              }
+          bool complete = true;
+          group_rotated.resize(group_frame.size());
+          for (std::size_t g = 0; g < group_frame.size(); ++g)
+            {
+              const auto       &frame = frames[group_frame[g]];
+              const std::size_t d     = frame.dofs.size();
+              complete                = complete && group_count[g] == d;
+              for (std::size_t l = 0; l < d; ++l)
+                {
+                  double sum = 0.;
+                  for (std::size_t q = 0; q < d; ++q)
+                    sum += group_values[g][q] * frame.rotation[l][q];
+                  group_rotated[g][l] = sum;
+                }
+            }
+          if (complete)
+            for (auto it = A.begin(i); it != A.end(i); ++it)
+              if (const int f = frame_of[it->column()]; f >= 0)
+                it->value() = group_rotated[group_of[f]][slot_of[it->column()]];
+          for (const auto f : group_frame)
+            group_of[f] = -1;
+          if (!complete)
+            return false;
+        }
+      return true;
+    }
+  } // namespace
+
+
+
+  SparseSchurComplement::NodeFrame
+  SparseSchurComplement::NodeFrame::with_normal(
+    const std::vector<types::global_dof_index> &dofs,
+    const std::vector<double>                  &normal)
+  {
+    const std::size_t d = dofs.size();
+    double            length = 0.;
+    for (const double n_p : normal)
+      length += n_p * n_p;
+    AssertThrow(d >= 1 && d <= 3 && normal.size() == d &&
+                  std::abs(std::sqrt(length) - 1.) < 1e-12,
+                ExcMessage("NodeFrame::with_normal(): " + std::to_string(d) +
+                           " DoFs and " + std::to_string(normal.size()) +
+                           " normal components of length " +
+                           std::to_string(std::sqrt(length)) +
+                           "; expected 1 to 3 DoFs and a unit normal"));
+    NodeFrame frame;
+    frame.dofs = dofs;
+    auto &n    = frame.rotation[0];
+    std::copy(normal.begin(), normal.end(), n.begin());
+    if (d == 2)
+      frame.rotation[1] = {{-n[1], n[0], 0.}};
+    else if (d == 3)
+      {
+        std::size_t axis = 0;
+        for (std::size_t p = 1; p < 3; ++p)
+          if (std::abs(n[p]) < std::abs(n[axis]))
+            axis = p;
+        std::array<double, 3> t{{0., 0., 0.}};
+        t[axis]     = 1.;
+        double norm = 0.;
+        for (std::size_t p = 0; p < 3; ++p)
+          {
+            t[p] -= n[axis] * n[p];
+            norm += t[p] * t[p];
+          }
+        norm = std::sqrt(norm);
+        for (double &t_p : t)
+          t_p /= norm;
+        frame.rotation[1] = t;
+        frame.rotation[2] = {{n[1] * t[2] - n[2] * t[1],
+                              n[2] * t[0] - n[0] * t[2],
+                              n[0] * t[1] - n[1] * t[0]}};
+      }
+    return frame;
+  }
+
+
+
+  SparseSchurComplement::SparseSchurComplement()  = default;
+  SparseSchurComplement::~SparseSchurComplement() = default;
+  SparseSchurComplement::SparseSchurComplement(
+    SparseSchurComplement &&) noexcept = default;
+  SparseSchurComplement &
+  SparseSchurComplement::operator=(SparseSchurComplement &&) noexcept =
+    default;
+
+
+
+  bool
+  SparseSchurComplement::initialize(
+    const SparseMatrix<double>                 &matrix,
+    const std::vector<types::global_dof_index> &dofs,
+    const std::string                          &name,
+    const std::vector<NodeFrame>               &frames)
+  {
+    contact_dofs.clear();
+    row_start.assign(1, 0);
+    row_column.clear();
+    row_value.clear();
+    interior.reset();
+
+    // only for the factorisation, which copies what it needs
+    SparseMatrix<double> A(matrix.get_sparsity_pattern());
+    A.copy_from(matrix);
+    if (!frames.empty() && !rotate_to_frames(A, frames))
+      return false;
+    std::vector<types::global_dof_index> sorted(dofs);
+    std::sort(sorted.begin(), sorted.end());
+    sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+    for (const auto d : sorted)
+      {
+        for (auto it = A.begin(d); it != A.end(d); ++it)
+          {
+            row_column.push_back(it->column());
+            row_value.push_back(it->value());
+          }
+        row_start.push_back(row_column.size());
+      }
+    // A_II: the rows and columns of C made those of the identity
+    for (const auto d : sorted)
+      for (auto it = A.begin(d); it != A.end(d); ++it)
+        if (it->column() != d)
+          {
+            A.set(it->column(), d, 0.);
+            it->value() = 0.;
+          }
+        else
+          it->value() = 1.;
+    auto factor = std::make_unique<SparseCholesky>();
+    // without the zeroed entries: the factor of A_II alone, not one with
+    // the fill of all of A
+    factor->factorize(A, name, true);
+    interior = std::move(factor);
+    contact_dofs.swap(sorted);
+    return true;
+  }
+
+
+
+  const std::vector<types::global_dof_index> &
+  SparseSchurComplement::dofs() const
+  {
+    return contact_dofs;
+  }
+
+
+
+  void
+  SparseSchurComplement::vmult(const Vector<double> &y,
+                               Vector<double>       &out,
+                               Vector<double>       &work) const
+  {
+    Assert(interior, ExcMessage("SparseSchurComplement: not initialized"));
+    // A_IC y and A_CC y touch only the rows next to C, and A_CI u only the
+    // rows of C: sparse products over C's rows (A is symmetric).
+    out = 0.;
+    for (std::size_t k = 0; k < contact_dofs.size(); ++k)
+      if (const double y_d = y(contact_dofs[k]); y_d != 0.)
+        for (std::size_t e = row_start[k]; e < row_start[k + 1]; ++e)
+          out(row_column[e]) += row_value[e] * y_d;
+    work = out;
+    for (const auto d : contact_dofs)
+      work(d) = 0.;
+    interior->solve(work);
+    for (std::size_t k = 0; k < contact_dofs.size(); ++k)
+      {
+        double s = 0.;
+        for (std::size_t e = row_start[k]; e < row_start[k + 1]; ++e)
+          s += row_value[e] * work(row_column[e]);
+        out(contact_dofs[k]) -= s;
+      }
+  }
+
+
+
+  std::size_t
+  SparseSchurComplement::n_factor_entries() const
+  {
+    return interior ? interior->n_factor_entries() : 0;
   }
 } // namespace impactfe

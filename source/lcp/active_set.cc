@@ -230,7 +230,16 @@ namespace impactfe
                          std::vector<double>       &out) {
         apply_newton_operator(W, mu, in, out);
       };
-      auto apply_Z = [&](const std::vector<double> &in,
+      // Most closed contacts slide: the normal preconditioner for the
+      // normal rows, c for the tangents' velocity rows.
+      std::size_t n_sliding = 0, n_sticking = 0;
+      for (std::size_t k = 0; k < m; ++k)
+        if (unknowns[k] % dimension == 0)
+          ++(is_sliding(state[unknowns[k] / dimension]) ? n_sliding :
+                                                          n_sticking);
+      const bool normal_rows = normal_preconditioner != nullptr &&
+                               dimension > 1 && n_sliding > n_sticking;
+      auto       apply_Z     = [&](const std::vector<double> &in,
                          std::vector<double>       &out) {
         // slip rows (3D): c, their operator is (I + O(beta (1 - c W_TT))) / c
         // with c W_TT ~ 1
@@ -241,7 +250,12 @@ namespace impactfe
         for (std::size_t k = 0; k < m; ++k)
           {
             const unsigned int row = unknowns[k];
-            if (is_edge_row(row))
+            if (normal_rows)
+              {
+                if (row % dimension == 0)
+                  full_in[row] = in[k];
+              }
+            else if (is_edge_row(row))
               {
                 edge_tangent(row / 3, t1, t2);
                 full_in[row]     = t1 * in[k];
@@ -250,11 +264,16 @@ namespace impactfe
             else if (!is_slip_row(row))
               full_in[row] = in[k];
           }
-        preconditioner(full_in, full_out);
+        if (normal_rows)
+          (*normal_preconditioner)(full_in, full_out);
+        else
+          preconditioner(full_in, full_out);
         for (std::size_t k = 0; k < m; ++k)
           {
             const unsigned int row = unknowns[k];
-            if (is_slip_row(row))
+            if (normal_rows && row % dimension != 0 && !is_slip_row(row))
+              out[k] = c[row] * in[k];
+            else if (is_slip_row(row))
               {
                 // block triangular: the slip rows' main term is
                 // P_T - mu n P_N, with P_N from the normal rows
@@ -537,7 +556,8 @@ namespace impactfe
                            const std::vector<double>       &mu,
                            const std::vector<ContactState> &state_guess,
                            const std::vector<double>       &impulse_guess,
-                           const ActiveSetOptions          &options)
+                           const ActiveSetOptions          &options,
+                           const DelassusProduct &normal_preconditioner_in)
     {
       const std::size_t n = b.size(), n_rows = n * nd;
       if (nd < 1 || nd > 3)
@@ -549,6 +569,8 @@ namespace impactfe
         throw std::invalid_argument("ActiveSetSolver: inconsistent sizes");
       last_report   = ActiveSetReport();
       product_valid = false;
+      normal_preconditioner =
+        normal_preconditioner_in ? &normal_preconditioner_in : nullptr;
       seen.clear();
       cycles = 0;
       P.assign(n_rows, 0.);

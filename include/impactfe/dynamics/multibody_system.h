@@ -362,28 +362,23 @@ namespace impactfe
     std::vector<double>  facet_angle_guess;
     ExactConeStatistics  cone_statistics;
     unsigned int         last_lcp_size = 0;
-    /// The active set method: its solver; its preconditioner, the Schur
-    /// complement of M~ on the contact DoFs C of the rigid-obstacle
-    /// candidates (the inverse of W on all of them), applied with a
-    /// factorisation of M~ with the rows and columns of C made identity
-    /// (setup_schur_preconditioner(), at the first use) and its work
-    /// vectors; the step matrices as a list; M~^{-1} H P of its last product
-    /// (the velocity correction, valid if impulse_velocity_ready); the
-    /// previous step's impulses (its warm start); the problem data on the
-    /// candidates.
+    /// The active set method: its solver; its preconditioners (set up by
+    /// setup_schur_preconditioner() at the first use): the Schur complement
+    /// of M~ on the contact DoFs C of the rigid-obstacle candidates (the
+    /// inverse of W on all of them) and the one on their normal components
+    /// alone, in the contact frames (the inverse of W_NN: for the normal
+    /// rows when most closed contacts slide, and for frictionless contact),
+    /// per body; each candidate's normal slot in the latter (its node's
+    /// first DoF); their work vectors; the step matrices as a list;
+    /// M~^{-1} H P of its last product (the velocity correction, valid if
+    /// impulse_velocity_ready); the previous step's impulses (its warm
+    /// start); the problem data on the candidates.
     lcp::ActiveSetSolver                              active_set_solver;
     std::vector<std::vector<types::global_dof_index>> schur_contact_dofs;
-    std::vector<std::unique_ptr<SparseCholesky>>      interior_solvers;
-    /// The rows of M~ on C of each body, copied once in compressed rows
-    /// (k-th DoF of schur_contact_dofs[b]: entries start[k] to start[k+1]),
-    /// for the preconditioner's sparse products.
-    struct ContactRows
-    {
-      std::vector<std::size_t>             start;
-      std::vector<types::global_dof_index> column;
-      std::vector<double>                  value;
-    };
-    std::vector<ContactRows> schur_rows;
+    std::vector<SparseSchurComplement>                schur_complements;
+    std::vector<SparseSchurComplement>                normal_schur_complements;
+    std::vector<types::global_dof_index>              normal_slot;
+    bool schur_preconditioner_ready = false;
     /// Or, when they are the cheaper products, the dense Schur complements
     /// S and S^{-1} of each body on C (then W = H^T S^{-1} H exactly), with
     /// their work vectors.
@@ -398,6 +393,13 @@ namespace impactfe
       lcp_impulse_guess, lcp_penalty;
     void
     setup_schur_preconditioner();
+    /// y = H^T S H x (or, if @p normal, the normal rows' S_N x_N) on the
+    /// LCP candidates' rows; rows of candidates between two bodies get
+    /// c_j x_j.
+    void
+    schur_preconditioner_product(const std::vector<double> &x,
+                                 std::vector<double>       &y,
+                                 const bool                 normal) const;
     /// target += H x for x on the LCP candidates' directions; y = H^T v.
     void
     add_lcp_columns(const std::vector<double> &x,

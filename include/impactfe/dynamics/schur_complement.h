@@ -5,13 +5,19 @@
 
 #include <deal.II/lac/sparse_matrix.h>
 
+#include <deal.II/lac/vector.h>
+
+#include <array>
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace impactfe
 {
   using namespace dealii;
+
+  class SparseCholesky;
 
   /**
    * The Schur complement S = A_CC - A_CI A_II^{-1} A_IC of a symmetric
@@ -90,6 +96,92 @@ namespace impactfe
     /// S in single precision, and the vectors of its product.
     std::vector<float>         schur_single;
     mutable std::vector<float> x_single, y_single;
+  };
+
+
+  /**
+   * The Schur complement S = A_CC - A_CI A_II^{-1} A_IC of a sparse
+   * symmetric positive definite matrix A on a set C of its unknowns,
+   * applied without forming it: a product S y is a sparse product with
+   * the rows of A on C, one solve pair with the Cholesky factor of A_II
+   * and a sparse product back.
+   *
+   * Optionally in rotated node frames: the unknowns of a node (its DoFs
+   * @p dofs) are replaced by the components along the rows of an
+   * orthogonal @p rotation, A' = Q A Q^T, and C may name single rotated
+   * components (the k-th rotated unknown of a node sits in the slot of
+   * its k-th DoF). With the contact normals as first rows, S' on the
+   * normal slots is the inverse of the normal block W_NN of the Delassus
+   * operator: the exact preconditioner of frictionless contact, and of
+   * the normal rows of sliding contacts (doc/lcp.md, "Large contact
+   * sets").
+   */
+  class SparseSchurComplement
+  {
+  public:
+    /// The DoFs of one node and the rotation of its unknowns (row k: the
+    /// k-th new unknown's coefficients on @p dofs).
+    struct NodeFrame
+    {
+      std::vector<types::global_dof_index> dofs;
+      std::array<std::array<double, 3>, 3> rotation{};
+
+      /**
+       * The frame of 1 to 3 @p dofs whose first row is the unit vector
+       * @p normal (one coefficient per DoF), completed to an orthonormal
+       * basis: in 2D by its perpendicular, in 3D by the axis least aligned
+       * with it made orthogonal to it, and their cross product. Throws if
+       * the sizes differ or @p normal is not of unit length.
+       */
+      static NodeFrame
+      with_normal(const std::vector<types::global_dof_index> &dofs,
+                  const std::vector<double>                  &normal);
+    };
+
+    SparseSchurComplement();
+    ~SparseSchurComplement();
+    SparseSchurComplement(SparseSchurComplement &&) noexcept;
+    SparseSchurComplement &
+    operator=(SparseSchurComplement &&) noexcept;
+
+    /**
+     * Set up S of @p matrix (rotated by @p frames, if any) on @p dofs. The
+     * rotation needs the DoFs of a node to have the same couplings (as
+     * those of a vector-valued element do); returns false, and leaves the
+     * object empty, if they do not. @p name names the matrix in messages.
+     */
+    bool
+    initialize(const SparseMatrix<double>                 &matrix,
+               const std::vector<types::global_dof_index> &dofs,
+               const std::string                          &name,
+               const std::vector<NodeFrame>               &frames = {});
+
+    /// The unknowns C (sorted).
+    const std::vector<types::global_dof_index> &
+    dofs() const;
+
+    /**
+     * (S y)_C into @p out on C, for @p y zero off C (full vectors; @p out
+     * and @p work are overwritten off C).
+     */
+    void
+    vmult(const Vector<double> &y,
+          Vector<double>       &out,
+          Vector<double>       &work) const;
+
+    /// Entries of the factor of A_II.
+    std::size_t
+    n_factor_entries() const;
+
+  private:
+    std::vector<types::global_dof_index> contact_dofs;
+    /// The rows of A (or A') on C in compressed rows (k-th DoF of C:
+    /// entries start[k] to start[k + 1]); A is symmetric, so they are its
+    /// columns on C as well.
+    std::vector<std::size_t>             row_start;
+    std::vector<types::global_dof_index> row_column;
+    std::vector<double>                  row_value;
+    std::unique_ptr<SparseCholesky>      interior;
   };
 } // namespace impactfe
 

@@ -125,6 +125,15 @@ namespace impactfe
        * @p state_guess (one per contact, or empty: states from P = 0) and
        * @p impulse_guess (the start of the first linear solve, or empty)
        * warm-start the method.
+       *
+       * @p normal_preconditioner (optional) approximates W_NN^{-1} on the
+       * normal rows (its output on the other rows is not read). A linear
+       * solve in which more closed contacts slide than stick uses it for
+       * the normal rows, and c for the velocity rows of the tangents: the
+       * Schur complement of the full preconditioner restricted to the
+       * normal rows is far from W_NN^{-1} when the tangents are free
+       * (eigenvalues of the preconditioned operator up to 3 against 1.1,
+       * doc/lcp.md).
        */
       const ActiveSetReport &
       solve(const DelassusProduct           &W,
@@ -136,7 +145,8 @@ namespace impactfe
             const std::vector<double>       &mu,
             const std::vector<ContactState> &state_guess,
             const std::vector<double>       &impulse_guess,
-            const ActiveSetOptions          &options = {});
+            const ActiveSetOptions          &options               = {},
+            const DelassusProduct           &normal_preconditioner = {});
 
       /// P, V = q + W P and the states of the last solve.
       const std::vector<double> &
@@ -229,6 +239,8 @@ namespace impactfe
              const std::vector<double> &b,
              const std::vector<double> &mu,
              const ActiveSetOptions    &options);
+      /// The normal preconditioner of the current solve (or nullptr).
+      const DelassusProduct *normal_preconditioner = nullptr;
       unsigned int
       gmres(const DelassusProduct     &W,
             const DelassusProduct     &preconditioner,
