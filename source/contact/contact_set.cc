@@ -790,10 +790,9 @@ namespace impactfe
 
 
   void
-  ContactSet::obstacle_normal_column(
-    const unsigned int                    c,
-    std::vector<types::global_dof_index> &dofs,
-    std::vector<double>                  &coefficients) const
+  ContactSet::obstacle_normal_column(const unsigned int                    c,
+                                     std::vector<types::global_dof_index> &dofs,
+                                     std::vector<double> &coefficients) const
   {
     AssertThrow(c < candidate_list.size() &&
                   candidate_list[c].against_rigid_obstacle(),

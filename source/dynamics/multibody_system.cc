@@ -764,13 +764,12 @@ namespace impactfe
                                      body_list[b]->name() + "'");
         return;
       }
-    const unsigned int nd      = contact_set.n_directions();
+    const unsigned int nd = contact_set.n_directions();
     // The normal Schur complements: each obstacle candidate's node in its
     // contact frame, the normal component in the slot of the node's first
     // DoF. Not if a node has two such candidates (or the rotation does not
     // fit the matrices' patterns): then only the full ones.
-    normal_slot.assign(contact_set.n_candidates(),
-                       numbers::invalid_dof_index);
+    normal_slot.assign(contact_set.n_candidates(), numbers::invalid_dof_index);
     std::vector<std::vector<SparseSchurComplement::NodeFrame>> frames(n_bodies);
     std::vector<std::vector<types::global_dof_index>> normal_dofs(n_bodies);
     std::vector<types::global_dof_index>              node_dofs;
@@ -825,8 +824,8 @@ namespace impactfe
   {
     const unsigned int nd = contact_set.n_directions();
     const unsigned int n  = lcp_candidates.size();
-    const auto &complements = normal ? normal_schur_complements :
-                                       schur_complements;
+    const auto        &complements =
+      normal ? normal_schur_complements : schur_complements;
     schur_nodal = 0.;
     for (unsigned int j = 0; j < n * nd; ++j)
       if (const unsigned int c = lcp_candidates[j / nd];

@@ -311,7 +311,7 @@ namespace impactfe
     const std::vector<types::global_dof_index> &dofs,
     const std::vector<double>                  &normal)
   {
-    const std::size_t d = dofs.size();
+    const std::size_t d      = dofs.size();
     double            length = 0.;
     for (const double n_p : normal)
       length += n_p * n_p;
@@ -360,8 +360,7 @@ namespace impactfe
   SparseSchurComplement::SparseSchurComplement(
     SparseSchurComplement &&) noexcept = default;
   SparseSchurComplement &
-  SparseSchurComplement::operator=(SparseSchurComplement &&) noexcept =
-    default;
+  SparseSchurComplement::operator=(SparseSchurComplement &&) noexcept = default;
 
 
 

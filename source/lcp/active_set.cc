@@ -239,7 +239,7 @@ namespace impactfe
                                                           n_sticking);
       const bool normal_rows = normal_preconditioner != nullptr &&
                                dimension > 1 && n_sliding > n_sticking;
-      auto       apply_Z     = [&](const std::vector<double> &in,
+      auto apply_Z = [&](const std::vector<double> &in,
                          std::vector<double>       &out) {
         // slip rows (3D): c, their operator is (I + O(beta (1 - c W_TT))) / c
         // with c W_TT ~ 1

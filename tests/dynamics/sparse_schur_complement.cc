@@ -67,7 +67,7 @@ main()
 {
   impactfe_tests::initlog();
   const unsigned int n_nodes = m * m * m, n = 3 * n_nodes;
-  const double       B[3][3] = {{2., 0.5, 0.2}, {0.5, 1.5, 0.3}, {0.2, 0.3, 1.}};
+  const double B[3][3] = {{2., 0.5, 0.2}, {0.5, 1.5, 0.3}, {0.2, 0.3, 1.}};
 
   // L: 7-point couplings of the nodes; A = L (x) B + shift.
   std::vector<std::vector<std::pair<unsigned int, double>>> L(n_nodes);
@@ -174,15 +174,14 @@ main()
       double normal_velocity = 0.;
       for (unsigned int p = 0; p < 3; ++p)
         normal_velocity += frames[a].rotation[0][p] * forces[frames[a].dofs[p]];
-      error =
-        std::max(error, std::abs(normal_velocity - x[frames[a].dofs[0]]));
+      error = std::max(error, std::abs(normal_velocity - x[frames[a].dofs[0]]));
       scale = std::max(scale, std::abs(x[frames[a].dofs[0]]));
     }
   check(error <= 1e-11 * scale, "rotated frames: S_N = (N^T A^{-1} N)^{-1}");
 
   // Frames: orthonormal in 3D and 2D, along an axis or not.
-  const auto axis = SparseSchurComplement::NodeFrame::with_normal({0, 1, 2},
-                                                                  {0., -1., 0.});
+  const auto axis =
+    SparseSchurComplement::NodeFrame::with_normal({0, 1, 2}, {0., -1., 0.});
   const auto plane =
     SparseSchurComplement::NodeFrame::with_normal({0, 1}, {0.6, -0.8});
   check(frame_error < 1e-15 && orthonormality_error(axis) < 1e-15 &&

@@ -4,7 +4,6 @@
 #include <deal.II/base/types.h>
 
 #include <deal.II/lac/sparse_matrix.h>
-
 #include <deal.II/lac/vector.h>
 
 #include <array>
