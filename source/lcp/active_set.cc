@@ -230,15 +230,20 @@ namespace impactfe
                          std::vector<double>       &out) {
         apply_newton_operator(W, mu, in, out);
       };
-      // Most closed contacts slide: the normal preconditioner for the
-      // normal rows, c for the tangents' velocity rows.
+      // (Nearly) every closed contact slides: the normal preconditioner
+      // for the normal rows, c for the tangents' velocity rows. It treats
+      // the sticking contacts' tangents as free, a perturbation of rank up
+      // to the number of sticking tangents: with half the contacts sticking
+      // (2D slab, 30001 contacts) GMRES needed 400 iterations instead of
+      // 12. Hence at most 1 % of them sticking.
       std::size_t n_sliding = 0, n_sticking = 0;
       for (std::size_t k = 0; k < m; ++k)
         if (unknowns[k] % dimension == 0)
           ++(is_sliding(state[unknowns[k] / dimension]) ? n_sliding :
                                                           n_sticking);
       const bool normal_rows = normal_preconditioner != nullptr &&
-                               dimension > 1 && n_sliding > n_sticking;
+                               dimension > 1 && 100 * n_sticking <= n_sliding &&
+                               n_sliding > 0;
       auto apply_Z = [&](const std::vector<double> &in,
                          std::vector<double>       &out) {
         // slip rows (3D): c, their operator is (I + O(beta (1 - c W_TT))) / c

@@ -128,12 +128,11 @@ namespace impactfe
        *
        * @p normal_preconditioner (optional) approximates W_NN^{-1} on the
        * normal rows (its output on the other rows is not read). A linear
-       * solve in which more closed contacts slide than stick uses it for
-       * the normal rows, and c for the velocity rows of the tangents: the
-       * Schur complement of the full preconditioner restricted to the
-       * normal rows is far from W_NN^{-1} when the tangents are free
-       * (eigenvalues of the preconditioned operator up to 3 against 1.1,
-       * doc/lcp.md).
+       * solve in which at most 1 % of the closed contacts stick uses it
+       * for the normal rows, and c for the velocity rows of the tangents:
+       * the full preconditioner restricted to the normal rows is far from
+       * W_NN^{-1} when the tangents are free (eigenvalues of the
+       * preconditioned operator up to 3 against 1.1, doc/lcp.md).
        */
       const ActiveSetReport &
       solve(const DelassusProduct           &W,
