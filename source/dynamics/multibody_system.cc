@@ -839,9 +839,9 @@ namespace impactfe
         }
     for (unsigned int b = 0; b < complements.size(); ++b)
       if (!complements[b].dofs().empty())
-        complements[b].vmult(schur_nodal.block(b),
-                             schur_product.block(b),
-                             schur_interior.block(b));
+        complements[b].vmult_single_precision(schur_nodal.block(b),
+                                              schur_product.block(b),
+                                              schur_interior.block(b));
     y.resize(n * nd);
     for (unsigned int j = 0; j < n * nd; ++j)
       {

@@ -428,6 +428,27 @@ namespace impactfe
                                Vector<double>       &out,
                                Vector<double>       &work) const
   {
+    apply(y, out, work, false);
+  }
+
+
+
+  void
+  SparseSchurComplement::vmult_single_precision(const Vector<double> &y,
+                                                Vector<double>       &out,
+                                                Vector<double> &work) const
+  {
+    apply(y, out, work, true);
+  }
+
+
+
+  void
+  SparseSchurComplement::apply(const Vector<double> &y,
+                               Vector<double>       &out,
+                               Vector<double>       &work,
+                               const bool            single_precision) const
+  {
     Assert(interior, ExcMessage("SparseSchurComplement: not initialized"));
     // A_IC y and A_CC y touch only the rows next to C, and A_CI u only the
     // rows of C: sparse products over C's rows (A is symmetric).
@@ -439,7 +460,10 @@ namespace impactfe
     work = out;
     for (const auto d : contact_dofs)
       work(d) = 0.;
-    interior->solve(work);
+    if (single_precision)
+      interior->solve_single_precision(work);
+    else
+      interior->solve(work);
     for (std::size_t k = 0; k < contact_dofs.size(); ++k)
       {
         double s = 0.;

@@ -8,6 +8,30 @@
 #include <string>
 #include <vector>
 
+// Single-precision BLAS (deal.II's lapack_templates.h has the double ones
+// only through its templates).
+extern "C" void
+strsv_(const char  *uplo,
+       const char  *trans,
+       const char  *diag,
+       const int   *n,
+       const float *a,
+       const int   *lda,
+       float       *x,
+       const int   *incx);
+extern "C" void
+sgemv_(const char  *trans,
+       const int   *m,
+       const int   *n,
+       const float *alpha,
+       const float *a,
+       const int   *lda,
+       const float *x,
+       const int   *incx,
+       const float *beta,
+       float       *y,
+       const int   *incy);
+
 namespace impactfe
 {
   // CHOLMOD's state: its common block, the factor, the right-hand side and
@@ -36,6 +60,10 @@ namespace impactfe
     std::vector<double>         inverse_diagonal;
     std::vector<int>            permutation;
     mutable std::vector<double> work;
+    // A supernodal factor's values rounded to single precision and the
+    // work vector of its solve (solve_single_precision(), made at its
+    // first call).
+    mutable std::vector<float> single_values, single_work, single_block;
 
     Data()
     {
@@ -159,6 +187,7 @@ namespace impactfe
                      ": CHOLMOD status " + std::to_string(data->common.status) +
                        ".")));
     data->rhs = cholmod_zeros(upper.nrow, 1, CHOLMOD_REAL, &data->common);
+    data->single_values.clear();
     data->column_start.clear();
     if (!data->factor->is_super)
       copy_simplicial_factor();
@@ -508,6 +537,104 @@ namespace impactfe
     restore_simplicial_workspace(data->block_work_y, n);
     const double *s = static_cast<const double *>(data->block_solution->x);
     std::copy(s, s + n * n_columns, columns);
+  }
+
+
+
+  // L L^T z = P x by supernodes: a supernode's columns k1 <= k < k2 and
+  // its rows (the first k2 - k1 of them those columns) hold a dense,
+  // column-major block; forward, its triangle is solved and the rows below
+  // updated; backward, the reverse.
+  void
+  SparseCholesky::solve_single_precision(Vector<double> &x) const
+  {
+    Assert(data->factor != nullptr, ExcMessage("factorize() first."));
+    const cholmod_factor &L = *data->factor;
+    if (!L.is_super)
+      {
+        solve(x);
+        return;
+      }
+    const std::size_t n = L.n;
+    AssertDimension(x.size(), n);
+    if (data->single_values.empty())
+      {
+        const double *values = static_cast<const double *>(L.x);
+        data->single_values.assign(values, values + L.xsize);
+        data->single_work.resize(n);
+        std::size_t most_below = 1;
+        for (std::size_t s = 0; s < L.nsuper; ++s)
+          most_below =
+            std::max<std::size_t>(most_below,
+                                  (static_cast<const int *>(L.pi)[s + 1] -
+                                   static_cast<const int *>(L.pi)[s]) -
+                                    (static_cast<const int *>(L.super)[s + 1] -
+                                     static_cast<const int *>(L.super)[s]));
+        data->single_block.resize(most_below);
+      }
+    const int   *super = static_cast<const int *>(L.super);
+    const int   *pi    = static_cast<const int *>(L.pi);
+    const int   *px    = static_cast<const int *>(L.px);
+    const int   *rows  = static_cast<const int *>(L.s);
+    const int   *perm  = static_cast<const int *>(L.Perm);
+    const float *Lx    = data->single_values.data();
+    float       *z     = data->single_work.data();
+    float       *t     = data->single_block.data();
+    for (std::size_t k = 0; k < n; ++k)
+      z[k] = static_cast<float>(x[perm[k]]);
+    const int   one_i = 1;
+    const float one = 1.f, zero = 0.f;
+    for (std::size_t s = 0; s < L.nsuper; ++s)
+      {
+        const int    k1 = super[s], n_columns = super[s + 1] - k1;
+        const int    n_rows = pi[s + 1] - pi[s], n_below = n_rows - n_columns;
+        const float *block = Lx + px[s];
+        strsv_("L", "N", "N", &n_columns, block, &n_rows, z + k1, &one_i);
+        if (n_below > 0)
+          {
+            sgemv_("N",
+                   &n_below,
+                   &n_columns,
+                   &one,
+                   block + n_columns,
+                   &n_rows,
+                   z + k1,
+                   &one_i,
+                   &zero,
+                   t,
+                   &one_i);
+            const int *below = rows + pi[s] + n_columns;
+            for (int i = 0; i < n_below; ++i)
+              z[below[i]] -= t[i];
+          }
+      }
+    for (std::size_t s = L.nsuper; s-- > 0;)
+      {
+        const int    k1 = super[s], n_columns = super[s + 1] - k1;
+        const int    n_rows = pi[s + 1] - pi[s], n_below = n_rows - n_columns;
+        const float *block = Lx + px[s];
+        if (n_below > 0)
+          {
+            const int *below = rows + pi[s] + n_columns;
+            for (int i = 0; i < n_below; ++i)
+              t[i] = z[below[i]];
+            const float minus_one = -1.f;
+            sgemv_("T",
+                   &n_below,
+                   &n_columns,
+                   &minus_one,
+                   block + n_columns,
+                   &n_rows,
+                   t,
+                   &one_i,
+                   &one,
+                   z + k1,
+                   &one_i);
+          }
+        strsv_("L", "T", "N", &n_columns, block, &n_rows, z + k1, &one_i);
+      }
+    for (std::size_t k = 0; k < n; ++k)
+      x[perm[k]] = z[k];
   }
 
 

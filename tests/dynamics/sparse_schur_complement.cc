@@ -5,7 +5,11 @@
 // mass-like shift on a 9 x 9 x 9 grid, B symmetric positive definite),
 // against independent computations:
 // - on C = every unknown of the nodes of the face k = 0, S y equals the
-//   dense Schur complement (DenseSchurComplement, another factorisation);
+//   dense Schur complement (DenseSchurComplement, another factorisation),
+//   and with A_II solved in single precision is within 1e-5 of it;
+// - SparseCholesky::solve_single_precision() of a supernodal factor is
+//   within 1e-5 of solve() (the factor of A: CHOLMOD's supernodal
+//   choice on this 3D operator is checked);
 // - in rotated frames whose first rows are unit normals n_a of those nodes
 //   (NodeFrame::with_normal()), on their normal slots: S_N is the inverse
 //   of W_NN = N^T A^{-1} N, checked by N^T A^{-1} N (S_N x) = x with one
@@ -106,6 +110,20 @@ main()
     A.add(i, i, 0.05 * (i % 3));
   SparseCholesky full;
   full.factorize(A, "A");
+  {
+    Vector<double> b(n), b_single(n);
+    for (unsigned int i = 0; i < n; ++i)
+      b[i] = std::cos(0.1 * i);
+    b_single = b;
+    full.solve(b);
+    full.solve_single_precision(b_single);
+    b_single -= b;
+    check(!full.simplicial() &&
+            b_single.linfty_norm() <= 1e-5 * b.linfty_norm() &&
+            b_single.linfty_norm() > 0.,
+          "supernodal factor: the single-precision solve within 1e-5 of "
+          "solve(), not equal");
+  }
 
   // The face k = 0: every unknown of its nodes.
   std::vector<types::global_dof_index> face_dofs;
@@ -137,6 +155,15 @@ main()
       scale = std::max(scale, std::abs(S_y[a]));
     }
   check(error <= 1e-12 * scale, "S y equals the dense Schur complement's");
+
+  // The preconditioner's product: A_II solved in single precision.
+  Vector<double> out_single(n);
+  sparse.vmult_single_precision(y, out_single, work);
+  double single_error = 0.;
+  for (const auto d : C)
+    single_error = std::max(single_error, std::abs(out_single[d] - out[d]));
+  check(single_error <= 1e-5 * scale && single_error > 0.,
+        "S y with A_II^{-1} in single precision: within 1e-5, not equal");
 
   // Rotated frames, unit normals varying over the face; C = normal slots.
   std::vector<SparseSchurComplement::NodeFrame> frames;
