@@ -81,6 +81,7 @@ namespace impactfe
       cholmod_free_dense(&block_solution, &common);
       cholmod_free_dense(&block_work_y, &common);
       cholmod_free_dense(&block_work_e, &common);
+      single_values.clear(); // rounded from the factor just freed
     }
 
     ~Data()
