@@ -8,30 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-// y = alpha A x + beta y for a symmetric A of which one triangle is read
-// (BLAS level 2; deal.II's lapack_templates.h has no symv).
-extern "C" void
-dsymv_(const char                    *uplo,
-       const dealii::types::blas_int *n,
-       const double                  *alpha,
-       const double                  *a,
-       const dealii::types::blas_int *lda,
-       const double                  *x,
-       const dealii::types::blas_int *incx,
-       const double                  *beta,
-       double                        *y,
-       const dealii::types::blas_int *incy);
-extern "C" void
-ssymv_(const char                    *uplo,
-       const dealii::types::blas_int *n,
-       const float                   *alpha,
-       const float                   *a,
-       const dealii::types::blas_int *lda,
-       const float                   *x,
-       const dealii::types::blas_int *incx,
-       const float                   *beta,
-       float                         *y,
-       const dealii::types::blas_int *incy);
+#include "../utilities/blas_lapack.h"
 
 namespace impactfe
 {

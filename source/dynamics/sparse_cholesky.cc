@@ -8,29 +8,7 @@
 #include <string>
 #include <vector>
 
-// Single-precision BLAS (deal.II's lapack_templates.h has the double ones
-// only through its templates).
-extern "C" void
-strsv_(const char  *uplo,
-       const char  *trans,
-       const char  *diag,
-       const int   *n,
-       const float *a,
-       const int   *lda,
-       float       *x,
-       const int   *incx);
-extern "C" void
-sgemv_(const char  *trans,
-       const int   *m,
-       const int   *n,
-       const float *alpha,
-       const float *a,
-       const int   *lda,
-       const float *x,
-       const int   *incx,
-       const float *beta,
-       float       *y,
-       const int   *incy);
+#include "../utilities/blas_lapack.h"
 
 namespace impactfe
 {

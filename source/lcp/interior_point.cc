@@ -7,8 +7,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "../utilities/blas_lapack.h"
 #include "contact_workspace.h"
-#include "lapack.h"
 
 namespace impactfe
 {
