@@ -166,7 +166,6 @@ namespace impactfe
                      ": CHOLMOD status " + std::to_string(data->common.status) +
                        ".")));
     data->rhs = cholmod_zeros(upper.nrow, 1, CHOLMOD_REAL, &data->common);
-    data->single_values.clear();
     data->column_start.clear();
     if (!data->factor->is_super)
       copy_simplicial_factor();
