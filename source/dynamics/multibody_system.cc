@@ -298,6 +298,7 @@ namespace impactfe
       step_matrix_list.push_back(matrix.get());
     schur_complements.clear();
     normal_schur_complements.clear();
+    normal_schur_pending       = false;
     schur_preconditioner_ready = false;
     dense_schur.clear();
     active_set_stats = ActiveSetStatistics();
@@ -583,7 +584,12 @@ namespace impactfe
       };
     const lcp::DelassusProduct normal_preconditioner =
       [&](const std::vector<double> &x, std::vector<double> &y) {
-        schur_preconditioner_product(x, y, true);
+        // the full one's normal rows if the normal ones cannot be made
+        const double start  = measure_costs ? thread_cpu_seconds() : 0.;
+        const bool   normal = ensure_normal_schur_complements();
+        if (measure_costs)
+          normal_schur_seconds += thread_cpu_seconds() - start;
+        schur_preconditioner_product(x, y, normal);
       };
     lcp::ActiveSetOptions options;
     options.max_iterations = solver_parameters.active_set_iterations;
@@ -600,8 +606,9 @@ namespace impactfe
       solver_parameters.warm_start ? state_guess : std::vector<ContactState>(),
       solver_parameters.warm_start ? lcp_impulse_guess : std::vector<double>(),
       options,
-      has_full && !normal_schur_complements.empty() ? normal_preconditioner :
-                                                      lcp::DelassusProduct());
+      has_full && (normal_schur_pending || !normal_schur_complements.empty()) ?
+        normal_preconditioner :
+        lcp::DelassusProduct());
     ActiveSetStatistics &stats = active_set_stats;
     ++stats.solves;
     stats.iterations += result.iterations;
@@ -738,6 +745,7 @@ namespace impactfe
     schur_interior              = make_block_vector();
     schur_complements.clear();
     normal_schur_complements.clear();
+    normal_schur_pending = false;
     dense_schur.clear();
     schur_preconditioner_ready = true;
     // The dense Schur complements, if every candidate is against a rigid
@@ -770,36 +778,28 @@ namespace impactfe
     // DoF. Not if a node has two such candidates (or the rotation does not
     // fit the matrices' patterns): then only the full ones.
     normal_slot.assign(contact_set.n_candidates(), numbers::invalid_dof_index);
-    std::vector<std::vector<SparseSchurComplement::NodeFrame>> frames(n_bodies);
-    std::vector<std::vector<types::global_dof_index>> normal_dofs(n_bodies);
-    std::vector<types::global_dof_index>              node_dofs;
-    std::vector<double>                               node_normal;
+    normal_frames.assign(n_bodies, {});
+    normal_dofs.assign(n_bodies, {});
+    std::vector<types::global_dof_index> node_dofs;
+    std::vector<double>                  node_normal;
     for (unsigned int c = 0; c < contact_set.n_candidates(); ++c)
       if (contact_set.candidate(c).against_rigid_obstacle())
         {
           const unsigned int b = contact_set.candidate(c).body_a;
           contact_set.obstacle_normal_column(c, node_dofs, node_normal);
-          frames[b].push_back(
+          normal_frames[b].push_back(
             SparseSchurComplement::NodeFrame::with_normal(node_dofs,
                                                           node_normal));
           normal_slot[c] = node_dofs[0];
           normal_dofs[b].push_back(node_dofs[0]);
         }
-    bool normal = true;
-    normal_schur_complements.resize(n_bodies);
-    for (unsigned int b = 0; b < n_bodies && normal; ++b)
-      if (!normal_dofs[b].empty())
-        normal = normal_schur_complements[b].initialize(
-          *step_matrices[b],
-          normal_dofs[b],
-          "the step matrix of body '" + body_list[b]->name() +
-            "' without its contact normals",
-          frames[b]);
-    if (!normal)
-      normal_schur_complements.clear();
+    normal_schur_pending = true;
     // Frictionless, the normal ones are the exact inverse of W: nothing
-    // else is needed.
-    if (nd == 1 && normal)
+    // else is needed. With friction they serve only solves in which nearly
+    // every closed contact slides, which many scenes never have: they are
+    // factorised when a solve first asks for them (as costly as the
+    // factorisation of M~, and as large).
+    if (nd == 1 && ensure_normal_schur_complements())
       return;
 
     schur_complements.resize(n_bodies);
@@ -809,6 +809,33 @@ namespace impactfe
                                         schur_contact_dofs[b],
                                         "the interior step matrix of body '" +
                                           body_list[b]->name() + "'");
+  }
+
+
+
+  template <int dim>
+  bool
+  MultibodySystem<dim>::ensure_normal_schur_complements()
+  {
+    if (normal_schur_pending)
+      {
+        normal_schur_pending = false;
+        bool normal          = true;
+        normal_schur_complements.resize(body_list.size());
+        for (unsigned int b = 0; b < body_list.size() && normal; ++b)
+          if (!normal_dofs[b].empty())
+            normal = normal_schur_complements[b].initialize(
+              *step_matrices[b],
+              normal_dofs[b],
+              "the step matrix of body '" + body_list[b]->name() +
+                "' without its contact normals",
+              normal_frames[b]);
+        if (!normal)
+          normal_schur_complements.clear();
+        normal_frames.clear();
+        normal_dofs.clear();
+      }
+    return !normal_schur_complements.empty();
   }
 
 
@@ -1140,6 +1167,13 @@ namespace impactfe
     pivot_count += report.lcp_pivots;
     lcp_max_size = std::max(lcp_max_size, report.lcp_size);
     clock.charge(costs.lcp);
+    if (measure_costs)
+      {
+        // a set-up made during the solve
+        costs.lcp -= normal_schur_seconds;
+        costs.delassus += normal_schur_seconds;
+      }
+    normal_schur_seconds = 0.;
 
     // 4. v^{i+1} = v_free + M~^{-1} (H P), and the nodal forces. With few
     // impulses whose columns M~^{-1} H_j are stored, their sum is cheaper

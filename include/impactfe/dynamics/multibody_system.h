@@ -369,7 +369,11 @@ namespace impactfe
     /// alone, in the contact frames (the inverse of W_NN: for the normal
     /// rows when most closed contacts slide, and for frictionless contact),
     /// per body; each candidate's normal slot in the latter (its node's
-    /// first DoF); their work vectors; the step matrices as a list;
+    /// first DoF); with friction, the frames and normal slots that the
+    /// normal ones are factorised from when a solve first asks for them
+    /// (ensure_normal_schur_complements()), and the CPU seconds that took
+    /// in this step (a set-up cost, not the contact problem's); their work
+    /// vectors; the step matrices as a list;
     /// M~^{-1} H P of its last product (the velocity correction, valid if
     /// impulse_velocity_ready); the previous step's impulses (its warm
     /// start); the problem data on the candidates.
@@ -378,7 +382,11 @@ namespace impactfe
     std::vector<SparseSchurComplement>                schur_complements;
     std::vector<SparseSchurComplement>                normal_schur_complements;
     std::vector<types::global_dof_index>              normal_slot;
-    bool schur_preconditioner_ready = false;
+    std::vector<std::vector<SparseSchurComplement::NodeFrame>> normal_frames;
+    std::vector<std::vector<types::global_dof_index>>          normal_dofs;
+    bool   schur_preconditioner_ready = false;
+    bool   normal_schur_pending       = false;
+    double normal_schur_seconds       = 0.;
     /// Or, when they are the cheaper products, the dense Schur complements
     /// S and S^{-1} of each body on C (then W = H^T S^{-1} H exactly), with
     /// their work vectors.
@@ -393,6 +401,10 @@ namespace impactfe
       lcp_impulse_guess, lcp_penalty;
     void
     setup_schur_preconditioner();
+    /// Factorise the normal Schur complements if they are pending; whether
+    /// they exist (the rotation may not fit the matrices' patterns).
+    bool
+    ensure_normal_schur_complements();
     /// y = H^T S H x (or, if @p normal, the normal rows' S_N x_N) on the
     /// LCP candidates' rows; rows of candidates between two bodies get
     /// c_j x_j.
