@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "text.h"
+
 namespace impactfe
 {
   namespace lcp
@@ -900,10 +902,16 @@ namespace impactfe
                 V[i] = q[i] + work[i];
               if (stalled)
                 {
-                  last_report.message =
-                    "GMRES did not reach the relative residual " +
-                    std::to_string(options.linear_tolerance) +
-                    " at active-set iteration " + std::to_string(iteration);
+                  last_report.message.clear();
+                  internal::append_text(
+                    last_report.message,
+                    "GMRES did not reach the relative residual %g at "
+                    "active-set iteration %u (%u GMRES iterations in this solve)",
+                    tight ? options.linear_tolerance :
+                            std::max(options.linear_tolerance,
+                                     options.inexact_linear_tolerance),
+                    iteration,
+                    last_report.linear_iterations);
                   break;
                 }
             }
@@ -962,17 +970,13 @@ namespace impactfe
               last_report.cone_error =
                 exact_cone_error(nd, full_in, full_out, P, mu);
               if (!last_report.converged)
-                last_report.message =
+                internal::append_text(
+                  last_report.message,
                   "the contact states settled but (P, V) failed the "
-                  "verification (Signorini " +
-                  std::to_string(
-                    last_report.verification.max_signorini_violation) +
-                  ", cone " +
-                  std::to_string(last_report.verification.max_cone_violation) +
-                  ", sliding " +
-                  std::to_string(
-                    last_report.verification.max_sliding_violation) +
-                  ")";
+                  "verification (Signorini %g, cone %g, sliding %g)",
+                  last_report.verification.max_signorini_violation,
+                  last_report.verification.max_cone_violation,
+                  last_report.verification.max_sliding_violation);
               break;
             }
           state   = new_state;
