@@ -887,13 +887,15 @@ namespace impactfe
             }
           else
             {
-              bool stalled = false;
+              bool         stalled = false;
+              const double linear_tolerance =
+                tight ? options.linear_tolerance :
+                        std::max(options.linear_tolerance,
+                                 options.inexact_linear_tolerance);
               gmres(W,
                     preconditioner,
                     mu,
-                    tight ? options.linear_tolerance :
-                            std::max(options.linear_tolerance,
-                                     options.inexact_linear_tolerance),
+                    linear_tolerance,
                     options.max_linear_iterations,
                     options.restart,
                     stalled);
@@ -907,9 +909,7 @@ namespace impactfe
                     last_report.message,
                     "GMRES did not reach the relative residual %g at "
                     "active-set iteration %u (%u GMRES iterations in this solve)",
-                    tight ? options.linear_tolerance :
-                            std::max(options.linear_tolerance,
-                                     options.inexact_linear_tolerance),
+                    linear_tolerance,
                     iteration,
                     last_report.linear_iterations);
                   break;
