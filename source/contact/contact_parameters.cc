@@ -50,6 +50,20 @@ namespace impactfe
                       "Active set (Newton) iterations of one contact solve "
                       "before it falls back to Lemke's method [-].");
     prm.declare_entry(
+      "Exact normal rows after",
+      "40",
+      Patterns::Integer(0),
+      "With the active set method and friction, in the linear solves in "
+      "which (nearly) every closed contact slides: the GMRES iterations of "
+      "one solve after which the preconditioner of the normal rows, "
+      "W_NN^{-1} on all candidates, is replaced by the exact inverse of "
+      "those rows at the current contact states (the closed contacts only, "
+      "W_NN + mu W_NT D with the slip directions D), for the rest of the "
+      "run [-]. Each change of the states then costs one sparse LU "
+      "factorisation of the size of M~; it pays for large friction "
+      "coefficients and many open candidates (doc/lcp.md, 'Large friction "
+      "coefficients'). 0: from the first solve.");
+    prm.declare_entry(
       "Largest Lemke fallback",
       "3000",
       Patterns::Integer(0),
@@ -111,6 +125,7 @@ namespace impactfe
                                                                   Method::automatic;
     active_set_threshold          = prm.get_integer("Active set threshold");
     active_set_iterations         = prm.get_integer("Active set iterations");
+    exact_normal_rows_after       = prm.get_integer("Exact normal rows after");
     dense_schur_complement        = prm.get_bool("Dense Schur complement");
     largest_lemke_fallback        = prm.get_integer("Largest Lemke fallback");
     warm_start                    = prm.get_bool("Warm start");

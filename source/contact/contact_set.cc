@@ -789,27 +789,6 @@ namespace impactfe
 
 
 
-  void
-  ContactSet::obstacle_normal_column(const unsigned int                    c,
-                                     std::vector<types::global_dof_index> &dofs,
-                                     std::vector<double> &coefficients) const
-  {
-    AssertThrow(c < candidate_list.size() &&
-                  candidate_list[c].against_rigid_obstacle(),
-                ExcMessage("obstacle_normal_column(): candidate " +
-                           std::to_string(c) +
-                           " is not one against a rigid obstacle"));
-    dofs.clear();
-    coefficients.clear();
-    for (const Entry &e : columns[c * directions])
-      {
-        dofs.push_back(e.dof);
-        coefficients.push_back(e.coefficient);
-      }
-  }
-
-
-
 #define IMPACTFE_INSTANTIATE(dim)                                   \
   template std::array<std::array<double, 3>, 3> contact_frame<dim>( \
     const Tensor<1, dim> &);                                        \

@@ -228,6 +228,8 @@ namespace impactfe
     run.active_set_fallbacks  = system.active_set_statistics().fallbacks;
     run.active_set_dense_schur_complement =
       system.active_set_statistics().dense_schur_complement;
+    run.active_set_exact_normal_rows =
+      system.active_set_statistics().state_factorizations > 0;
 
     // Impulse balance, body by body.
     for (unsigned int b = 0; b < system.bodies().size(); ++b)
@@ -545,6 +547,9 @@ namespace impactfe
           << " fell back to Lemke's method"
           << (s.active_set_dense_schur_complement ?
                 "; W x by the dense Schur complement of M~" :
+                "")
+          << (s.active_set_exact_normal_rows ?
+                "; normal rows preconditioned exactly at the contact states" :
                 "")
           << std::endl;
     bool ok = true;

@@ -582,17 +582,29 @@ namespace impactfe
         else
           schur_preconditioner_product(x, y, !has_full);
       };
+    // Made on first use; their set-up time is charged to the Delassus line.
+    const auto timed_ensure_normal = [&]() {
+      const double start  = measure_costs ? thread_cpu_seconds() : 0.;
+      const bool   normal = ensure_normal_schur_complements();
+      if (measure_costs)
+        normal_schur_seconds += thread_cpu_seconds() - start;
+      return normal;
+    };
     const lcp::DelassusProduct normal_preconditioner =
       [&](const std::vector<double> &x, std::vector<double> &y) {
         // the full one's normal rows if the normal ones cannot be made
-        const double start  = measure_costs ? thread_cpu_seconds() : 0.;
-        const bool   normal = ensure_normal_schur_complements();
-        if (measure_costs)
-          normal_schur_seconds += thread_cpu_seconds() - start;
-        schur_preconditioner_product(x, y, normal);
+        schur_preconditioner_product(x, y, timed_ensure_normal());
+      };
+    const lcp::NormalStateUpdate normal_state_update =
+      [&](const std::vector<unsigned char> &closed,
+          const std::vector<double>        &slip) {
+        if (timed_ensure_normal())
+          update_normal_states(closed, slip);
       };
     lcp::ActiveSetOptions options;
-    options.max_iterations = solver_parameters.active_set_iterations;
+    options.max_iterations          = solver_parameters.active_set_iterations;
+    options.exact_normal_rows       = exact_normal_rows;
+    options.exact_normal_rows_after = solver_parameters.exact_normal_rows_after;
     if (nd == 3 && solver_parameters.friction_cone == lcp::ConeModel::facets)
       options.n_facets = solver_parameters.n_facets;
     const lcp::ActiveSetReport &result = active_set_solver.solve(
@@ -608,7 +620,8 @@ namespace impactfe
       options,
       has_full && (normal_schur_pending || !normal_schur_complements.empty()) ?
         normal_preconditioner :
-        lcp::DelassusProduct());
+        lcp::DelassusProduct(),
+      nd > 1 ? normal_state_update : lcp::NormalStateUpdate());
     ActiveSetStatistics &stats = active_set_stats;
     ++stats.solves;
     stats.iterations += result.iterations;
@@ -616,6 +629,7 @@ namespace impactfe
     stats.linear_iterations += result.linear_iterations;
     stats.operator_applications += result.operator_applications;
     report.active_set_iterations += result.iterations;
+    exact_normal_rows = exact_normal_rows || result.exact_normal_rows;
     if (!result.converged)
       {
         ++stats.fallbacks;
@@ -778,18 +792,36 @@ namespace impactfe
     // DoF. Not if a node has two such candidates (or the rotation does not
     // fit the matrices' patterns): then only the full ones.
     normal_slot.assign(contact_set.n_candidates(), numbers::invalid_dof_index);
+    normal_frame_index.assign(contact_set.n_candidates(),
+                              numbers::invalid_unsigned_int);
+    normal_frame_tangents.assign(contact_set.n_candidates(), {});
     normal_frames.assign(n_bodies, {});
     normal_dofs.assign(n_bodies, {});
-    std::vector<types::global_dof_index> node_dofs;
-    std::vector<double>                  node_normal;
+    std::vector<types::global_dof_index> node_dofs(dim);
+    std::vector<double>                  node_normal(dim);
     for (unsigned int c = 0; c < contact_set.n_candidates(); ++c)
-      if (contact_set.candidate(c).against_rigid_obstacle())
+      if (const ContactCandidate &candidate = contact_set.candidate(c);
+          candidate.against_rigid_obstacle())
         {
-          const unsigned int b = contact_set.candidate(c).body_a;
-          contact_set.obstacle_normal_column(c, node_dofs, node_normal);
-          normal_frames[b].push_back(
+          // All DoFs of the node, also those the normal has no part in:
+          // the tangents' slots are where set_skew() acts. The columns of
+          // H are the candidate's frame (ContactSet::build_operator()).
+          const unsigned int b = candidate.body_a;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              node_dofs[d]   = body_list[b]->vertex_dof(candidate.vertex_a, d);
+              node_normal[d] = candidate.frame[0][d];
+            }
+          const auto frame =
             SparseSchurComplement::NodeFrame::with_normal(node_dofs,
-                                                          node_normal));
+                                                          node_normal);
+          for (unsigned int k = 1; k < nd; ++k)
+            for (unsigned int l = 1; l < dim; ++l)
+              for (unsigned int d = 0; d < dim; ++d)
+                normal_frame_tangents[c][k - 1][l - 1] +=
+                  candidate.frame[k][d] * frame.rotation[l][d];
+          normal_frame_index[c] = normal_frames[b].size();
+          normal_frames[b].push_back(frame);
           normal_slot[c] = node_dofs[0];
           normal_dofs[b].push_back(node_dofs[0]);
         }
@@ -829,13 +861,87 @@ namespace impactfe
               normal_dofs[b],
               "the step matrix of body '" + body_list[b]->name() +
                 "' without its contact normals",
-              normal_frames[b]);
+              normal_frames[b],
+              contact_set.n_directions() > 1);
         if (!normal)
           normal_schur_complements.clear();
+        const unsigned int n_complements = normal_schur_complements.size();
+        normal_closed.assign(n_complements, {});
+        normal_skew.assign(n_complements, {});
+        for (unsigned int b = 0; b < n_complements; ++b)
+          {
+            normal_closed[b].assign(normal_frames[b].size(), 0);
+            normal_skew[b].assign(normal_frames[b].size(), {{0., 0., 0.}});
+          }
+        factorized_normal_closed = normal_closed;
+        factorized_normal_skew   = normal_skew;
         normal_frames.clear();
         normal_dofs.clear();
       }
     return !normal_schur_complements.empty();
+  }
+
+
+
+  // The skew of a sliding contact is mu d in the contact frame's tangents:
+  // in its node's frame, the coordinates of mu (d_1 t_1 + d_2 t_2).
+  template <int dim>
+  void
+  MultibodySystem<dim>::update_normal_states(
+    const std::vector<unsigned char> &closed,
+    const std::vector<double>        &slip)
+  {
+    const unsigned int nt = contact_set.n_directions() - 1;
+    for (unsigned int b = 0; b < normal_schur_complements.size(); ++b)
+      {
+        std::fill(normal_closed[b].begin(), normal_closed[b].end(), 0);
+        std::fill(normal_skew[b].begin(),
+                  normal_skew[b].end(),
+                  std::array<double, 3>{});
+      }
+    for (unsigned int a = 0; a < closed.size(); ++a)
+      if (const unsigned int c = lcp_candidates[a];
+          normal_frame_index[c] != numbers::invalid_unsigned_int)
+        {
+          const unsigned int b = contact_set.candidate(c).body_a;
+          normal_closed[b][normal_frame_index[c]] = closed[a];
+          auto &s = normal_skew[b][normal_frame_index[c]];
+          for (unsigned int k = 0; k < nt; ++k)
+            for (unsigned int l = 0; l + 1 < dim; ++l)
+              s[l + 1] += slip[a * nt + k] * normal_frame_tangents[c][k][l];
+        }
+    for (unsigned int b = 0; b < normal_schur_complements.size(); ++b)
+      {
+        SparseSchurComplement &complement = normal_schur_complements[b];
+        if (closed.empty())
+          {
+            complement.set_contact_states({}, {});
+            continue;
+          }
+        // A preconditioner whose slips lag by less than 0.05 mu costs
+        // GMRES a few iterations, far less than a factorisation.
+        bool change = !complement.inverts_contact_states() ||
+                      normal_closed[b] != factorized_normal_closed[b];
+        for (unsigned int f = 0; f < normal_skew[b].size() && !change; ++f)
+          for (unsigned int l = 1; l < 3; ++l)
+            change = change || std::abs(normal_skew[b][f][l] -
+                                        factorized_normal_skew[b][f][l]) > 0.05;
+        if (!change)
+          continue;
+        factorized_normal_closed[b] = normal_closed[b];
+        factorized_normal_skew[b]   = normal_skew[b];
+        ++active_set_stats.state_factorizations;
+        try
+          {
+            complement.set_contact_states(normal_closed[b], normal_skew[b]);
+          }
+        catch (const ExceptionBase &)
+          {
+            // singular (mu beyond uniqueness): the normal Schur complement
+            // again, which set_contact_states() has left in place; GMRES
+            // copes or stalls, and a stall falls back to Lemke's method
+          }
+      }
   }
 
 

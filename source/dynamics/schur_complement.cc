@@ -4,6 +4,7 @@
 
 #include <impactfe/dynamics/schur_complement.h>
 #include <impactfe/dynamics/sparse_cholesky.h>
+#include <impactfe/dynamics/sparse_lu.h>
 
 #include <algorithm>
 #include <cmath>
@@ -332,6 +333,16 @@ namespace impactfe
 
 
 
+  struct SparseSchurComplement::StateMatrix
+  {
+    SparsityPattern      pattern;
+    SparseMatrix<double> rotated, matrix;
+    SparseLU             factor{true};
+    Vector<double>       solution;
+  };
+
+
+
   SparseSchurComplement::SparseSchurComplement()  = default;
   SparseSchurComplement::~SparseSchurComplement() = default;
   SparseSchurComplement::SparseSchurComplement(
@@ -346,13 +357,22 @@ namespace impactfe
     const SparseMatrix<double>                 &matrix,
     const std::vector<types::global_dof_index> &dofs,
     const std::string                          &name,
-    const std::vector<NodeFrame>               &frames)
+    const std::vector<NodeFrame>               &frames,
+    const bool                                  for_contact_states)
   {
     contact_dofs.clear();
     row_start.assign(1, 0);
     row_column.clear();
     row_value.clear();
     interior.reset();
+    frame_dofs.clear();
+    frame_size.clear();
+    frame_row.clear();
+    is_contact.clear();
+    state_matrix.reset();
+    state_closed.clear();
+    state_skew.clear();
+    for_states = false;
 
     // only for the factorisation, which copies what it needs
     SparseMatrix<double> A(matrix.get_sparsity_pattern());
@@ -362,6 +382,13 @@ namespace impactfe
     std::vector<types::global_dof_index> sorted(dofs);
     std::sort(sorted.begin(), sorted.end());
     sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+    if (for_contact_states && !frames.empty())
+      {
+        state_matrix = std::make_unique<StateMatrix>();
+        state_matrix->pattern.copy_from(A.get_sparsity_pattern());
+        state_matrix->rotated.reinit(state_matrix->pattern);
+        state_matrix->rotated.copy_from(A);
+      }
     for (const auto d : sorted)
       {
         for (auto it = A.begin(d); it != A.end(d); ++it)
@@ -386,8 +413,97 @@ namespace impactfe
     // the fill of all of A
     factor->factorize(A, name, true);
     interior = std::move(factor);
+
+    if (state_matrix)
+      {
+        is_contact.assign(A.m(), 0);
+        for (const auto d : sorted)
+          is_contact[d] = 1;
+        for (const auto &frame : frames)
+          {
+            const auto k =
+              std::lower_bound(sorted.begin(), sorted.end(), frame.dofs[0]) -
+              sorted.begin();
+            AssertThrow(static_cast<std::size_t>(k) < sorted.size() &&
+                          sorted[k] == frame.dofs[0],
+                        ExcMessage("SparseSchurComplement: a frame's first "
+                                   "DoF is not among the Schur complement's"));
+            std::array<types::global_dof_index, 3> slots{{0, 0, 0}};
+            std::copy(frame.dofs.begin(), frame.dofs.end(), slots.begin());
+            frame_dofs.push_back(slots);
+            frame_size.push_back(frame.dofs.size());
+            frame_row.push_back(k);
+          }
+        AssertThrow(frames.size() == sorted.size(),
+                    ExcMessage("SparseSchurComplement: for contact states, "
+                               "C must be the frames' normal slots"));
+      }
     contact_dofs.swap(sorted);
     return true;
+  }
+
+
+
+  void
+  SparseSchurComplement::set_contact_states(
+    const std::vector<unsigned char>         &closed,
+    const std::vector<std::array<double, 3>> &skew)
+  {
+    for_states = false;
+    if (closed.empty())
+      return;
+    AssertThrow(state_matrix && closed.size() == frame_dofs.size() &&
+                  skew.size() == frame_dofs.size(),
+                ExcMessage("SparseSchurComplement::set_contact_states(): " +
+                           std::to_string(closed.size()) + " states for " +
+                           std::to_string(frame_dofs.size()) +
+                           " frames (initialize() with for_contact_states?)"));
+    state_closed = closed;
+    state_skew   = skew;
+    // which DoFs are closed normals
+    for (std::size_t f = 0; f < frame_dofs.size(); ++f)
+      is_contact[frame_dofs[f][0]] = closed[f];
+    SparseMatrix<double> &M = state_matrix->matrix;
+    if (M.empty())
+      M.reinit(state_matrix->pattern);
+    M.copy_from(state_matrix->rotated);
+    // the closed normals' rows and columns: those of the identity
+    for (std::size_t f = 0; f < frame_dofs.size(); ++f)
+      if (closed[f])
+        {
+          const auto d = frame_dofs[f][0];
+          for (auto it = M.begin(d); it != M.end(d); ++it)
+            if (it->column() != d)
+              {
+                M.set(it->column(), d, 0.);
+                it->value() = 0.;
+              }
+            else
+              it->value() = 1.;
+        }
+    // row T_l of a sliding node minus s_l times its row N, on the columns
+    // R (the rows of A on C are kept in row_column / row_value)
+    for (std::size_t f = 0; f < frame_dofs.size(); ++f)
+      for (unsigned int l = 1; l < frame_size[f]; ++l)
+        if (const double s_l = skew[f][l]; s_l != 0. && closed[f])
+          {
+            const std::size_t k = frame_row[f];
+            for (std::size_t e = row_start[k]; e < row_start[k + 1]; ++e)
+              if (!is_contact[row_column[e]])
+                M.add(frame_dofs[f][l], row_column[e], -s_l * row_value[e]);
+          }
+    state_matrix->factor.factorize(
+      M, "the step matrix at the contact states of an active set iteration");
+
+    for_states = true;
+  }
+
+
+
+  bool
+  SparseSchurComplement::inverts_contact_states() const
+  {
+    return for_states;
   }
 
 
@@ -434,18 +550,38 @@ namespace impactfe
       if (const double y_d = y(contact_dofs[k]); y_d != 0.)
         for (std::size_t e = row_start[k]; e < row_start[k + 1]; ++e)
           out(row_column[e]) += row_value[e] * y_d;
-    work = out;
-    for (const auto d : contact_dofs)
-      work(d) = 0.;
-    if (single_precision)
-      interior->solve_single_precision(work);
+    work                           = out;
+    const Vector<double> *solution = &work;
+    if (for_states)
+      {
+        // (A_RR - S A_NR) w = A_RN y - S A_NN y on R, then out_N = A_NN y -
+        // A_NR w on the closed normals N: the multiplier of the bordered
+        // system (class documentation); y is zero on the open ones
+        for (std::size_t f = 0; f < frame_dofs.size(); ++f)
+          if (state_closed[f])
+            {
+              for (unsigned int l = 1; l < frame_size[f]; ++l)
+                work(frame_dofs[f][l]) -=
+                  state_skew[f][l] * out(frame_dofs[f][0]);
+              work(frame_dofs[f][0]) = 0.;
+            }
+        state_matrix->factor.solve(work, state_matrix->solution);
+        solution = &state_matrix->solution;
+      }
     else
-      interior->solve(work);
+      {
+        for (const auto d : contact_dofs)
+          work(d) = 0.;
+        if (single_precision)
+          interior->solve_single_precision(work);
+        else
+          interior->solve(work);
+      }
     for (std::size_t k = 0; k < contact_dofs.size(); ++k)
       {
         double s = 0.;
         for (std::size_t e = row_start[k]; e < row_start[k + 1]; ++e)
-          s += row_value[e] * work(row_column[e]);
+          s += row_value[e] * (*solution)(row_column[e]);
         out(contact_dofs[k]) -= s;
       }
   }

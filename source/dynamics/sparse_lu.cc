@@ -27,6 +27,12 @@ namespace impactfe
 
 
 
+  SparseLU::SparseLU(const bool symmetric_pattern)
+    : symmetric_pattern(symmetric_pattern)
+  {}
+
+
+
   void
   SparseLU::free_symbolic()
   {
@@ -74,7 +80,9 @@ namespace impactfe
         control.resize(UMFPACK_CONTROL);
         umfpack_dl_defaults(control.data());
         control[UMFPACK_IRSTEP] = 0;
-        const int status        = umfpack_dl_symbolic(n,
+        if (symmetric_pattern)
+          control[UMFPACK_STRATEGY] = UMFPACK_STRATEGY_SYMMETRIC;
+        const int status = umfpack_dl_symbolic(n,
                                                n,
                                                column_starts.data(),
                                                row_indices.data(),

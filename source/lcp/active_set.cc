@@ -246,6 +246,46 @@ namespace impactfe
       const bool normal_rows = normal_preconditioner != nullptr &&
                                dimension > 1 && 100 * n_sticking <= n_sliding &&
                                n_sliding > 0;
+      // The normal preconditioner's states: its own approximation, or
+      // (exact_normal_rows) the current ones.
+      auto send_normal_states = [&]() {
+        normal_closed.clear();
+        normal_slip.clear();
+        if (exact_normal_rows)
+          {
+            const unsigned int nt = dimension - 1, n = state.size();
+            normal_closed.resize(n);
+            normal_slip.assign(n * nt, 0.);
+            for (unsigned int a = 0; a < n; ++a)
+              {
+                normal_closed[a] = is_closed(state[a]);
+                if (!is_sliding(state[a]))
+                  continue;
+                if (n_facets == 0)
+                  for (unsigned int k = 0; k < nt; ++k)
+                    normal_slip[a * nt + k] = mu[a] * direction[a * nt + k];
+                else
+                  {
+                    // a vertex d_j, or an edge's normal part cos(pi/k) n_j
+                    const double e = feature_angle(feature[a], n_facets);
+                    const double scale =
+                      feature[a] % 2 == 0 ?
+                        mu[a] :
+                        mu[a] * std::cos(std::acos(-1.) / n_facets);
+                    normal_slip[a * 2]     = scale * std::cos(e);
+                    normal_slip[a * 2 + 1] = scale * std::sin(e);
+                  }
+              }
+          }
+        (*normal_state_update)(normal_closed, normal_slip);
+      };
+      // Whether this solve may switch to the exact normal rows: after
+      // exact_normal_rows_after iterations, at the end of a restart cycle
+      // (flexible GMRES allows a preconditioner that changes).
+      const bool may_switch =
+        normal_rows && normal_state_update != nullptr && !exact_normal_rows;
+      if (normal_rows && normal_state_update != nullptr)
+        send_normal_states();
       auto apply_Z = [&](const std::vector<double> &in,
                          std::vector<double>       &out) {
         // slip rows (3D): c, their operator is (I + O(beta (1 - c W_TT))) / c
@@ -374,7 +414,8 @@ namespace impactfe
               g[j]             = givens_cos[j] * g[j];
               ++j;
               ++iterations;
-              if (std::abs(g[j]) <= target || h_next == 0.)
+              if (std::abs(g[j]) <= target || h_next == 0. ||
+                  (may_switch && iterations == exact_normal_rows_after))
                 break;
             }
           for (int i = static_cast<int>(j) - 1; i >= 0; --i)
@@ -392,6 +433,14 @@ namespace impactfe
           for (std::size_t k = 0; k < m; ++k)
             r[k] = rhs[k] - r[k];
           const double new_beta = std::sqrt(dot(r, r, m));
+          if (may_switch && !exact_normal_rows &&
+              iterations >= exact_normal_rows_after && new_beta > target)
+            {
+              exact_normal_rows = last_report.exact_normal_rows = true;
+              send_normal_states();
+              beta = new_beta;
+              continue;
+            }
           if (new_beta > 0.999 * beta)
             {
               stalled = new_beta > target;
@@ -564,7 +613,8 @@ namespace impactfe
                            const std::vector<ContactState> &state_guess,
                            const std::vector<double>       &impulse_guess,
                            const ActiveSetOptions          &options,
-                           const DelassusProduct &normal_preconditioner_in)
+                           const DelassusProduct   &normal_preconditioner_in,
+                           const NormalStateUpdate &normal_state_update_in)
     {
       const std::size_t n = b.size(), n_rows = n * nd;
       if (nd < 1 || nd > 3)
@@ -578,6 +628,12 @@ namespace impactfe
       product_valid = false;
       normal_preconditioner =
         normal_preconditioner_in ? &normal_preconditioner_in : nullptr;
+      normal_state_update =
+        normal_state_update_in ? &normal_state_update_in : nullptr;
+      exact_normal_rows =
+        options.exact_normal_rows || options.exact_normal_rows_after == 0;
+      exact_normal_rows_after       = options.exact_normal_rows_after;
+      last_report.exact_normal_rows = exact_normal_rows;
       seen.clear();
       cycles = 0;
       P.assign(n_rows, 0.);

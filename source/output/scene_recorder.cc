@@ -98,6 +98,8 @@ namespace impactfe
         .add("active_set_largest_linear_residual",
              active_set.largest_linear_residual)
         .add("active_set_fallbacks", double(active_set.fallbacks))
+        .add("active_set_state_factorizations",
+             double(active_set.state_factorizations))
         .add("active_set_dense_schur_complement",
              double(active_set.dense_schur_complement));
     JsonObject checks;

@@ -14,6 +14,11 @@
 //   (NodeFrame::with_normal()), on their normal slots: S_N is the inverse
 //   of W_NN = N^T A^{-1} N, checked by N^T A^{-1} N (S_N x) = x with one
 //   solve with a factorisation of A;
+// - with contact states (set_contact_states(): some contacts open, some
+//   sliding with a skew mu d), the product inverts K_N = N_c^T A^{-1} H_s
+//   on the closed contacts, checked the same way with the skewed
+//   directions H_s = n + mu d_1 t_1 + mu d_2 t_2; without states it is
+//   S_N's again;
 // - NodeFrame::with_normal() gives orthonormal frames (2D and 3D, normals
 //   along an axis or not) and refuses a normal that is not a unit vector;
 // - frames over unknowns with different couplings are refused (false, and
@@ -205,6 +210,64 @@ main()
       scale = std::max(scale, std::abs(x[frames[a].dofs[0]]));
     }
   check(error <= 1e-11 * scale, "rotated frames: S_N = (N^T A^{-1} N)^{-1}");
+
+  // Contact states: every fourth contact open (its normal slot joins the
+  // interior), the others closed, two thirds of them sliding with a skew
+  // mu d of |mu d| up to 3. The product must invert K_N = N_c^T A^{-1}
+  // H_s on the closed contacts: the impulses lambda_a along
+  // H_s,a = n_a + s_a1 t1_a + s_a2 t2_a, applied through a solve with A,
+  // give the normal velocities x_a of the closed contacts.
+  SparseSchurComplement state_schur;
+  check(state_schur.initialize(A, normal_dofs, "A", frames, true),
+        "initialize() for contact states");
+  std::vector<unsigned char>         closed(frames.size());
+  std::vector<std::array<double, 3>> skew(frames.size(), {{0., 0., 0.}});
+  Vector<double>                     x_closed(n);
+  for (std::size_t a = 0; a < frames.size(); ++a)
+    {
+      closed[a] = a % 4 != 1;
+      if (closed[a] && a % 3 != 0)
+        {
+          const double angle = 0.9 * a, size = 3. * std::abs(std::sin(a));
+          skew[a][1] = size * std::cos(angle);
+          skew[a][2] = size * std::sin(angle);
+        }
+      if (closed[a])
+        x_closed[frames[a].dofs[0]] = x[frames[a].dofs[0]];
+    }
+  state_schur.set_contact_states(closed, skew);
+  Vector<double> lambda(n);
+  state_schur.vmult(x_closed, lambda, work);
+  forces = 0.;
+  for (std::size_t a = 0; a < frames.size(); ++a)
+    if (closed[a])
+      for (unsigned int p = 0; p < 3; ++p)
+        forces[frames[a].dofs[p]] =
+          lambda[frames[a].dofs[0]] *
+          (frames[a].rotation[0][p] + skew[a][1] * frames[a].rotation[1][p] +
+           skew[a][2] * frames[a].rotation[2][p]);
+  full.solve(forces);
+  error = scale = 0.;
+  for (std::size_t a = 0; a < frames.size(); ++a)
+    if (closed[a])
+      {
+        double normal_velocity = 0.;
+        for (unsigned int p = 0; p < 3; ++p)
+          normal_velocity +=
+            frames[a].rotation[0][p] * forces[frames[a].dofs[p]];
+        error =
+          std::max(error, std::abs(normal_velocity - x[frames[a].dofs[0]]));
+        scale = std::max(scale, std::abs(x[frames[a].dofs[0]]));
+      }
+  check(state_schur.inverts_contact_states() && error <= 1e-11 * scale,
+        "contact states: the products invert K_N on the closed contacts");
+  // no states: S_N again
+  state_schur.set_contact_states({}, {});
+  state_schur.vmult(x, lambda, work);
+  lambda -= S_N_x;
+  check(!state_schur.inverts_contact_states() &&
+          lambda.linfty_norm() <= 1e-13 * S_N_x.linfty_norm(),
+        "contact states cleared: the products are S_N's again");
 
   // Frames: orthonormal in 3D and 2D, along an axis or not.
   const auto axis =

@@ -31,6 +31,10 @@ namespace impactfe
     Method       method                = Method::automatic;
     unsigned int active_set_threshold  = 300;
     unsigned int active_set_iterations = 50;
+    /// GMRES iterations of one linear solve after which the normal rows'
+    /// preconditioner inverts them exactly at the contact states (0: from
+    /// the first solve).
+    unsigned int exact_normal_rows_after = 40;
     /// Active set products with the dense Schur complement of M~ on the
     /// contact DoFs where that is cheaper (dynamics/schur_complement.h).
     bool dense_schur_complement = true;

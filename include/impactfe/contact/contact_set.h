@@ -237,16 +237,6 @@ namespace impactfe
     std::vector<std::vector<types::global_dof_index>>
     obstacle_contact_dofs(const unsigned int n_blocks) const;
 
-    /**
-     * For candidate @p c against a rigid obstacle: its node's DoFs (of
-     * body candidate(c).body_a) and the coefficients of the candidate's
-     * normal column of H on them (the unit normal).
-     */
-    void
-    obstacle_normal_column(const unsigned int                    c,
-                           std::vector<types::global_dof_index> &dofs,
-                           std::vector<double> &coefficients) const;
-
   private:
     struct Entry
     {

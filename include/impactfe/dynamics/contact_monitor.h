@@ -69,6 +69,8 @@ namespace impactfe
     unsigned long long active_set_iterations             = 0;
     unsigned int       active_set_fallbacks              = 0;
     bool               active_set_dense_schur_complement = false;
+    /// Whether the normal rows were inverted at the contact states.
+    bool active_set_exact_normal_rows = false;
   };
 
 

@@ -114,6 +114,20 @@ namespace impactfe
    * operator: the exact preconditioner of frictionless contact, and of
    * the normal rows of sliding contacts (doc/lcp.md, "Large contact
    * sets").
+   *
+   * Those products invert W_NN on all of C. The active set method needs
+   * the inverse of the operator of its normal rows at the current contact
+   * states instead: only the closed contacts' normals (the others' slots
+   * belong to the interior), and with friction K_N = H_N^T A^{-1} H_s,
+   * H_s = n + mu t_d (t_d the slip direction) for sliding contacts. S is
+   * the worse an approximation of that the more contacts are open and the
+   * larger mu is (doc/lcp.md, "Large friction coefficients").
+   * set_contact_states() makes the products apply K_N^{-1} exactly: the
+   * multiplier of the bordered system [A H_s; H_N^T 0] on the closed
+   * contacts, one solve with A_RR - S A_NR (R: all but the closed normals;
+   * A_RR with the tangential rows of each sliding node minus its skew s
+   * times its normal row). That matrix has A's pattern but is
+   * unsymmetric: an LU factorisation, redone whenever the states change.
    */
   class SparseSchurComplement
   {
@@ -148,12 +162,35 @@ namespace impactfe
      * rotation needs the DoFs of a node to have the same couplings (as
      * those of a vector-valued element do); returns false, and leaves the
      * object empty, if they do not. @p name names the matrix in messages.
+     * @p for_contact_states keeps what set_contact_states() needs (a copy of
+     * A).
      */
     bool
     initialize(const SparseMatrix<double>                 &matrix,
                const std::vector<types::global_dof_index> &dofs,
                const std::string                          &name,
-               const std::vector<NodeFrame>               &frames = {});
+               const std::vector<NodeFrame>               &frames = {},
+               const bool for_contact_states                      = false);
+
+    /**
+     * The contact states whose normal operator the products invert
+     * (class documentation), per frame in the order given to initialize()
+     * (with @p for_contact_states, whose @p dofs must then be the frames' first
+     * DoFs, the normal slots): whether its normal is closed, and its skew
+     * s (s[l] for the rotated unknowns l = 1, 2, the coordinates of mu
+     * times the slip direction in the frame; zero unless it slides; s[0]
+     * is not read). Empty @p closed: the products are those of S again.
+     * Otherwise A_RR - S A_NR is factorised (the analysis once). Throws,
+     * leaving the products those of S, if that matrix is singular.
+     */
+    void
+    set_contact_states(const std::vector<unsigned char>         &closed,
+                       const std::vector<std::array<double, 3>> &skew);
+
+    /// Whether the products invert the normal operator of contact states
+    /// (set_contact_states()) rather than apply S.
+    bool
+    inverts_contact_states() const;
 
     /// The unknowns C (sorted).
     const std::vector<types::global_dof_index> &
@@ -199,6 +236,21 @@ namespace impactfe
     std::vector<types::global_dof_index> row_column;
     std::vector<double>                  row_value;
     std::unique_ptr<SparseCholesky>      interior;
+
+    /// The frames' unknowns (normal slot first) and the position of their
+    /// normal slot in C; is_contact[i]: DoF i is in C.
+    std::vector<std::array<types::global_dof_index, 3>> frame_dofs;
+    std::vector<unsigned char>                          frame_size;
+    std::vector<std::size_t>                            frame_row;
+    std::vector<unsigned char>                          is_contact;
+    /// For set_contact_states() (initialize() with for_contact_states): A
+    /// rotated, the matrix of the states and its LU factors (in one object, so
+    /// that the matrices' pattern does not move), and the states it holds.
+    struct StateMatrix;
+    std::unique_ptr<StateMatrix>       state_matrix;
+    std::vector<unsigned char>         state_closed;
+    std::vector<std::array<double, 3>> state_skew;
+    bool                               for_states = false;
   };
 } // namespace impactfe
 

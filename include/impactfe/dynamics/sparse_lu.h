@@ -30,7 +30,15 @@ namespace impactfe
   class SparseLU
   {
   public:
-    SparseLU() = default;
+    /**
+     * @p symmetric_pattern: the matrices have a symmetric pattern and
+     * diagonals that make good pivots (a symmetric matrix with some rows
+     * changed), so UMFPACK's symmetric strategy (AMD on A + A^T, diagonal
+     * pivots preferred) applies: on the active set method's state
+     * matrices of the thin slab at 10^4 contacts (61 206 unknowns) a
+     * numerical factorisation took 0.55 s with it against 1.05 s without.
+     */
+    explicit SparseLU(const bool symmetric_pattern = false);
     ~SparseLU();
     SparseLU(const SparseLU &) = delete;
     SparseLU &
@@ -57,6 +65,7 @@ namespace impactfe
     void
     free_symbolic();
 
+    const bool             symmetric_pattern;
     const SparsityPattern *analysed_pattern = nullptr;
     /// The matrix by columns of A^T (deal.II's rows) with sorted indices,
     /// and where each entry of SparseMatrix's storage goes in them.

@@ -22,6 +22,16 @@ namespace impactfe
     using DelassusProduct =
       std::function<void(const std::vector<double> &x, std::vector<double> &y)>;
 
+    /// Tells a normal preconditioner the contact states whose normal rows
+    /// it is to invert: per contact whether it is closed, and (n_directions
+    /// - 1 entries, in the contact frame's tangents) mu d if it slides in
+    /// direction d (P_T = mu P_N d; the polygonal cone: the vertex's or the
+    /// edge normal's part of P_T), else zero. Empty vectors: back to its
+    /// own approximation.
+    using NormalStateUpdate =
+      std::function<void(const std::vector<unsigned char> &closed,
+                         const std::vector<double>        &slip)>;
+
     /// Options of ActiveSetSolver::solve().
     struct ActiveSetOptions
     {
@@ -44,6 +54,15 @@ namespace impactfe
       /// than inexact_direction_tolerance before the final, exact solves).
       double direction_tolerance         = 1e-10;
       double inexact_direction_tolerance = 1e-4;
+      /// With a NormalStateUpdate: the normal preconditioner inverts the
+      /// normal rows at the current states from the first solve on (true),
+      /// or once a solve with its own approximation has taken more than
+      /// exact_normal_rows_after GMRES iterations (0: from the first
+      /// solve), at the end of a restart cycle. Each inversion is a
+      /// factorisation, worth some 15 to 30 GMRES iterations at 10^4
+      /// contacts in 3D.
+      bool         exact_normal_rows       = false;
+      unsigned int exact_normal_rows_after = 40;
       /// GMRES iterations per linear solve, and its restart length.
       unsigned int max_linear_iterations = 2000;
       unsigned int restart               = 120;
@@ -70,6 +89,9 @@ namespace impactfe
       /// refinement_tolerance).
       unsigned int refinements     = 0;
       double       linear_residual = 0.;
+      /// Whether the normal preconditioner inverted the states' normal rows
+      /// (ActiveSetOptions::exact_normal_rows).
+      bool exact_normal_rows = false;
       /// Why it did not converge (empty if it did).
       std::string message;
     };
@@ -133,6 +155,13 @@ namespace impactfe
        * the full preconditioner restricted to the normal rows is far from
        * W_NN^{-1} when the tangents are free (eigenvalues of the
        * preconditioned operator up to 3 against 1.1, doc/lcp.md).
+       *
+       * @p normal_state_update (optional) lets the normal preconditioner
+       * invert the normal rows' operator at the current states exactly
+       * (the closed contacts only, W_NN + mu W_NT D with the slip
+       * directions D: doc/lcp.md, "Large friction coefficients"); it is
+       * called before each linear solve that uses the normal
+       * preconditioner.
        */
       const ActiveSetReport &
       solve(const DelassusProduct           &W,
@@ -145,7 +174,8 @@ namespace impactfe
             const std::vector<ContactState> &state_guess,
             const std::vector<double>       &impulse_guess,
             const ActiveSetOptions          &options               = {},
-            const DelassusProduct           &normal_preconditioner = {});
+            const DelassusProduct           &normal_preconditioner = {},
+            const NormalStateUpdate         &normal_state_update   = {});
 
       /// P, V = q + W P and the states of the last solve.
       const std::vector<double> &
@@ -239,7 +269,12 @@ namespace impactfe
              const std::vector<double> &mu,
              const ActiveSetOptions    &options);
       /// The normal preconditioner of the current solve (or nullptr).
-      const DelassusProduct *normal_preconditioner = nullptr;
+      const DelassusProduct     *normal_preconditioner   = nullptr;
+      const NormalStateUpdate   *normal_state_update     = nullptr;
+      bool                       exact_normal_rows       = false;
+      unsigned int               exact_normal_rows_after = 40;
+      std::vector<unsigned char> normal_closed;
+      std::vector<double>        normal_slip;
       unsigned int
       gmres(const DelassusProduct     &W,
             const DelassusProduct     &preconditioner,
