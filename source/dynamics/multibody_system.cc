@@ -601,6 +601,8 @@ namespace impactfe
         if (timed_ensure_normal())
           update_normal_states(closed, slip);
       };
+    const unsigned int singular_before =
+      active_set_stats.singular_state_matrices;
     lcp::ActiveSetOptions options;
     options.max_iterations          = solver_parameters.active_set_iterations;
     options.exact_normal_rows       = exact_normal_rows;
@@ -634,6 +636,13 @@ namespace impactfe
       {
         ++stats.fallbacks;
         stats.last_fallback_reason = result.message;
+        if (const unsigned int singular =
+              stats.singular_state_matrices - singular_before;
+            singular > 0)
+          stats.last_fallback_reason +=
+            "; the normal rows' matrix at the contact states was singular " +
+            std::to_string(singular) + (singular == 1 ? " time" : " times") +
+            ", and W_NN^{-1} preconditioned them instead";
         report.active_set_fallback = true;
         return false;
       }
@@ -940,6 +949,7 @@ namespace impactfe
             // singular (mu beyond uniqueness): the normal Schur complement
             // again, which set_contact_states() has left in place; GMRES
             // copes or stalls, and a stall falls back to Lemke's method
+            ++active_set_stats.singular_state_matrices;
           }
       }
   }

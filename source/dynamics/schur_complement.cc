@@ -81,6 +81,24 @@ namespace impactfe
 
   namespace
   {
+    // Row and column d of a matrix with a symmetric pattern made those of
+    // the identity (the entries stay in the pattern, as zeros).
+    void
+    make_identity_row_and_column(SparseMatrix<double>         &A,
+                                 const types::global_dof_index d)
+    {
+      for (auto it = A.begin(d); it != A.end(d); ++it)
+        if (it->column() != d)
+          {
+            A.set(it->column(), d, 0.);
+            it->value() = 0.;
+          }
+        else
+          it->value() = 1.;
+    }
+
+
+
     void
     symmetric_product(const std::vector<double> &matrix,
                       const types::blas_int      n,
@@ -400,14 +418,7 @@ namespace impactfe
       }
     // A_II: the rows and columns of C made those of the identity
     for (const auto d : sorted)
-      for (auto it = A.begin(d); it != A.end(d); ++it)
-        if (it->column() != d)
-          {
-            A.set(it->column(), d, 0.);
-            it->value() = 0.;
-          }
-        else
-          it->value() = 1.;
+      make_identity_row_and_column(A, d);
     auto factor = std::make_unique<SparseCholesky>();
     // without the zeroed entries: the factor of A_II alone, not one with
     // the fill of all of A
@@ -470,17 +481,7 @@ namespace impactfe
     // the closed normals' rows and columns: those of the identity
     for (std::size_t f = 0; f < frame_dofs.size(); ++f)
       if (closed[f])
-        {
-          const auto d = frame_dofs[f][0];
-          for (auto it = M.begin(d); it != M.end(d); ++it)
-            if (it->column() != d)
-              {
-                M.set(it->column(), d, 0.);
-                it->value() = 0.;
-              }
-            else
-              it->value() = 1.;
-        }
+        make_identity_row_and_column(M, frame_dofs[f][0]);
     // row T_l of a sliding node minus s_l times its row N, on the columns
     // R (the rows of A on C are kept in row_column / row_value)
     for (std::size_t f = 0; f < frame_dofs.size(); ++f)

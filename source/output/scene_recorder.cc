@@ -100,6 +100,8 @@ namespace impactfe
         .add("active_set_fallbacks", double(active_set.fallbacks))
         .add("active_set_state_factorizations",
              double(active_set.state_factorizations))
+        .add("active_set_singular_state_matrices",
+             double(active_set.singular_state_matrices))
         .add("active_set_dense_schur_complement",
              double(active_set.dense_schur_complement));
     JsonObject checks;

@@ -273,8 +273,10 @@ namespace impactfe
       double             largest_linear_residual = 0.;
       unsigned int       fallbacks               = 0;
       /// Factorisations of the normal rows' operator at the contact states
-      /// (update_normal_states()).
-      unsigned int state_factorizations = 0;
+      /// (update_normal_states()), and how many of them found it singular
+      /// (W_NN^{-1} was used instead).
+      unsigned int state_factorizations    = 0;
+      unsigned int singular_state_matrices = 0;
       /// Whether the products used the dense Schur complements.
       bool        dense_schur_complement = false;
       std::string last_fallback_reason;
