@@ -595,11 +595,15 @@ namespace impactfe
         // the full one's normal rows if the normal ones cannot be made
         schur_preconditioner_product(x, y, timed_ensure_normal());
       };
+    // the active set method's state codes are SparseSchurComplement's
+    static_assert(SparseSchurComplement::open_state == 0 &&
+                  SparseSchurComplement::slide_state == 1 &&
+                  SparseSchurComplement::stick_state == 2);
     const lcp::NormalStateUpdate normal_state_update =
-      [&](const std::vector<unsigned char> &closed,
+      [&](const std::vector<unsigned char> &states,
           const std::vector<double>        &slip) {
         if (timed_ensure_normal())
-          update_normal_states(closed, slip);
+          update_normal_states(states, slip);
       };
     const unsigned int singular_before =
       active_set_stats.singular_state_matrices;
@@ -801,6 +805,7 @@ namespace impactfe
     // DoF. Not if a node has two such candidates (or the rotation does not
     // fit the matrices' patterns): then only the full ones.
     normal_slot.assign(contact_set.n_candidates(), numbers::invalid_dof_index);
+    frame_slots.assign(contact_set.n_candidates(), {});
     normal_frame_index.assign(contact_set.n_candidates(),
                               numbers::invalid_unsigned_int);
     normal_frame_tangents.assign(contact_set.n_candidates(), {});
@@ -832,6 +837,7 @@ namespace impactfe
           normal_frame_index[c] = normal_frames[b].size();
           normal_frames[b].push_back(frame);
           normal_slot[c] = node_dofs[0];
+          std::copy(node_dofs.begin(), node_dofs.end(), frame_slots[c].begin());
           normal_dofs[b].push_back(node_dofs[0]);
         }
     normal_schur_pending = true;
@@ -875,15 +881,15 @@ namespace impactfe
         if (!normal)
           normal_schur_complements.clear();
         const unsigned int n_complements = normal_schur_complements.size();
-        normal_closed.assign(n_complements, {});
+        normal_state.assign(n_complements, {});
         normal_skew.assign(n_complements, {});
         for (unsigned int b = 0; b < n_complements; ++b)
           {
-            normal_closed[b].assign(normal_frames[b].size(), 0);
+            normal_state[b].assign(normal_frames[b].size(), 0);
             normal_skew[b].assign(normal_frames[b].size(), {{0., 0., 0.}});
           }
-        factorized_normal_closed = normal_closed;
-        factorized_normal_skew   = normal_skew;
+        factorized_normal_state = normal_state;
+        factorized_normal_skew  = normal_skew;
         normal_frames.clear();
         normal_dofs.clear();
       }
@@ -897,23 +903,25 @@ namespace impactfe
   template <int dim>
   void
   MultibodySystem<dim>::update_normal_states(
-    const std::vector<unsigned char> &closed,
+    const std::vector<unsigned char> &states,
     const std::vector<double>        &slip)
   {
     const unsigned int nt = contact_set.n_directions() - 1;
     for (unsigned int b = 0; b < normal_schur_complements.size(); ++b)
       {
-        std::fill(normal_closed[b].begin(), normal_closed[b].end(), 0);
+        std::fill(normal_state[b].begin(),
+                  normal_state[b].end(),
+                  SparseSchurComplement::open_state);
         std::fill(normal_skew[b].begin(),
                   normal_skew[b].end(),
                   std::array<double, 3>{});
       }
-    for (unsigned int a = 0; a < closed.size(); ++a)
+    for (unsigned int a = 0; a < states.size(); ++a)
       if (const unsigned int c = lcp_candidates[a];
           normal_frame_index[c] != numbers::invalid_unsigned_int)
         {
           const unsigned int b = contact_set.candidate(c).body_a;
-          normal_closed[b][normal_frame_index[c]] = closed[a];
+          normal_state[b][normal_frame_index[c]] = states[a];
           auto &s = normal_skew[b][normal_frame_index[c]];
           for (unsigned int k = 0; k < nt; ++k)
             for (unsigned int l = 0; l + 1 < dim; ++l)
@@ -922,7 +930,7 @@ namespace impactfe
     for (unsigned int b = 0; b < normal_schur_complements.size(); ++b)
       {
         SparseSchurComplement &complement = normal_schur_complements[b];
-        if (closed.empty())
+        if (states.empty())
           {
             complement.set_contact_states({}, {});
             continue;
@@ -930,19 +938,19 @@ namespace impactfe
         // A preconditioner whose slips lag by less than 0.05 mu costs
         // GMRES a few iterations, far less than a factorisation.
         bool change = !complement.inverts_contact_states() ||
-                      normal_closed[b] != factorized_normal_closed[b];
+                      normal_state[b] != factorized_normal_state[b];
         for (unsigned int f = 0; f < normal_skew[b].size() && !change; ++f)
           for (unsigned int l = 1; l < 3; ++l)
             change = change || std::abs(normal_skew[b][f][l] -
                                         factorized_normal_skew[b][f][l]) > 0.05;
         if (!change)
           continue;
-        factorized_normal_closed[b] = normal_closed[b];
-        factorized_normal_skew[b]   = normal_skew[b];
+        factorized_normal_state[b] = normal_state[b];
+        factorized_normal_skew[b]  = normal_skew[b];
         ++active_set_stats.state_factorizations;
         try
           {
-            complement.set_contact_states(normal_closed[b], normal_skew[b]);
+            complement.set_contact_states(normal_state[b], normal_skew[b]);
           }
         catch (const ExceptionBase &)
           {
@@ -969,16 +977,28 @@ namespace impactfe
     const unsigned int n  = lcp_candidates.size();
     const auto        &complements =
       normal ? normal_schur_complements : schur_complements;
+    // at contact states (update_normal_states()), a sticking contact's
+    // tangents too, in its node's frame
+    auto sticks = [&](const unsigned int c) {
+      const unsigned int b = contact_set.candidate(c).body_a;
+      return normal && complements[b].inverts_contact_states() &&
+             normal_state[b][normal_frame_index[c]] ==
+               SparseSchurComplement::stick_state;
+    };
     schur_nodal = 0.;
     for (unsigned int j = 0; j < n * nd; ++j)
       if (const unsigned int c = lcp_candidates[j / nd];
           x[j] != 0. && contact_set.candidate(c).against_rigid_obstacle())
         {
+          const unsigned int b = contact_set.candidate(c).body_a;
           if (!normal)
             contact_set.add_column(c * nd + j % nd, x[j], schur_nodal);
           else if (j % nd == 0)
-            schur_nodal.block(contact_set.candidate(c).body_a)(normal_slot[c]) =
-              x[j];
+            schur_nodal.block(b)(normal_slot[c]) = x[j];
+          else if (sticks(c))
+            for (unsigned int l = 0; l + 1 < dim; ++l)
+              schur_nodal.block(b)(frame_slots[c][l + 1]) +=
+                normal_frame_tangents[c][j % nd - 1][l] * x[j];
         }
     for (unsigned int b = 0; b < complements.size(); ++b)
       if (!complements[b].dofs().empty())
@@ -994,10 +1014,18 @@ namespace impactfe
           y[j] = lcp_penalty[j] * x[j];
         else if (!normal)
           y[j] = contact_set.column_dot(c * nd + j % nd, schur_product);
+        else if (j % nd == 0)
+          y[j] = schur_product.block(candidate.body_a)(normal_slot[c]);
+        else if (sticks(c))
+          {
+            y[j] = 0.;
+            for (unsigned int l = 0; l + 1 < dim; ++l)
+              y[j] +=
+                normal_frame_tangents[c][j % nd - 1][l] *
+                schur_product.block(candidate.body_a)(frame_slots[c][l + 1]);
+          }
         else
-          y[j] = j % nd == 0 ?
-                   schur_product.block(candidate.body_a)(normal_slot[c]) :
-                   0.;
+          y[j] = 0.;
       }
   }
 

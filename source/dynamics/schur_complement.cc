@@ -385,10 +385,9 @@ namespace impactfe
     interior.reset();
     frame_dofs.clear();
     frame_size.clear();
-    frame_row.clear();
     is_contact.clear();
     state_matrix.reset();
-    state_closed.clear();
+    state_code.clear();
     state_skew.clear();
     for_states = false;
 
@@ -443,7 +442,6 @@ namespace impactfe
             std::copy(frame.dofs.begin(), frame.dofs.end(), slots.begin());
             frame_dofs.push_back(slots);
             frame_size.push_back(frame.dofs.size());
-            frame_row.push_back(k);
           }
         AssertThrow(frames.size() == sorted.size(),
                     ExcMessage("SparseSchurComplement: for contact states, "
@@ -457,45 +455,48 @@ namespace impactfe
 
   void
   SparseSchurComplement::set_contact_states(
-    const std::vector<unsigned char>         &closed,
+    const std::vector<unsigned char>         &states,
     const std::vector<std::array<double, 3>> &skew)
   {
     for_states = false;
-    if (closed.empty())
+    if (states.empty())
       return;
-    AssertThrow(state_matrix && closed.size() == frame_dofs.size() &&
+    AssertThrow(state_matrix && states.size() == frame_dofs.size() &&
                   skew.size() == frame_dofs.size(),
                 ExcMessage("SparseSchurComplement::set_contact_states(): " +
-                           std::to_string(closed.size()) + " states for " +
+                           std::to_string(states.size()) + " states for " +
                            std::to_string(frame_dofs.size()) +
                            " frames (initialize() with for_contact_states?)"));
-    state_closed = closed;
-    state_skew   = skew;
-    // which DoFs are closed normals
+    state_code = states;
+    state_skew = skew;
+    // the unknowns C' of the states: closed normals, sticking tangents
     for (std::size_t f = 0; f < frame_dofs.size(); ++f)
-      is_contact[frame_dofs[f][0]] = closed[f];
-    SparseMatrix<double> &M = state_matrix->matrix;
+      for (unsigned int l = 0; l < frame_size[f]; ++l)
+        is_contact[frame_dofs[f][l]] =
+          l == 0 ? states[f] != open_state : states[f] == stick_state;
+    const SparseMatrix<double> &A = state_matrix->rotated;
+    SparseMatrix<double>       &M = state_matrix->matrix;
     if (M.empty())
       M.reinit(state_matrix->pattern);
-    M.copy_from(state_matrix->rotated);
-    // the closed normals' rows and columns: those of the identity
+    M.copy_from(A);
+    // C''s rows and columns: those of the identity
     for (std::size_t f = 0; f < frame_dofs.size(); ++f)
-      if (closed[f])
-        make_identity_row_and_column(M, frame_dofs[f][0]);
+      for (unsigned int l = 0; l < frame_size[f]; ++l)
+        if (is_contact[frame_dofs[f][l]])
+          make_identity_row_and_column(M, frame_dofs[f][l]);
     // row T_l of a sliding node minus s_l times its row N, on the columns
-    // R (the rows of A on C are kept in row_column / row_value)
+    // off C'
     for (std::size_t f = 0; f < frame_dofs.size(); ++f)
       for (unsigned int l = 1; l < frame_size[f]; ++l)
-        if (const double s_l = skew[f][l]; s_l != 0. && closed[f])
-          {
-            const std::size_t k = frame_row[f];
-            for (std::size_t e = row_start[k]; e < row_start[k + 1]; ++e)
-              if (!is_contact[row_column[e]])
-                M.add(frame_dofs[f][l], row_column[e], -s_l * row_value[e]);
-          }
+        if (const double s_l = skew[f][l];
+            s_l != 0. && states[f] == slide_state)
+          for (auto it = A.begin(frame_dofs[f][0]);
+               it != A.end(frame_dofs[f][0]);
+               ++it)
+            if (!is_contact[it->column()])
+              M.add(frame_dofs[f][l], it->column(), -s_l * it->value());
     state_matrix->factor.factorize(
       M, "the step matrix at the contact states of an active set iteration");
-
     for_states = true;
   }
 
@@ -544,6 +545,32 @@ namespace impactfe
                                const bool            single_precision) const
   {
     Assert(interior, ExcMessage("SparseSchurComplement: not initialized"));
+    if (for_states)
+      {
+        // (A_RR - S A_NR) w = A_RC y - S A_NC y on R, then out_C = A_CC y -
+        // A_CR w on C' (closed normals, sticking tangents): the multiplier
+        // of the bordered system (class documentation); y is zero off C'
+        const SparseMatrix<double> &A = state_matrix->rotated;
+        A.vmult(out, y);
+        work = out;
+        for (std::size_t f = 0; f < frame_dofs.size(); ++f)
+          {
+            if (state_code[f] == slide_state)
+              for (unsigned int l = 1; l < frame_size[f]; ++l)
+                work(frame_dofs[f][l]) -=
+                  state_skew[f][l] * out(frame_dofs[f][0]);
+            for (unsigned int l = 0; l < frame_size[f]; ++l)
+              if (is_contact[frame_dofs[f][l]])
+                work(frame_dofs[f][l]) = 0.;
+          }
+        state_matrix->factor.solve(work, state_matrix->solution);
+        A.vmult(work, state_matrix->solution);
+        for (std::size_t f = 0; f < frame_dofs.size(); ++f)
+          for (unsigned int l = 0; l < frame_size[f]; ++l)
+            if (is_contact[frame_dofs[f][l]])
+              out(frame_dofs[f][l]) -= work(frame_dofs[f][l]);
+        return;
+      }
     // A_IC y and A_CC y touch only the rows next to C, and A_CI u only the
     // rows of C: sparse products over C's rows (A is symmetric).
     out = 0.;
@@ -551,38 +578,18 @@ namespace impactfe
       if (const double y_d = y(contact_dofs[k]); y_d != 0.)
         for (std::size_t e = row_start[k]; e < row_start[k + 1]; ++e)
           out(row_column[e]) += row_value[e] * y_d;
-    work                           = out;
-    const Vector<double> *solution = &work;
-    if (for_states)
-      {
-        // (A_RR - S A_NR) w = A_RN y - S A_NN y on R, then out_N = A_NN y -
-        // A_NR w on the closed normals N: the multiplier of the bordered
-        // system (class documentation); y is zero on the open ones
-        for (std::size_t f = 0; f < frame_dofs.size(); ++f)
-          if (state_closed[f])
-            {
-              for (unsigned int l = 1; l < frame_size[f]; ++l)
-                work(frame_dofs[f][l]) -=
-                  state_skew[f][l] * out(frame_dofs[f][0]);
-              work(frame_dofs[f][0]) = 0.;
-            }
-        state_matrix->factor.solve(work, state_matrix->solution);
-        solution = &state_matrix->solution;
-      }
+    work = out;
+    for (const auto d : contact_dofs)
+      work(d) = 0.;
+    if (single_precision)
+      interior->solve_single_precision(work);
     else
-      {
-        for (const auto d : contact_dofs)
-          work(d) = 0.;
-        if (single_precision)
-          interior->solve_single_precision(work);
-        else
-          interior->solve(work);
-      }
+      interior->solve(work);
     for (std::size_t k = 0; k < contact_dofs.size(); ++k)
       {
         double s = 0.;
         for (std::size_t e = row_start[k]; e < row_start[k + 1]; ++e)
-          s += row_value[e] * (*solution)(row_column[e]);
+          s += row_value[e] * work(row_column[e]);
         out(contact_dofs[k]) -= s;
       }
   }

@@ -243,22 +243,29 @@ namespace impactfe
         if (unknowns[k] % dimension == 0)
           ++(is_sliding(state[unknowns[k] / dimension]) ? n_sliding :
                                                           n_sticking);
-      const bool normal_rows = normal_preconditioner != nullptr &&
-                               dimension > 1 && 100 * n_sticking <= n_sliding &&
-                               n_sliding > 0;
+      // With the exact rows at the states (normal_state_update), every
+      // solve uses the normal preconditioner, sticking tangents included.
+      const bool can_invert_states = normal_preconditioner != nullptr &&
+                                     normal_state_update != nullptr &&
+                                     dimension > 1;
+      bool normal_rows = normal_preconditioner != nullptr && dimension > 1 &&
+                         ((100 * n_sticking <= n_sliding && n_sliding > 0) ||
+                          (can_invert_states && exact_normal_rows));
       // The normal preconditioner's states: its own approximation, or
       // (exact_normal_rows) the current ones.
       auto send_normal_states = [&]() {
-        normal_closed.clear();
+        normal_states.clear();
         normal_slip.clear();
         if (exact_normal_rows)
           {
             const unsigned int nt = dimension - 1, n = state.size();
-            normal_closed.resize(n);
+            normal_states.resize(n);
             normal_slip.assign(n * nt, 0.);
             for (unsigned int a = 0; a < n; ++a)
               {
-                normal_closed[a] = is_closed(state[a]);
+                normal_states[a] = !is_closed(state[a]) ? 0 :
+                                   is_sliding(state[a]) ? 1 :
+                                                          2;
                 if (!is_sliding(state[a]))
                   continue;
                 if (n_facets == 0)
@@ -277,15 +284,21 @@ namespace impactfe
                   }
               }
           }
-        (*normal_state_update)(normal_closed, normal_slip);
+        (*normal_state_update)(normal_states, normal_slip);
       };
       // Whether this solve may switch to the exact normal rows: after
       // exact_normal_rows_after iterations, at the end of a restart cycle
       // (flexible GMRES allows a preconditioner that changes).
-      const bool may_switch =
-        normal_rows && normal_state_update != nullptr && !exact_normal_rows;
+      const bool may_switch = can_invert_states && !exact_normal_rows;
       if (normal_rows && normal_state_update != nullptr)
         send_normal_states();
+      // a sticking contact's tangent row, given to the normal
+      // preconditioner at exact states
+      auto exact_stick_row = [&](const unsigned int row) {
+        return normal_rows && exact_normal_rows && row % dimension != 0 &&
+               is_closed(state[row / dimension]) &&
+               !is_sliding(state[row / dimension]);
+      };
       auto apply_Z = [&](const std::vector<double> &in,
                          std::vector<double>       &out) {
         // slip rows (3D): c, their operator is (I + O(beta (1 - c W_TT))) / c
@@ -299,7 +312,7 @@ namespace impactfe
             const unsigned int row = unknowns[k];
             if (normal_rows)
               {
-                if (row % dimension == 0)
+                if (row % dimension == 0 || exact_stick_row(row))
                   full_in[row] = in[k];
               }
             else if (is_edge_row(row))
@@ -318,7 +331,8 @@ namespace impactfe
         for (std::size_t k = 0; k < m; ++k)
           {
             const unsigned int row = unknowns[k];
-            if (normal_rows && row % dimension != 0 && !is_slip_row(row))
+            if (normal_rows && row % dimension != 0 && !is_slip_row(row) &&
+                !exact_stick_row(row))
               out[k] = c[row] * in[k];
             else if (is_slip_row(row))
               {
@@ -437,6 +451,7 @@ namespace impactfe
               iterations >= exact_normal_rows_after && new_beta > target)
             {
               exact_normal_rows = last_report.exact_normal_rows = true;
+              normal_rows                                       = true;
               send_normal_states();
               beta = new_beta;
               continue;

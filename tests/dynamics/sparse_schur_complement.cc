@@ -15,10 +15,10 @@
 //   of W_NN = N^T A^{-1} N, checked by N^T A^{-1} N (S_N x) = x with one
 //   solve with a factorisation of A;
 // - with contact states (set_contact_states(): some contacts open, some
-//   sliding with a skew mu d), the product inverts K_N = N_c^T A^{-1} H_s
-//   on the closed contacts, checked the same way with the skewed
-//   directions H_s = n + mu d_1 t_1 + mu d_2 t_2; without states it is
-//   S_N's again;
+//   sticking, some sliding with a skew mu d), the product inverts K =
+//   H_C^T A^{-1} H_s on the closed normals and sticking tangents, checked
+//   the same way with the skewed directions H_s = n + mu d_1 t_1 + mu d_2
+//   t_2 of the sliding ones; without states it is S_N's again;
 // - NodeFrame::with_normal() gives orthonormal frames (2D and 3D, normals
 //   along an axis or not) and refuses a normal that is not a unit vector;
 // - frames over unknowns with different couplings are refused (false, and
@@ -212,55 +212,69 @@ main()
   check(error <= 1e-11 * scale, "rotated frames: S_N = (N^T A^{-1} N)^{-1}");
 
   // Contact states: every fourth contact open (its normal slot joins the
-  // interior), the others closed, two thirds of them sliding with a skew
-  // mu d of |mu d| up to 3. The product must invert K_N = N_c^T A^{-1}
-  // H_s on the closed contacts: the impulses lambda_a along
-  // H_s,a = n_a + s_a1 t1_a + s_a2 t2_a, applied through a solve with A,
-  // give the normal velocities x_a of the closed contacts.
+  // interior), every fourth sticking (its tangents closed as well), the
+  // others sliding, two thirds of them with a skew mu d of |mu d| up to 3.
+  // The product must invert K = H_C^T A^{-1} H_s on C' (closed normals,
+  // sticking tangents): the impulses lambda along H_s,a = n_a + s_a1 t1_a
+  // + s_a2 t2_a (sliding) or n_a, t1_a, t2_a (sticking), applied through a
+  // solve with A, give the velocities x on C'.
   SparseSchurComplement state_schur;
   check(state_schur.initialize(A, normal_dofs, "A", frames, true),
         "initialize() for contact states");
-  std::vector<unsigned char>         closed(frames.size());
+  std::vector<unsigned char>         states(frames.size());
   std::vector<std::array<double, 3>> skew(frames.size(), {{0., 0., 0.}});
   Vector<double>                     x_closed(n);
   for (std::size_t a = 0; a < frames.size(); ++a)
     {
-      closed[a] = a % 4 != 1;
-      if (closed[a] && a % 3 != 0)
+      states[a] = a % 4 == 1 ? SparseSchurComplement::open_state :
+                  a % 4 == 3 ? SparseSchurComplement::stick_state :
+                               SparseSchurComplement::slide_state;
+      if (states[a] == SparseSchurComplement::slide_state && a % 3 != 0)
         {
           const double angle = 0.9 * a, size = 3. * std::abs(std::sin(a));
           skew[a][1] = size * std::cos(angle);
           skew[a][2] = size * std::sin(angle);
         }
-      if (closed[a])
+      if (states[a] != SparseSchurComplement::open_state)
         x_closed[frames[a].dofs[0]] = x[frames[a].dofs[0]];
+      if (states[a] == SparseSchurComplement::stick_state)
+        for (unsigned int l = 1; l < 3; ++l)
+          x_closed[frames[a].dofs[l]] = std::sin(0.3 + 0.2 * a + l);
     }
-  state_schur.set_contact_states(closed, skew);
+  state_schur.set_contact_states(states, skew);
   Vector<double> lambda(n);
   state_schur.vmult(x_closed, lambda, work);
   forces = 0.;
   for (std::size_t a = 0; a < frames.size(); ++a)
-    if (closed[a])
-      for (unsigned int p = 0; p < 3; ++p)
-        forces[frames[a].dofs[p]] =
-          lambda[frames[a].dofs[0]] *
-          (frames[a].rotation[0][p] + skew[a][1] * frames[a].rotation[1][p] +
-           skew[a][2] * frames[a].rotation[2][p]);
+    for (unsigned int p = 0; p < 3; ++p)
+      {
+        const auto  &R        = frames[a].rotation;
+        const double lambda_n = lambda[frames[a].dofs[0]];
+        if (states[a] == SparseSchurComplement::slide_state)
+          forces[frames[a].dofs[p]] =
+            lambda_n * (R[0][p] + skew[a][1] * R[1][p] + skew[a][2] * R[2][p]);
+        else if (states[a] == SparseSchurComplement::stick_state)
+          forces[frames[a].dofs[p]] = lambda_n * R[0][p] +
+                                      lambda[frames[a].dofs[1]] * R[1][p] +
+                                      lambda[frames[a].dofs[2]] * R[2][p];
+      }
   full.solve(forces);
   error = scale = 0.;
   for (std::size_t a = 0; a < frames.size(); ++a)
-    if (closed[a])
-      {
-        double normal_velocity = 0.;
-        for (unsigned int p = 0; p < 3; ++p)
-          normal_velocity +=
-            frames[a].rotation[0][p] * forces[frames[a].dofs[p]];
-        error =
-          std::max(error, std::abs(normal_velocity - x[frames[a].dofs[0]]));
-        scale = std::max(scale, std::abs(x[frames[a].dofs[0]]));
-      }
+    for (unsigned int l = 0; l < 3; ++l)
+      if ((l == 0 && states[a] != SparseSchurComplement::open_state) ||
+          states[a] == SparseSchurComplement::stick_state)
+        {
+          double velocity = 0.;
+          for (unsigned int p = 0; p < 3; ++p)
+            velocity += frames[a].rotation[l][p] * forces[frames[a].dofs[p]];
+          error =
+            std::max(error, std::abs(velocity - x_closed[frames[a].dofs[l]]));
+          scale = std::max(scale, std::abs(x_closed[frames[a].dofs[l]]));
+        }
   check(state_schur.inverts_contact_states() && error <= 1e-11 * scale,
-        "contact states: the products invert K_N on the closed contacts");
+        "contact states: the products invert K on the closed normals and "
+        "sticking tangents");
   // no states: S_N again
   state_schur.set_contact_states({}, {});
   state_schur.vmult(x, lambda, work);

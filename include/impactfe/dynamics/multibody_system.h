@@ -387,17 +387,20 @@ namespace impactfe
     std::vector<SparseSchurComplement>                schur_complements;
     std::vector<SparseSchurComplement>                normal_schur_complements;
     std::vector<types::global_dof_index>              normal_slot;
+    /// Per candidate against a rigid obstacle, its node's DoFs, the slots of
+    /// its frame's rotated unknowns (normal first).
+    std::vector<std::array<types::global_dof_index, 3>> frame_slots;
     /// With friction, per candidate: its frame's index among its body's
     /// normal frames (or invalid), its tangents' coordinates in that frame
     /// ([k][l]: tangent k + 1 on rotated unknown l + 1); per body the
-    /// states (closed, skew) of the active set iteration and those the
-    /// normal Schur complements were last factorised with; whether the
-    /// active set method used the exact normal rows (it does so from then
+    /// states (open, slide, stick; the skews) of the active set iteration and
+    /// those the normal Schur complements were last factorised with; whether
+    /// the active set method used the exact normal rows (it does so from then
     /// on).
     std::vector<unsigned int>                         normal_frame_index;
     std::vector<std::array<std::array<double, 2>, 2>> normal_frame_tangents;
-    std::vector<std::vector<unsigned char>>           normal_closed,
-      factorized_normal_closed;
+    std::vector<std::vector<unsigned char>>           normal_state,
+      factorized_normal_state;
     std::vector<std::vector<std::array<double, 3>>> normal_skew,
       factorized_normal_skew;
     bool exact_normal_rows = false;
@@ -425,11 +428,11 @@ namespace impactfe
     bool
     ensure_normal_schur_complements();
     /// The active set method's contact states (lcp::NormalStateUpdate):
-    /// refactorise the normal rows' operator with them if a contact opened
-    /// or closed or a slip moved by more than 0.05 (units of mu) since the
+    /// refactorise the operator of its rows with them if a contact's state
+    /// changed or a slip moved by more than 0.05 (units of mu) since the
     /// last factorisation; empty: back to the normal Schur complements.
     void
-    update_normal_states(const std::vector<unsigned char> &closed,
+    update_normal_states(const std::vector<unsigned char> &states,
                          const std::vector<double>        &slip);
     /// y = H^T S H x (or, if @p normal, the normal rows' S_N x_N) on the
     /// LCP candidates' rows; rows of candidates between two bodies get

@@ -116,18 +116,19 @@ namespace impactfe
    * sets").
    *
    * Those products invert W_NN on all of C. The active set method needs
-   * the inverse of the operator of its normal rows at the current contact
-   * states instead: only the closed contacts' normals (the others' slots
-   * belong to the interior), and with friction K_N = H_N^T A^{-1} H_s,
-   * H_s = n + mu t_d (t_d the slip direction) for sliding contacts. S is
-   * the worse an approximation of that the more contacts are open and the
-   * larger mu is (doc/lcp.md, "Large friction coefficients").
-   * set_contact_states() makes the products apply K_N^{-1} exactly: the
-   * multiplier of the bordered system [A H_s; H_N^T 0] on the closed
-   * contacts, one solve with A_RR - S A_NR (R: all but the closed normals;
-   * A_RR with the tangential rows of each sliding node minus its skew s
-   * times its normal row). That matrix has A's pattern but is
-   * unsymmetric: an LU factorisation, redone whenever the states change.
+   * the inverse of the operator of its rows at the current contact states
+   * instead: the closed contacts' normals (the open ones' slots belong to
+   * the interior) and the sticking ones' tangents, with K = H_C^T A^{-1}
+   * H_s, H_s = n + mu t_d (t_d the slip direction) for sliding contacts.
+   * S is the worse an approximation of that the more contacts are open or
+   * stick and the larger mu is (doc/lcp.md, "Large friction
+   * coefficients"). set_contact_states() makes the products apply K^{-1}
+   * exactly: the multiplier of the bordered system [A H_s; H_C^T 0], one
+   * solve with A_RR - S A_NR (C': the closed normals and sticking
+   * tangents, R: the other unknowns; A_RR with the tangential rows of each
+   * sliding node minus its skew s times its normal row). That matrix has
+   * A's pattern but is unsymmetric: an LU factorisation, redone whenever
+   * the states change.
    */
   class SparseSchurComplement
   {
@@ -172,19 +173,28 @@ namespace impactfe
                const std::vector<NodeFrame>               &frames = {},
                const bool for_contact_states                      = false);
 
+    /// The states of set_contact_states().
+    static constexpr unsigned char open_state = 0, slide_state = 1,
+                                   stick_state = 2;
+
     /**
-     * The contact states whose normal operator the products invert
-     * (class documentation), per frame in the order given to initialize()
-     * (with @p for_contact_states, whose @p dofs must then be the frames' first
-     * DoFs, the normal slots): whether its normal is closed, and its skew
-     * s (s[l] for the rotated unknowns l = 1, 2, the coordinates of mu
-     * times the slip direction in the frame; zero unless it slides; s[0]
-     * is not read). Empty @p closed: the products are those of S again.
-     * Otherwise A_RR - S A_NR is factorised (the analysis once). Throws,
-     * leaving the products those of S, if that matrix is singular.
+     * The contact states whose normal rows (and sticking tangents) the
+     * products invert (class documentation), per frame in the order given
+     * to initialize() (with @p for_contact_states, whose @p dofs must then
+     * be the frames' first DoFs, the normal slots): open_state,
+     * slide_state (the normal closed, the tangents free but for the skew)
+     * or stick_state (every unknown of the node closed), and the skew s of
+     * a sliding one (s[l] for the rotated unknowns l = 1, 2, the
+     * coordinates of mu times the slip direction in the frame; s[0] is not
+     * read). The products then take and give values on the closed slots
+     * C': the normal slot of a closed frame, and the tangential slots of a
+     * sticking one (the rotated unknowns). Empty @p states: the products
+     * are those of S again. Otherwise A_RR - S A_NR is factorised (the
+     * analysis once). Throws, leaving the products those of S, if that
+     * matrix is singular.
      */
     void
-    set_contact_states(const std::vector<unsigned char>         &closed,
+    set_contact_states(const std::vector<unsigned char>         &states,
                        const std::vector<std::array<double, 3>> &skew);
 
     /// Whether the products invert the normal operator of contact states
@@ -237,18 +247,17 @@ namespace impactfe
     std::vector<double>                  row_value;
     std::unique_ptr<SparseCholesky>      interior;
 
-    /// The frames' unknowns (normal slot first) and the position of their
-    /// normal slot in C; is_contact[i]: DoF i is in C.
+    /// The frames' unknowns (normal slot first); is_contact[i]: DoF i is
+    /// in C' (set_contact_states()).
     std::vector<std::array<types::global_dof_index, 3>> frame_dofs;
     std::vector<unsigned char>                          frame_size;
-    std::vector<std::size_t>                            frame_row;
     std::vector<unsigned char>                          is_contact;
     /// For set_contact_states() (initialize() with for_contact_states): A
     /// rotated, the matrix of the states and its LU factors (in one object, so
     /// that the matrices' pattern does not move), and the states it holds.
     struct StateMatrix;
     std::unique_ptr<StateMatrix>       state_matrix;
-    std::vector<unsigned char>         state_closed;
+    std::vector<unsigned char>         state_code;
     std::vector<std::array<double, 3>> state_skew;
     bool                               for_states = false;
   };

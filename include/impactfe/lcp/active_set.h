@@ -22,14 +22,15 @@ namespace impactfe
     using DelassusProduct =
       std::function<void(const std::vector<double> &x, std::vector<double> &y)>;
 
-    /// Tells a normal preconditioner the contact states whose normal rows
-    /// it is to invert: per contact whether it is closed, and (n_directions
-    /// - 1 entries, in the contact frame's tangents) mu d if it slides in
-    /// direction d (P_T = mu P_N d; the polygonal cone: the vertex's or the
-    /// edge normal's part of P_T), else zero. Empty vectors: back to its
-    /// own approximation.
+    /// Tells a normal preconditioner the contact states whose rows it is
+    /// to invert: per contact 0 (open), 1 (closed, sliding) or 2 (closed,
+    /// sticking: its tangential rows are then the preconditioner's too),
+    /// and (n_directions - 1 entries, in the contact frame's tangents) mu d
+    /// if it slides in direction d (P_T = mu P_N d; the polygonal cone: the
+    /// vertex's or the edge normal's part of P_T), else zero. Empty
+    /// vectors: back to its own approximation.
     using NormalStateUpdate =
-      std::function<void(const std::vector<unsigned char> &closed,
+      std::function<void(const std::vector<unsigned char> &states,
                          const std::vector<double>        &slip)>;
 
     /// Options of ActiveSetSolver::solve().
@@ -157,11 +158,13 @@ namespace impactfe
        * preconditioned operator up to 3 against 1.1, doc/lcp.md).
        *
        * @p normal_state_update (optional) lets the normal preconditioner
-       * invert the normal rows' operator at the current states exactly
-       * (the closed contacts only, W_NN + mu W_NT D with the slip
-       * directions D: doc/lcp.md, "Large friction coefficients"); it is
-       * called before each linear solve that uses the normal
-       * preconditioner.
+       * invert the operator of the normal rows and the sticking tangents'
+       * rows at the current states exactly (the closed contacts only, W_NN
+       * + mu W_NT D with the slip directions D: doc/lcp.md, "Large
+       * friction coefficients"); it is called before each linear solve
+       * that uses the normal preconditioner. Once it is used
+       * (ActiveSetOptions::exact_normal_rows), every linear solve uses it,
+       * however many contacts stick.
        */
       const ActiveSetReport &
       solve(const DelassusProduct           &W,
@@ -273,7 +276,7 @@ namespace impactfe
       const NormalStateUpdate   *normal_state_update     = nullptr;
       bool                       exact_normal_rows       = false;
       unsigned int               exact_normal_rows_after = 40;
-      std::vector<unsigned char> normal_closed;
+      std::vector<unsigned char> normal_states;
       std::vector<double>        normal_slip;
       unsigned int
       gmres(const DelassusProduct     &W,
