@@ -818,8 +818,9 @@ namespace impactfe
           candidate.against_rigid_obstacle())
         {
           // All DoFs of the node, also those the normal has no part in:
-          // the tangents' slots are where set_skew() acts. The columns of
-          // H are the candidate's frame (ContactSet::build_operator()).
+          // the tangents' slots are where set_contact_states() acts. The
+          // columns of H are the candidate's frame
+          // (ContactSet::build_operator()).
           const unsigned int b = candidate.body_a;
           for (unsigned int d = 0; d < dim; ++d)
             {
