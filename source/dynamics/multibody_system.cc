@@ -804,7 +804,6 @@ namespace impactfe
     // contact frame, the normal component in the slot of the node's first
     // DoF. Not if a node has two such candidates (or the rotation does not
     // fit the matrices' patterns): then only the full ones.
-    normal_slot.assign(contact_set.n_candidates(), numbers::invalid_dof_index);
     frame_slots.assign(contact_set.n_candidates(), {});
     normal_frame_index.assign(contact_set.n_candidates(),
                               numbers::invalid_unsigned_int);
@@ -837,7 +836,6 @@ namespace impactfe
                   candidate.frame[k][d] * frame.rotation[l][d];
           normal_frame_index[c] = normal_frames[b].size();
           normal_frames[b].push_back(frame);
-          normal_slot[c] = node_dofs[0];
           std::copy(node_dofs.begin(), node_dofs.end(), frame_slots[c].begin());
           normal_dofs[b].push_back(node_dofs[0]);
         }
@@ -889,8 +887,6 @@ namespace impactfe
             normal_state[b].assign(normal_frames[b].size(), 0);
             normal_skew[b].assign(normal_frames[b].size(), {{0., 0., 0.}});
           }
-        factorized_normal_state = normal_state;
-        factorized_normal_skew  = normal_skew;
         normal_frames.clear();
         normal_dofs.clear();
       }
@@ -938,26 +934,19 @@ namespace impactfe
           }
         // A preconditioner whose slips lag by less than 0.05 mu costs
         // GMRES a few iterations, far less than a factorisation.
-        bool change = !complement.inverts_contact_states() ||
-                      normal_state[b] != factorized_normal_state[b];
-        for (unsigned int f = 0; f < normal_skew[b].size() && !change; ++f)
-          for (unsigned int l = 1; l < 3; ++l)
-            change = change || std::abs(normal_skew[b][f][l] -
-                                        factorized_normal_skew[b][f][l]) > 0.05;
-        if (!change)
-          continue;
-        factorized_normal_state[b] = normal_state[b];
-        factorized_normal_skew[b]  = normal_skew[b];
-        ++active_set_stats.state_factorizations;
         try
           {
-            complement.set_contact_states(normal_state[b], normal_skew[b]);
+            if (complement.set_contact_states(normal_state[b],
+                                              normal_skew[b],
+                                              0.05))
+              ++active_set_stats.state_factorizations;
           }
         catch (const ExceptionBase &)
           {
             // singular (mu beyond uniqueness): the normal Schur complement
             // again, which set_contact_states() has left in place; GMRES
             // copes or stalls, and a stall falls back to Lemke's method
+            ++active_set_stats.state_factorizations;
             ++active_set_stats.singular_state_matrices;
           }
       }
@@ -995,7 +984,7 @@ namespace impactfe
           if (!normal)
             contact_set.add_column(c * nd + j % nd, x[j], schur_nodal);
           else if (j % nd == 0)
-            schur_nodal.block(b)(normal_slot[c]) = x[j];
+            schur_nodal.block(b)(frame_slots[c][0]) = x[j];
           else if (sticks(c))
             for (unsigned int l = 0; l + 1 < dim; ++l)
               schur_nodal.block(b)(frame_slots[c][l + 1]) +=
@@ -1016,7 +1005,7 @@ namespace impactfe
         else if (!normal)
           y[j] = contact_set.column_dot(c * nd + j % nd, schur_product);
         else if (j % nd == 0)
-          y[j] = schur_product.block(candidate.body_a)(normal_slot[c]);
+          y[j] = schur_product.block(candidate.body_a)(frame_slots[c][0]);
         else if (sticks(c))
           {
             y[j] = 0.;

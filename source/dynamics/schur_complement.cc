@@ -426,9 +426,7 @@ namespace impactfe
 
     if (state_matrix)
       {
-        is_contact.assign(A.m(), 0);
-        for (const auto d : sorted)
-          is_contact[d] = 1;
+        is_contact.assign(A.m(), 0); // set by set_contact_states()
         for (const auto &frame : frames)
           {
             const auto k =
@@ -453,20 +451,31 @@ namespace impactfe
 
 
 
-  void
+  bool
   SparseSchurComplement::set_contact_states(
     const std::vector<unsigned char>         &states,
-    const std::vector<std::array<double, 3>> &skew)
+    const std::vector<std::array<double, 3>> &skew,
+    const double                              skew_tolerance)
   {
-    for_states = false;
     if (states.empty())
-      return;
+      {
+        for_states = false;
+        return false;
+      }
     AssertThrow(state_matrix && states.size() == frame_dofs.size() &&
                   skew.size() == frame_dofs.size(),
                 ExcMessage("SparseSchurComplement::set_contact_states(): " +
                            std::to_string(states.size()) + " states for " +
                            std::to_string(frame_dofs.size()) +
                            " frames (initialize() with for_contact_states?)"));
+    bool same = for_states && states == state_code;
+    for (std::size_t f = 0; f < frame_dofs.size() && same; ++f)
+      for (unsigned int l = 1; l < frame_size[f]; ++l)
+        same =
+          same && std::abs(skew[f][l] - state_skew[f][l]) <= skew_tolerance;
+    if (same)
+      return false;
+    for_states = false;
     state_code = states;
     state_skew = skew;
     // the unknowns C' of the states: closed normals, sticking tangents
@@ -498,6 +507,7 @@ namespace impactfe
     state_matrix->factor.factorize(
       M, "the step matrix at the contact states of an active set iteration");
     for_states = true;
+    return true;
   }
 
 

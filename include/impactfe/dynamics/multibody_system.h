@@ -373,8 +373,7 @@ namespace impactfe
     /// inverse of W on all of them) and the one on their normal components
     /// alone, in the contact frames (the inverse of W_NN: for the normal
     /// rows when most closed contacts slide, and for frictionless contact),
-    /// per body; each candidate's normal slot in the latter (its node's
-    /// first DoF); with friction, the frames and normal slots that the
+    /// per body; with friction, the frames and normal slots that the
     /// normal ones are factorised from when a solve first asks for them
     /// (ensure_normal_schur_complements()), and the CPU seconds that took
     /// in this step (a set-up cost, not the contact problem's); their work
@@ -386,24 +385,20 @@ namespace impactfe
     std::vector<std::vector<types::global_dof_index>> schur_contact_dofs;
     std::vector<SparseSchurComplement>                schur_complements;
     std::vector<SparseSchurComplement>                normal_schur_complements;
-    std::vector<types::global_dof_index>              normal_slot;
     /// Per candidate against a rigid obstacle, its node's DoFs, the slots of
-    /// its frame's rotated unknowns (normal first).
+    /// its frame's rotated unknowns in the normal ones (normal first).
     std::vector<std::array<types::global_dof_index, 3>> frame_slots;
     /// With friction, per candidate: its frame's index among its body's
     /// normal frames (or invalid), its tangents' coordinates in that frame
     /// ([k][l]: tangent k + 1 on rotated unknown l + 1); per body the
-    /// states (open, slide, stick; the skews) of the active set iteration and
-    /// those the normal Schur complements were last factorised with; whether
-    /// the active set method used the exact normal rows (it does so from then
-    /// on).
+    /// states (open, slide, stick; the skews) of the active set iteration;
+    /// whether the active set method used the exact normal rows (it does so
+    /// from then on).
     std::vector<unsigned int>                         normal_frame_index;
     std::vector<std::array<std::array<double, 2>, 2>> normal_frame_tangents;
-    std::vector<std::vector<unsigned char>>           normal_state,
-      factorized_normal_state;
-    std::vector<std::vector<std::array<double, 3>>> normal_skew,
-      factorized_normal_skew;
-    bool exact_normal_rows = false;
+    std::vector<std::vector<unsigned char>>           normal_state;
+    std::vector<std::vector<std::array<double, 3>>>   normal_skew;
+    bool                                              exact_normal_rows = false;
     std::vector<std::vector<SparseSchurComplement::NodeFrame>> normal_frames;
     std::vector<std::vector<types::global_dof_index>>          normal_dofs;
     bool   schur_preconditioner_ready = false;

@@ -190,12 +190,16 @@ namespace impactfe
      * C': the normal slot of a closed frame, and the tangential slots of a
      * sticking one (the rotated unknowns). Empty @p states: the products
      * are those of S again. Otherwise A_RR - S A_NR is factorised (the
-     * analysis once). Throws, leaving the products those of S, if that
-     * matrix is singular.
+     * analysis once), unless the products already invert states equal to
+     * @p states whose skews differ from @p skew by at most
+     * @p skew_tolerance (the products keep those). Returns whether it
+     * factorised. Throws, leaving the products those of S, if that matrix
+     * is singular.
      */
-    void
+    bool
     set_contact_states(const std::vector<unsigned char>         &states,
-                       const std::vector<std::array<double, 3>> &skew);
+                       const std::vector<std::array<double, 3>> &skew,
+                       const double skew_tolerance = 0.);
 
     /// Whether the products invert the normal operator of contact states
     /// (set_contact_states()) rather than apply S.
