@@ -19,19 +19,48 @@ namespace impactfe
     const std::vector<types::global_dof_index> &dofs,
     const std::string                          &name)
   {
+    std::vector<types::global_dof_index> ordered(dofs);
+    std::vector<double>                  factor;
+    if (!ordered.empty())
+      {
+        check_dense_size(ordered.size(), name);
+        SparseCholesky cholesky;
+        factor = cholesky.factorize_with_trailing_block(matrix, ordered, name);
+      }
+    compute_from_factor(ordered, std::move(factor), name);
+  }
+
+
+
+  void
+  DenseSchurComplement::check_dense_size(const std::size_t  n,
+                                         const std::string &name)
+  {
+    AssertThrow(n < 46340, // n^2 within a BLAS int
+                ExcMessage("The Schur complement of " + name + " on " +
+                           std::to_string(n) +
+                           " contact DoFs is too large to be dense."));
+  }
+
+
+
+  void
+  DenseSchurComplement::compute_from_factor(
+    const std::vector<types::global_dof_index> &dofs,
+    std::vector<double>                         factor,
+    const std::string                          &name)
+  {
+    AssertThrow(factor.size() == dofs.size() * dofs.size(),
+                ExcMessage("The Cholesky factor of the Schur complement of " +
+                           name + " does not match its " +
+                           std::to_string(dofs.size()) + " DoFs."));
     // Computed aside and kept only when everything succeeded, so that a
     // failure leaves the object as it was.
     std::vector<types::global_dof_index> new_dofs(dofs);
-    std::vector<double>                  new_inverse, new_schur;
+    std::vector<double> new_inverse(std::move(factor)), new_schur;
     if (!new_dofs.empty())
       {
-        AssertThrow(new_dofs.size() < 46340, // n^2 within a BLAS int
-                    ExcMessage("The Schur complement of " + name + " on " +
-                               std::to_string(new_dofs.size()) +
-                               " contact DoFs is too large to be dense."));
-        SparseCholesky factor;
-        new_inverse =
-          factor.factorize_with_trailing_block(matrix, new_dofs, name);
+        check_dense_size(new_dofs.size(), name);
         const types::blas_int n = new_dofs.size();
         new_schur.assign(new_inverse.size(), 0.);
         // S = L_CC L_CC^T (lower triangle).

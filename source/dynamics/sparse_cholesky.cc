@@ -42,6 +42,8 @@ namespace impactfe
     // work vector of its solve (solve_single_precision(), made at its
     // first call).
     mutable std::vector<float> single_values, single_work, single_block;
+    // The work space of solve_lower() (rows below a supernode).
+    mutable std::vector<double> rows_below;
 
     Data()
     {
@@ -60,6 +62,7 @@ namespace impactfe
       cholmod_free_dense(&block_work_y, &common);
       cholmod_free_dense(&block_work_e, &common);
       single_values.clear(); // rounded from the factor just freed
+      rows_below.clear();
     }
 
     ~Data()
@@ -519,10 +522,147 @@ namespace impactfe
 
 
 
-  // L L^T z = P x by supernodes: a supernode's columns k1 <= k < k2 and
-  // its rows (the first k2 - k1 of them those columns) hold a dense,
-  // column-major block; forward, its triangle is solved and the rows below
-  // updated; backward, the reverse.
+  namespace
+  {
+    // The BLAS of the supernodal substitutions, in either precision.
+    void
+    triangular_solve(const char  *trans,
+                     const int   *n,
+                     const float *a,
+                     const int   *lda,
+                     float       *x)
+    {
+      const int one = 1;
+      strsv_("L", trans, "N", n, a, lda, x, &one);
+    }
+
+    void
+    triangular_solve(const char   *trans,
+                     const int    *n,
+                     const double *a,
+                     const int    *lda,
+                     double       *x)
+    {
+      const int one = 1;
+      dtrsv_("L", trans, "N", n, a, lda, x, &one);
+    }
+
+    void
+    matrix_vector(const char  *trans,
+                  const int   *m,
+                  const int   *n,
+                  const float  alpha,
+                  const float *a,
+                  const int   *lda,
+                  const float *x,
+                  const float  beta,
+                  float       *y)
+    {
+      const int one = 1;
+      sgemv_(trans, m, n, &alpha, a, lda, x, &one, &beta, y, &one);
+    }
+
+    void
+    matrix_vector(const char   *trans,
+                  const int    *m,
+                  const int    *n,
+                  const double  alpha,
+                  const double *a,
+                  const int    *lda,
+                  const double *x,
+                  const double  beta,
+                  double       *y)
+    {
+      const int one = 1;
+      dgemv_(trans, m, n, &alpha, a, lda, x, &one, &beta, y, &one);
+    }
+
+    // L z = z (forward) or L^T z = z, by supernodes, z in the factor's
+    // order: a supernode's columns k1 <= k < k2 and its rows (the first
+    // k2 - k1 of them those columns) hold a dense, column-major block;
+    // forward, its triangle is solved and the rows below updated;
+    // backward, the reverse. @p t: work space for the rows below a
+    // supernode.
+    template <typename Number>
+    void
+    supernodal_substitution(const cholmod_factor &L,
+                            const Number         *Lx,
+                            Number               *z,
+                            Number               *t,
+                            const bool            forward)
+    {
+      const int *super = static_cast<const int *>(L.super);
+      const int *pi    = static_cast<const int *>(L.pi);
+      const int *px    = static_cast<const int *>(L.px);
+      const int *rows  = static_cast<const int *>(L.s);
+      if (forward)
+        for (std::size_t s = 0; s < L.nsuper; ++s)
+          {
+            const int     k1 = super[s], n_columns = super[s + 1] - k1;
+            const int     n_rows  = pi[s + 1] - pi[s];
+            const int     n_below = n_rows - n_columns;
+            const Number *block   = Lx + px[s];
+            triangular_solve("N", &n_columns, block, &n_rows, z + k1);
+            if (n_below > 0)
+              {
+                matrix_vector("N",
+                              &n_below,
+                              &n_columns,
+                              Number(1),
+                              block + n_columns,
+                              &n_rows,
+                              z + k1,
+                              Number(0),
+                              t);
+                const int *below = rows + pi[s] + n_columns;
+                for (int i = 0; i < n_below; ++i)
+                  z[below[i]] -= t[i];
+              }
+          }
+      else
+        for (std::size_t s = L.nsuper; s-- > 0;)
+          {
+            const int     k1 = super[s], n_columns = super[s + 1] - k1;
+            const int     n_rows  = pi[s + 1] - pi[s];
+            const int     n_below = n_rows - n_columns;
+            const Number *block   = Lx + px[s];
+            if (n_below > 0)
+              {
+                const int *below = rows + pi[s] + n_columns;
+                for (int i = 0; i < n_below; ++i)
+                  t[i] = z[below[i]];
+                matrix_vector("T",
+                              &n_below,
+                              &n_columns,
+                              Number(-1),
+                              block + n_columns,
+                              &n_rows,
+                              t,
+                              Number(1),
+                              z + k1);
+              }
+            triangular_solve("T", &n_columns, block, &n_rows, z + k1);
+          }
+    }
+
+    // The most rows below the columns of any supernode of @p L.
+    std::size_t
+    most_rows_below(const cholmod_factor &L)
+    {
+      const int  *super      = static_cast<const int *>(L.super);
+      const int  *pi         = static_cast<const int *>(L.pi);
+      std::size_t most_below = 1;
+      for (std::size_t s = 0; s < L.nsuper; ++s)
+        most_below = std::max<std::size_t>(most_below,
+                                           (pi[s + 1] - pi[s]) -
+                                             (super[s + 1] - super[s]));
+      return most_below;
+    }
+  } // namespace
+
+
+
+  // L L^T z = P x by supernodes in single precision.
   void
   SparseCholesky::solve_single_precision(Vector<double> &x) const
   {
@@ -540,79 +680,46 @@ namespace impactfe
         const double *values = static_cast<const double *>(L.x);
         data->single_values.assign(values, values + L.xsize);
         data->single_work.resize(n);
-        std::size_t most_below = 1;
-        for (std::size_t s = 0; s < L.nsuper; ++s)
-          most_below =
-            std::max<std::size_t>(most_below,
-                                  (static_cast<const int *>(L.pi)[s + 1] -
-                                   static_cast<const int *>(L.pi)[s]) -
-                                    (static_cast<const int *>(L.super)[s + 1] -
-                                     static_cast<const int *>(L.super)[s]));
-        data->single_block.resize(most_below);
+        data->single_block.resize(most_rows_below(L));
       }
-    const int   *super = static_cast<const int *>(L.super);
-    const int   *pi    = static_cast<const int *>(L.pi);
-    const int   *px    = static_cast<const int *>(L.px);
-    const int   *rows  = static_cast<const int *>(L.s);
-    const int   *perm  = static_cast<const int *>(L.Perm);
-    const float *Lx    = data->single_values.data();
-    float       *z     = data->single_work.data();
-    float       *t     = data->single_block.data();
+    const int *perm = static_cast<const int *>(L.Perm);
+    float     *z    = data->single_work.data();
     for (std::size_t k = 0; k < n; ++k)
       z[k] = static_cast<float>(x[perm[k]]);
-    const int   one_i = 1;
-    const float one = 1.f, zero = 0.f;
-    for (std::size_t s = 0; s < L.nsuper; ++s)
-      {
-        const int    k1 = super[s], n_columns = super[s + 1] - k1;
-        const int    n_rows = pi[s + 1] - pi[s], n_below = n_rows - n_columns;
-        const float *block = Lx + px[s];
-        strsv_("L", "N", "N", &n_columns, block, &n_rows, z + k1, &one_i);
-        if (n_below > 0)
-          {
-            sgemv_("N",
-                   &n_below,
-                   &n_columns,
-                   &one,
-                   block + n_columns,
-                   &n_rows,
-                   z + k1,
-                   &one_i,
-                   &zero,
-                   t,
-                   &one_i);
-            const int *below = rows + pi[s] + n_columns;
-            for (int i = 0; i < n_below; ++i)
-              z[below[i]] -= t[i];
-          }
-      }
-    for (std::size_t s = L.nsuper; s-- > 0;)
-      {
-        const int    k1 = super[s], n_columns = super[s + 1] - k1;
-        const int    n_rows = pi[s + 1] - pi[s], n_below = n_rows - n_columns;
-        const float *block = Lx + px[s];
-        if (n_below > 0)
-          {
-            const int *below = rows + pi[s] + n_columns;
-            for (int i = 0; i < n_below; ++i)
-              t[i] = z[below[i]];
-            const float minus_one = -1.f;
-            sgemv_("T",
-                   &n_below,
-                   &n_columns,
-                   &minus_one,
-                   block + n_columns,
-                   &n_rows,
-                   t,
-                   &one_i,
-                   &one,
-                   z + k1,
-                   &one_i);
-          }
-        strsv_("L", "T", "N", &n_columns, block, &n_rows, z + k1, &one_i);
-      }
+    supernodal_substitution(
+      L, data->single_values.data(), z, data->single_block.data(), true);
+    supernodal_substitution(
+      L, data->single_values.data(), z, data->single_block.data(), false);
     for (std::size_t k = 0; k < n; ++k)
       x[perm[k]] = z[k];
+  }
+
+
+
+  const int *
+  SparseCholesky::permutation() const
+  {
+    Assert(data->factor != nullptr, ExcMessage("factorize() first."));
+    return static_cast<const int *>(data->factor->Perm);
+  }
+
+
+
+  void
+  SparseCholesky::solve_lower(double *z, const bool transpose) const
+  {
+    Assert(data->factor != nullptr, ExcMessage("factorize() first."));
+    const cholmod_factor &L = *data->factor;
+    AssertThrow(L.is_super,
+                ExcMessage("SparseCholesky::solve_lower() needs a supernodal "
+                           "factor (factorize_with_trailing_block())."));
+    if (data->rows_below.empty())
+      data->rows_below.resize(most_rows_below(L));
+    supernodal_substitution(L,
+                            static_cast<const double *>(L.x),
+                            z,
+                            data->rows_below.data(),
+                            !transpose);
   }
 
 

@@ -6,11 +6,14 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
 #include <impactfe/bodies/cell_operators.h>
 #include <impactfe/bodies/constitutive_model.h>
 #include <impactfe/parallel/distributed_body.h>
+
+#include <algorithm>
 
 namespace impactfe
 {
@@ -101,49 +104,24 @@ namespace impactfe
       damping.reinit(pattern);
       body_force.reinit(owned, mpi_communicator);
 
-      const auto model = create_constitutive_model<dim>(material_parameters);
-      AssertThrow(model->is_linear(),
-                  ExcMessage("The material law '" + model->name() +
-                             "' is nonlinear; the distributed body needs a "
-                             "linear one."));
-      const SymmetricTensor<4, dim> elasticity = model->elasticity_tensor();
-      const SymmetricTensor<4, dim> viscosity  = model->viscosity_tensor();
-      const bool                    viscous    = viscosity.norm() > 0.;
-
-      const QGauss<dim> quadrature(2);
-      FEValues<dim>     fe_values(
-        fe, quadrature, update_values | update_gradients | update_JxW_values);
-      const unsigned int n = fe.n_dofs_per_cell();
-      CellOperators      cell_operators;
-      cell_operators.reinit(n);
-      std::vector<double>                  row_sums;
-      std::vector<types::global_dof_index> local_dofs(n);
-      for (const auto &cell : dofs.active_cell_iterators())
-        if (cell->is_locally_owned())
+      const bool          lumped = discretization_parameters.lumped_mass;
+      std::vector<double> row_sums;
+      for_each_owned_cell([&](const CellOperators                        &cell,
+                              const std::vector<types::global_dof_index> &dof,
+                              const bool viscous) {
+        if (lumped)
           {
-            fe_values.reinit(cell);
-            integrate_cell_operators(fe_values,
-                                     elasticity,
-                                     viscosity,
-                                     viscous,
-                                     material_parameters.density,
-                                     body_force_density,
-                                     1.,
-                                     cell_operators);
-            cell->get_dof_indices(local_dofs);
-            if (discretization_parameters.lumped_mass)
-              {
-                lumped_cell_mass(cell_operators.mass, row_sums);
-                for (unsigned int i = 0; i < n; ++i)
-                  mass.add(local_dofs[i], local_dofs[i], row_sums[i]);
-              }
-            else
-              mass.add(local_dofs, cell_operators.mass);
-            stiffness.add(local_dofs, cell_operators.stiffness);
-            if (viscous)
-              damping.add(local_dofs, cell_operators.viscous);
-            body_force.add(local_dofs, cell_operators.load);
+            lumped_cell_mass(cell.mass, row_sums);
+            for (unsigned int i = 0; i < dof.size(); ++i)
+              mass.add(dof[i], dof[i], row_sums[i]);
           }
+        else
+          mass.add(dof, cell.mass);
+        stiffness.add(dof, cell.stiffness);
+        if (viscous)
+          damping.add(dof, cell.viscous);
+        body_force.add(dof, cell.load);
+      });
       mass.compress(VectorOperation::add);
       stiffness.compress(VectorOperation::add);
       damping.compress(VectorOperation::add);
@@ -255,6 +233,146 @@ namespace impactfe
     DistributedElasticBody<dim>::external_force() const
     {
       return body_force;
+    }
+
+
+
+    // The element operators of the serial body on each locally owned cell,
+    // handed to @p add with the cell's DoFs and whether the law is viscous.
+    template <int dim>
+    void
+    DistributedElasticBody<dim>::for_each_owned_cell(
+      const std::function<void(const CellOperators &,
+                               const std::vector<types::global_dof_index> &,
+                               bool)> &add) const
+    {
+      const auto model = create_constitutive_model<dim>(material_parameters);
+      AssertThrow(model->is_linear(),
+                  ExcMessage("The material law '" + model->name() +
+                             "' is nonlinear; the distributed body needs a "
+                             "linear one."));
+      const SymmetricTensor<4, dim> elasticity = model->elasticity_tensor();
+      const SymmetricTensor<4, dim> viscosity  = model->viscosity_tensor();
+      const bool                    viscous    = viscosity.norm() > 0.;
+
+      const QGauss<dim> quadrature(2);
+      FEValues<dim>     fe_values(
+        fe, quadrature, update_values | update_gradients | update_JxW_values);
+      const unsigned int n = fe.n_dofs_per_cell();
+      CellOperators      cell_operators;
+      cell_operators.reinit(n);
+      std::vector<types::global_dof_index> local_dofs(n);
+      for (const auto &cell : dofs.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            integrate_cell_operators(fe_values,
+                                     elasticity,
+                                     viscosity,
+                                     viscous,
+                                     material_parameters.density,
+                                     body_force_density,
+                                     1.,
+                                     cell_operators);
+            cell->get_dof_indices(local_dofs);
+            add(cell_operators, local_dofs, viscous);
+          }
+    }
+
+
+
+    // The sum over the ranks of these matrices is the distributed
+    // a M + b K + c C: each cell is owned by one rank. C's Rayleigh terms
+    // are combinations of M and K, so they split by cells too.
+    template <int dim>
+    void
+    DistributedElasticBody<dim>::assemble_subdomain_matrix(
+      const double                          mass_coefficient,
+      const double                          stiffness_coefficient,
+      const double                          damping_coefficient,
+      SparsityPattern                      &pattern,
+      SparseMatrix<double>                 &matrix,
+      std::vector<types::global_dof_index> &local_to_global,
+      std::vector<bool>                    &on_interface) const
+    {
+      std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+      local_to_global.clear();
+      for (const auto &cell : dofs.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            cell->get_dof_indices(cell_dofs);
+            local_to_global.insert(local_to_global.end(),
+                                   cell_dofs.begin(),
+                                   cell_dofs.end());
+          }
+      std::sort(local_to_global.begin(), local_to_global.end());
+      local_to_global.erase(std::unique(local_to_global.begin(),
+                                        local_to_global.end()),
+                            local_to_global.end());
+      const auto local_index = [&](const types::global_dof_index g) {
+        return static_cast<unsigned int>(
+          std::lower_bound(local_to_global.begin(), local_to_global.end(), g) -
+          local_to_global.begin());
+      };
+      // A DoF of an owned cell that a ghost cell has too is shared with
+      // another rank (the ghost layer holds every cell that touches an
+      // owned one).
+      on_interface.assign(local_to_global.size(), false);
+      for (const auto &cell : dofs.active_cell_iterators())
+        if (cell->is_ghost())
+          {
+            cell->get_dof_indices(cell_dofs);
+            for (const auto g : cell_dofs)
+              if (const unsigned int l = local_index(g);
+                  l < local_to_global.size() && local_to_global[l] == g)
+                on_interface[l] = true;
+          }
+
+      const unsigned int        n = fe.n_dofs_per_cell();
+      std::vector<unsigned int> local(n);
+      DynamicSparsityPattern    dsp(local_to_global.size());
+      for (const auto &cell : dofs.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            cell->get_dof_indices(cell_dofs);
+            for (unsigned int i = 0; i < n; ++i)
+              local[i] = local_index(cell_dofs[i]);
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < n; ++j)
+                dsp.add(local[i], local[j]);
+          }
+      matrix.clear();
+      pattern.copy_from(dsp);
+      matrix.reinit(pattern);
+
+      const double m_factor =
+        mass_coefficient +
+        damping_coefficient * material_parameters.rayleigh_mass;
+      const double k_factor =
+        stiffness_coefficient +
+        damping_coefficient * material_parameters.rayleigh_stiffness;
+      const bool          lumped = discretization_parameters.lumped_mass;
+      std::vector<double> row_sums;
+      for_each_owned_cell([&](const CellOperators                        &cell,
+                              const std::vector<types::global_dof_index> &dof,
+                              const bool viscous) {
+        for (unsigned int i = 0; i < n; ++i)
+          local[i] = local_index(dof[i]);
+        if (lumped)
+          lumped_cell_mass(cell.mass, row_sums);
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int j = 0; j < n; ++j)
+            {
+              double value = k_factor * cell.stiffness(i, j);
+              if (lumped)
+                value += i == j ? m_factor * row_sums[i] : 0.;
+              else
+                value += m_factor * cell.mass(i, j);
+              if (viscous)
+                value += damping_coefficient * cell.viscous(i, j);
+              matrix.add(local[i], local[j], value);
+            }
+      });
     }
 
 

@@ -34,12 +34,17 @@ namespace impactfe
       prm.enter_subsection("Parallel solver");
       prm.declare_entry("Solver",
                         "direct",
-                        Patterns::Selection("direct|amg cg"),
-                        "The solves with the step matrix M~ (one per product "
-                        "W x of the contact problem): direct (MUMPS through "
-                        "Trilinos' Amesos: M~ factorised once, then a "
-                        "distributed solve pair per product) or amg cg (CG "
-                        "with ML's algebraic multigrid, set up once).");
+                        Patterns::Selection("direct|amg cg|substructured"),
+                        "The solves with the step matrix M~: direct (MUMPS "
+                        "through Trilinos' Amesos: M~ factorised once, then "
+                        "a distributed solve pair per product W x of the "
+                        "contact problem), amg cg (CG with ML's algebraic "
+                        "multigrid, set up once, one CG solve per product), "
+                        "or substructured (each rank's part of M~ "
+                        "factorised by CHOLMOD with its shared and contact "
+                        "DoFs last, and a dense interface problem on every "
+                        "rank: the products W x are then dense, with no "
+                        "solve; for a few ranks, doc/parallel.md).");
       prm.declare_entry(
         "Tolerance",
         "1e-12",
@@ -62,9 +67,12 @@ namespace impactfe
     ParallelSolverParameters::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Parallel solver");
-      solver = prm.get("Solver") == "direct" ? Solver::direct : Solver::amg_cg;
-      tolerance      = prm.get_double("Tolerance");
-      max_iterations = prm.get_integer("Maximum iterations");
+      const std::string name = prm.get("Solver");
+      solver                 = name == "direct" ? Solver::direct :
+                               name == "amg cg" ? Solver::amg_cg :
+                                                  Solver::substructured;
+      tolerance              = prm.get_double("Tolerance");
+      max_iterations         = prm.get_integer("Maximum iterations");
       prm.leave_subsection();
       AssertThrow(tolerance > 0. && tolerance < 1.,
                   ExcMessage("Parallel solver: 'Tolerance' must be in (0, 1), "
@@ -125,6 +133,9 @@ namespace impactfe
                                                            "Amesos_Mumps"));
           direct_solver->initialize(step_matrix);
         }
+      else if (linear_parameters.solver ==
+               ParallelSolverParameters::Solver::substructured)
+        setup_substructured_solver();
       else
         setup_amg();
 
@@ -170,6 +181,49 @@ namespace impactfe
 
 
 
+    // Each rank's part of M~ from its own cells; C: every DoF of every
+    // candidate, so that H x of any set of candidates lies in C.
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::setup_substructured_solver()
+    {
+      SparsityPattern                      pattern;
+      SparseMatrix<double>                 subdomain_matrix;
+      std::vector<types::global_dof_index> local_to_global;
+      std::vector<bool>                    on_interface;
+      body.assemble_subdomain_matrix(1.,
+                                     scheme->stiffness_coefficient(),
+                                     body.has_damping() ?
+                                       scheme->damping_coefficient() :
+                                       0.,
+                                     pattern,
+                                     subdomain_matrix,
+                                     local_to_global,
+                                     on_interface);
+      std::vector<types::global_dof_index> contact_dofs;
+      for (unsigned int c = 0; c < contact.n_candidates(); ++c)
+        for (unsigned int d = 0; d < dim; ++d)
+          contact_dofs.push_back(contact.candidate(c).dofs[d]);
+      substructured_solver = std::make_unique<SubstructuredSolver>();
+      substructured_solver->initialize(body.communicator(),
+                                       subdomain_matrix,
+                                       local_to_global,
+                                       on_interface,
+                                       contact_dofs,
+                                       body.locally_owned_dofs(),
+                                       "the step matrix");
+      // the dense complement keeps C in the given order
+      contact_slots.resize(contact.n_candidates());
+      for (unsigned int c = 0; c < contact.n_candidates(); ++c)
+        for (unsigned int d = 0; d < dim; ++d)
+          contact_slots[c][d] = c * dim + d;
+      const unsigned int n_c = contact_dofs.size();
+      dense_in.assign(n_c, 0.);
+      dense_out.assign(n_c, 0.);
+    }
+
+
+
     template <int dim>
     void
     DistributedImpactSolver<dim>::set_initial_velocity(
@@ -197,6 +251,12 @@ namespace impactfe
       if (direct_solver)
         {
           direct_solver->solve(x, b);
+          charge();
+          return;
+        }
+      if (substructured_solver)
+        {
+          substructured_solver->solve(b, x);
           charge();
           return;
         }
@@ -240,6 +300,44 @@ namespace impactfe
       solve_step_matrix(impulse_force, correction);
       contact.local_values(correction, lcp_candidates, y);
       ++stats.products;
+    }
+
+
+
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::dense_contact_product(
+      const std::vector<double> &x,
+      std::vector<double>       &y,
+      const bool                 use_schur)
+    {
+      const unsigned int nd = contact.n_directions();
+      std::fill(dense_in.begin(), dense_in.end(), 0.);
+      for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
+        {
+          const unsigned int c     = lcp_candidates[a];
+          const auto        &frame = contact.candidate(c).frame;
+          for (unsigned int k = 0; k < nd; ++k)
+            for (unsigned int d = 0; d < dim; ++d)
+              dense_in[contact_slots[c][d]] += frame[k][d] * x[a * nd + k];
+        }
+      const DenseSchurComplement &schur =
+        substructured_solver->contact_schur_complement();
+      if (use_schur) // the preconditioner: single precision suffices
+        schur.vmult_single_precision(dense_in.data(), dense_out.data());
+      else
+        schur.vmult_inverse(dense_in.data(), dense_out.data());
+      y.assign(lcp_candidates.size() * nd, 0.);
+      for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
+        {
+          const unsigned int c     = lcp_candidates[a];
+          const auto        &frame = contact.candidate(c).frame;
+          for (unsigned int k = 0; k < nd; ++k)
+            for (unsigned int d = 0; d < dim; ++d)
+              y[a * nd + k] += frame[k][d] * dense_out[contact_slots[c][d]];
+        }
+      if (!use_schur)
+        ++stats.products;
     }
 
 
@@ -291,12 +389,23 @@ namespace impactfe
           }
       Utilities::MPI::sum(lcp_penalty, body.communicator(), lcp_penalty);
 
-      const lcp::DelassusProduct product = [this](const std::vector<double> &x,
-                                                  std::vector<double> &y) {
-        delassus_product(x, y);
-      };
+      // With the substructured solver, W and the preconditioner H^T S_C H
+      // are dense products, as in the serial programs.
+      const bool                 dense = substructured_solver != nullptr;
+      const lcp::DelassusProduct product =
+        [this, dense](const std::vector<double> &x, std::vector<double> &y) {
+          if (dense)
+            dense_contact_product(x, y, false);
+          else
+            delassus_product(x, y);
+        };
       const lcp::DelassusProduct preconditioner =
-        [this](const std::vector<double> &x, std::vector<double> &y) {
+        [this, dense](const std::vector<double> &x, std::vector<double> &y) {
+          if (dense)
+            {
+              dense_contact_product(x, y, true);
+              return;
+            }
           impulse_force = 0.;
           contact.add_impulses(lcp_candidates, x, impulse_force);
           step_matrix.vmult(work, impulse_force);
@@ -351,7 +460,16 @@ namespace impactfe
             return p == 0.;
           }))
         correction = 0.;
-      // the solver's last product was with lcp_P: correction = M~^{-1} H P
+      else if (dense)
+        {
+          // the dense products give W P on the contact DoFs only:
+          // M~^{-1} H P is one solve
+          impulse_force = 0.;
+          contact.add_impulses(lcp_candidates, lcp_P, impulse_force);
+          solve_step_matrix(impulse_force, correction);
+        }
+      // else the solver's last product was with lcp_P: correction =
+      // M~^{-1} H P
       for (unsigned int a = 0; a < n; ++a)
         last_states[lcp_candidates[a]] = active_set_solver.states()[a];
     }

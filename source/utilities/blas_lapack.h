@@ -82,7 +82,25 @@ extern "C"
          const float *beta,
          float       *y,
          const int   *incy);
-  // triangular solve and matrix-vector product in single precision
+  // triangular solves and products, double and single precision
+  void
+  dtrsv_(const char   *uplo,
+         const char   *trans,
+         const char   *diag,
+         const int    *n,
+         const double *a,
+         const int    *lda,
+         double       *x,
+         const int    *incx);
+  void
+  dtrmv_(const char   *uplo,
+         const char   *trans,
+         const char   *diag,
+         const int    *n,
+         const double *a,
+         const int    *lda,
+         double       *x,
+         const int    *incx);
   void
   strsv_(const char  *uplo,
          const char  *trans,

@@ -49,6 +49,19 @@ namespace impactfe
             const std::vector<types::global_dof_index> &dofs,
             const std::string                          &name);
 
+    /**
+     * S and S^{-1} on @p dofs from the Cholesky factor @p factor of S
+     * (dense, lower triangular, column-major, dofs.size() squared), as the
+     * trailing block of a factorisation that eliminates @p dofs last gives
+     * it (the substructured solves of the distributed programs).
+     */
+    void
+    compute_from_factor(const std::vector<types::global_dof_index> &dofs,
+                        std::vector<double>                         factor,
+                        const std::string                          &name);
+    /** Throws, naming @p name, if S on @p n DoFs cannot be dense. */
+    static void
+    check_dense_size(const std::size_t n, const std::string &name);
     /** The unknowns C, in the order of the vectors below. */
     const std::vector<types::global_dof_index> &
     dofs() const;

@@ -85,6 +85,21 @@ namespace impactfe
     void
     solve_single_precision(Vector<double> &rhs_and_solution) const;
 
+    /**
+     * The factor's ordering of a supernodal factorisation (that of
+     * factorize_with_trailing_block()): position k of the factor holds
+     * unknown permutation()[k] of the matrix.
+     */
+    const int *
+    permutation() const;
+    /**
+     * z <- L^{-1} z, or L^{-T} z with @p transpose, for @p z in the factor's
+     * order (permutation()): half of a solve, for solvers that work
+     * between the two substitutions (the substructured solves of the
+     * distributed programs). Supernodal factors only.
+     */
+    void
+    solve_lower(double *z, const bool transpose = false) const;
     /** Rows (= columns) of the factorised matrix. */
     std::size_t
     size() const;

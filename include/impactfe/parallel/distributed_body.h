@@ -14,11 +14,17 @@
 
 #include <deal.II/fe/fe_system.h>
 
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <impactfe/bodies/cell_operators.h>
 #include <impactfe/bodies/elastic_body.h>
 #include <impactfe/bodies/material.h>
+
+#include <functional>
+#include <vector>
 
 namespace impactfe
 {
@@ -89,11 +95,38 @@ namespace impactfe
       fill_uniform(DistributedVector    &vector,
                    const Tensor<1, dim> &value) const;
 
+      /**
+       * This rank's subdomain matrix a M + b K + c C (@p mass_coefficient,
+       * @p stiffness_coefficient, @p damping_coefficient), assembled from
+       * the locally owned cells only, so that the sum over the ranks is
+       * the distributed matrix. Its rows are numbered locally: @p
+       * local_to_global holds the global DoF of each row (sorted), and
+       * @p on_interface marks those that cells of other ranks share. For
+       * the substructured solves (SubstructuredSolver).
+       */
+      void
+      assemble_subdomain_matrix(
+        const double                          mass_coefficient,
+        const double                          stiffness_coefficient,
+        const double                          damping_coefficient,
+        SparsityPattern                      &pattern,
+        SparseMatrix<double>                 &matrix,
+        std::vector<types::global_dof_index> &local_to_global,
+        std::vector<bool>                    &on_interface) const;
+
       /// e_d^T M v for each direction d: the momentum of velocity @p v.
       Tensor<1, dim>
       momentum(const DistributedVector &velocity) const;
 
     private:
+      /// Calls @p add with the element operators, the DoFs of each locally
+      /// owned cell and whether the law is viscous.
+      void
+      for_each_owned_cell(
+        const std::function<void(const CellOperators &,
+                                 const std::vector<types::global_dof_index> &,
+                                 bool)> &add) const;
+
       MPI_Comm                                  mpi_communicator;
       MaterialParameters                        material_parameters;
       DiscretizationParameters                  discretization_parameters;

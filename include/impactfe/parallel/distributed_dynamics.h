@@ -14,8 +14,10 @@
 #include <impactfe/contact/contact_parameters.h>
 #include <impactfe/lcp/active_set.h>
 #include <impactfe/parallel/distributed_contact.h>
+#include <impactfe/parallel/substructured_solver.h>
 #include <impactfe/time_integration/time_integrator.h>
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -65,7 +67,11 @@ namespace impactfe
         /// MUMPS (through Trilinos' Amesos), M~ factorised once.
         direct,
         /// CG preconditioned by ML's AMG, set up once.
-        amg_cg
+        amg_cg,
+        /// A sparse Cholesky factor per rank and a dense interface
+        /// problem (SubstructuredSolver), factorised once; the contact
+        /// problem's products are then dense.
+        substructured
       };
       Solver solver = Solver::direct;
       /// Relative residual of each CG solve with M~.
@@ -85,15 +91,17 @@ namespace impactfe
      * (Newmark is refused: it has no theta-step rule). W = H^T M~^{-1} H is
      * never formed: each product is one solve with M~, by MUMPS's
      * distributed factorisation of M~ (made once) or by CG with ML's AMG
-     * (set up once), `Parallel solver/Solver`. The candidates that can touch
-     * (free normal velocity closing the gap, or active in the last step) enter
-     * the contact problem; the active set method solves it, preconditioned by
-     * H^T M~ H (the contact nodes' block of M~, one distributed product), and
-     * its answer is verified. If it does not converge, W of the candidates is
-     * built by products (n_c n_d solves) and Lemke's method solves the problem
-     * (reported as a fallback), up to `Largest Lemke fallback` candidates.
-     * `Method = lemke` always takes that route (for small scenes and
-     * tests).
+     * (set up once), `Parallel solver/Solver`; or, with the substructured
+     * solver, a dense product with the Schur complement of M~ on the
+     * contact DoFs, which its factorisation gives. The candidates that can
+     * touch (free normal velocity closing the gap, or active in the last step)
+     * enter the contact problem; the active set method solves it,
+     * preconditioned by H^T M~ H (the contact nodes' block of M~, one
+     * distributed product), and its answer is verified. If it does not
+     * converge, W of the candidates is built by products (n_c n_d solves) and
+     * Lemke's method solves the problem (reported as a fallback), up to
+     * `Largest Lemke fallback` candidates. `Method = lemke` always takes that
+     * route (for small scenes and tests).
      */
     template <int dim>
     class DistributedImpactSolver
@@ -146,6 +154,11 @@ namespace impactfe
       TrilinosWrappers::PreconditionAMG amg;
       SolverControl                     direct_control;
       std::unique_ptr<TrilinosWrappers::SolverDirect> direct_solver;
+      std::unique_ptr<SubstructuredSolver>            substructured_solver;
+      /// Per candidate, the positions of its DoFs in the substructured
+      /// solver's contact Schur complement; and that product's vectors.
+      std::vector<std::array<unsigned int, dim>> contact_slots;
+      std::vector<double>                        dense_in, dense_out;
       DistributedVector u, v, u_old, v_old, v_free, rhs, correction,
         impulse_force, work;
       double                   current_time = 0.;
@@ -165,12 +178,22 @@ namespace impactfe
       /// ML's AMG on M~ with the rigid translations as near null space.
       void
       setup_amg();
+      /// The substructured solver of M~ and the contact DoFs' slots.
+      void
+      setup_substructured_solver();
       /// x = M~^{-1} b (CG: counts the iterations).
       void
       solve_step_matrix(const DistributedVector &b, DistributedVector &x);
       /// y = W x on lcp_candidates; correction = M~^{-1} H x.
       void
       delassus_product(const std::vector<double> &x, std::vector<double> &y);
+      /// y = H^T S_C^{-1} H x (W x) or, with @p use_schur, H^T S_C H x,
+      /// with the substructured solver's dense contact Schur complement S_C
+      /// (no solve, no communication).
+      void
+      dense_contact_product(const std::vector<double> &x,
+                            std::vector<double>       &y,
+                            const bool                 use_schur);
       /// Solve the contact problem of lcp_candidates into lcp_P; whether
       /// it took the active set route (else: Lemke, fallback or chosen).
       void

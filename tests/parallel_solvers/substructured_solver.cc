@@ -1,0 +1,165 @@
+// SubstructuredSolver (the distributed programs' `Parallel solver/Solver =
+// substructured`) on a 2D body with viscous and Rayleigh damping, on one
+// and on two ranks, against independent computations:
+// - A x = b to 1e-12 of |b|, A = M + c_K K + c_C C the distributed matrix
+//   the body assembles (Trilinos), not the subdomain matrices the solver
+//   is built from: so the subdomain matrices sum to A;
+// - the contact Schur complement's inverse S_C^{-1} equals (A^{-1})_CC,
+//   column by column, by solves with unit vectors on the contact DoFs C
+//   (the nodes of the bottom edge);
+// - S_C S_C^{-1} x = x.
+
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/grid/grid_generator.h>
+
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+
+#include <impactfe/parallel/distributed_body.h>
+#include <impactfe/parallel/substructured_solver.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "../tests.h"
+
+using namespace dealii;
+using namespace impactfe;
+using namespace impactfe::distributed;
+using impactfe_tests::check;
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const MPI_Comm                   comm = MPI_COMM_WORLD;
+  const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
+  if (root)
+    impactfe_tests::initlog();
+
+  MaterialParameters material;
+  material.youngs_modulus     = 1e9;
+  material.density            = 1e3;
+  material.poissons_ratio     = 0.3;
+  material.viscosity          = 1e4;
+  material.rayleigh_mass      = 2.;
+  material.rayleigh_stiffness = 1e-6;
+  DiscretizationParameters  discretization;
+  DistributedElasticBody<2> body(comm, material, discretization);
+  GridGenerator::subdivided_hyper_rectangle(body.triangulation(),
+                                            {12, 3},
+                                            Point<2>(0., 0.),
+                                            Point<2>(0.1, 0.02));
+  body.triangulation().refine_global(1);
+  body.setup();
+
+  // A = M + c_K K + c_C C, distributed.
+  const double      c_k = 2e-9, c_c = 3e-5;
+  DistributedMatrix A;
+  A.copy_from(body.mass_matrix());
+  A.add(c_k, body.stiffness_matrix());
+  A.add(c_c, body.damping_matrix());
+
+  // C: every DoF of the nodes on y = 0, the same list on every rank.
+  std::vector<types::global_dof_index> mine, cell_dofs(8);
+  for (const auto &cell : body.dof_handler().active_cell_iterators())
+    if (cell->is_locally_owned())
+      {
+        cell->get_dof_indices(cell_dofs);
+        for (unsigned int v = 0; v < 4; ++v)
+          if (std::abs(cell->vertex(v)[1]) < 1e-12)
+            for (unsigned int d = 0; d < 2; ++d)
+              mine.push_back(cell->vertex_dof_index(v, d));
+      }
+  std::vector<types::global_dof_index> contact_dofs;
+  for (const auto &part : Utilities::MPI::all_gather(comm, mine))
+    contact_dofs.insert(contact_dofs.end(), part.begin(), part.end());
+  std::sort(contact_dofs.begin(), contact_dofs.end());
+  contact_dofs.erase(std::unique(contact_dofs.begin(), contact_dofs.end()),
+                     contact_dofs.end());
+
+  SparsityPattern                      pattern;
+  SparseMatrix<double>                 subdomain;
+  std::vector<types::global_dof_index> local_to_global;
+  std::vector<bool>                    on_interface;
+  body.assemble_subdomain_matrix(
+    1., c_k, c_c, pattern, subdomain, local_to_global, on_interface);
+  SubstructuredSolver solver;
+  solver.initialize(comm,
+                    subdomain,
+                    local_to_global,
+                    on_interface,
+                    contact_dofs,
+                    body.locally_owned_dofs(),
+                    "A");
+  const DenseSchurComplement &schur = solver.contact_schur_complement();
+  check(schur.size() == contact_dofs.size() &&
+          solver.n_interface_dofs() >= contact_dofs.size(),
+        "the interface holds the " + std::to_string(contact_dofs.size()) +
+          " contact DoFs");
+
+  // 1. A x = b.
+  const IndexSet   &owned = body.locally_owned_dofs();
+  DistributedVector b(owned, comm), x(owned, comm), r(owned, comm);
+  for (const auto i : owned)
+    b(i) = std::sin(0.37 * i + 1.);
+  b.compress(VectorOperation::insert);
+  solver.solve(b, x);
+  A.vmult(r, x);
+  r -= b;
+  const double residual = r.l2_norm() / b.l2_norm();
+  check(residual < 1e-12,
+        "A x = b with the subdomain factors",
+        "(relative residual " + std::to_string(residual) + ")");
+
+  // 2. (A^{-1})_CC by solves with unit vectors, against S_C^{-1}.
+  const unsigned int  n_c = contact_dofs.size();
+  std::vector<double> unit(n_c), column(n_c), solved(n_c);
+  double              largest_difference = 0., largest_entry = 0.;
+  for (const unsigned int j : {0u, n_c / 2, n_c - 1})
+    {
+      const types::global_dof_index dof = schur.dofs()[j];
+      b                                 = 0.;
+      if (owned.is_element(dof))
+        b(dof) = 1.;
+      b.compress(VectorOperation::insert);
+      solver.solve(b, x);
+      std::fill(solved.begin(), solved.end(), 0.);
+      for (unsigned int i = 0; i < n_c; ++i)
+        if (owned.is_element(schur.dofs()[i]))
+          solved[i] = x(schur.dofs()[i]);
+      Utilities::MPI::sum(solved, comm, solved);
+      std::fill(unit.begin(), unit.end(), 0.);
+      unit[j] = 1.;
+      schur.vmult_inverse(unit.data(), column.data());
+      for (unsigned int i = 0; i < n_c; ++i)
+        {
+          largest_difference =
+            std::max(largest_difference, std::abs(column[i] - solved[i]));
+          largest_entry = std::max(largest_entry, std::abs(solved[i]));
+        }
+    }
+  check(largest_difference <= 1e-10 * largest_entry,
+        "S_C^{-1} = (A^{-1})_CC on three columns",
+        "(difference " + std::to_string(largest_difference / largest_entry) +
+          ")");
+
+  // 3. S_C S_C^{-1} x = x.
+  for (unsigned int i = 0; i < n_c; ++i)
+    unit[i] = std::cos(1.3 * i);
+  schur.vmult_inverse(unit.data(), column.data());
+  schur.vmult(column.data(), solved.data());
+  double error = 0.;
+  for (unsigned int i = 0; i < n_c; ++i)
+    error = std::max(error, std::abs(solved[i] - unit[i]));
+  check(error < 1e-10, "S_C S_C^{-1} x = x");
+
+  if (root)
+    deallog << "failed checks: " << impactfe_tests::n_failed_checks
+            << std::endl;
+  return Utilities::MPI::max(impactfe_tests::n_failed_checks, comm) == 0 ? 0 :
+                                                                           1;
+}
