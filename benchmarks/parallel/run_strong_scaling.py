@@ -1,12 +1,17 @@
 #!/usr/bin/env python3
 """Strong scaling of block_sliding_mpi: one and two MPI ranks on the same
-3D block (n x n/2 x n cells on a rigid plane, every bottom node sliding,
-the exact cone), a few time steps each, for several n, with the direct
-(MUMPS) and/or the AMG-CG solves of M~.
+block (3D: n x n/2 x n cells, the exact cone; 2D: n x n/2 cells, plane
+strain) on a rigid plane, every bottom node sliding, a few time steps
+each, for several n, with the direct (MUMPS), the AMG-CG and/or the
+substructured solves of M~.
 
     /usr/bin/python3 benchmarks/parallel/run_strong_scaling.py [--sizes 16 24 32]
-        [--steps 10] [--ranks 1 2] [--solvers direct "amg cg"]
+        [--dim 3] [--steps 10] [--ranks 1 2]
+        [--solvers direct "amg cg" substructured]
         [--build build] [--out doc]
+
+The 10^6-DoF scene of issue 14 is --dim 2 --sizes 1000 (1 003 002 DoFs,
+1 001 contacts).
 
 Writes doc/parallel_scaling.csv, doc/parallel_scaling.png (seconds per step
 against DoFs, and the speed-up; --name changes the file names),
@@ -26,6 +31,48 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
+
+PRM_2D = """set Dimension = 2
+subsection Geometry
+  set Length                  = 0.1
+  set Height                  = {height}
+  set Number of cells along x = {n}
+  set Number of cells up      = {m}
+end
+subsection Initial conditions
+  set Sliding speed     = 1
+  set Sliding direction = 0
+end
+subsection Obstacle
+  set Type                 = plane
+  set Point on plane       = 0, 0
+  set Normal               = 0, 1
+  set Friction coefficient = 0.5
+end
+subsection Material
+  set Young's modulus = 1e9
+  set Density         = 1e3
+  set Poisson's ratio = 0.3
+  set Plane model     = plane strain
+end
+subsection Time stepping
+  set Scheme    = theta-euler
+  set Theta     = 0.55
+  set Time step = 5e-4
+  set End time  = {end_time}
+end
+subsection Contact solver
+  set Method = active set
+end
+subsection Parallel solver
+  set Solver = {solver}
+end
+subsection Output
+  set Output directory = {out}
+  set VTU output       = false
+  set Plot             = false
+end
+"""
 
 PRM = """set Dimension = 3
 subsection Geometry
@@ -78,13 +125,13 @@ def mpiexec(ranks):
     return cmd
 
 
-def run(build, work, n, ranks, steps, solver):
+def run(build, work, n, ranks, steps, solver, dim):
     m = max(1, n // 2)
-    out = os.path.join(work, f"n{n}_r{ranks}_{solver.replace(' ', '_')}")
+    out = os.path.join(work, f"{dim}d_n{n}_r{ranks}_{solver.replace(' ', '_')}")
     os.makedirs(out, exist_ok=True)
     prm = os.path.join(out, "block.prm")
     with open(prm, "w") as f:
-        f.write(PRM.format(n=n, m=m, height=0.1 * m / n,
+        f.write((PRM if dim == 3 else PRM_2D).format(n=n, m=m, height=0.1 * m / n,
                            end_time=steps * 5e-4 * (1 + 1e-9), out=out,
                            solver=solver))
     proc = subprocess.run(mpiexec(ranks) + [os.path.join(build, "bin",
@@ -97,10 +144,11 @@ def run(build, work, n, ranks, steps, solver):
     line = [l for l in proc.stdout.splitlines() if l.startswith("RESULT ")][-1]
     values = dict(kv.split("=", 1) for kv in line.split()[1:])
     summary = json.load(open(os.path.join(out, "summary.json")))
-    return {"solver": solver, "n": n, "ranks": ranks,
+    return {"solver": solver, "dim": dim, "n": n, "ranks": ranks,
             "dofs": int(values["dofs"]),
             "contacts": int(values["contacts"]),
             "seconds_per_step": float(values["seconds_per_step"]),
+            "setup_seconds": summary["setup_wall_seconds"],
             "products_per_step": summary["products"] / summary["n_steps"],
             "solve_fraction": summary["solve_wall_seconds"] / summary["loop_wall_seconds"],
             "cg_per_product": summary["cg_iterations"] / max(1, summary["products"] + summary["n_steps"]),
@@ -113,8 +161,10 @@ def main():
     ap.add_argument("--sizes", type=int, nargs="+", default=[16, 24, 32])
     ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
     ap.add_argument("--steps", type=int, default=10)
+    ap.add_argument("--dim", type=int, choices=[2, 3], default=3)
     ap.add_argument("--solvers", nargs="+", default=["direct"],
-                    help="Parallel solver/Solver: direct and/or 'amg cg'")
+                    help="Parallel solver/Solver: direct, 'amg cg', "
+                    "substructured")
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
     ap.add_argument("--out", default=os.path.join(ROOT, "doc"))
     ap.add_argument("--name", default="parallel_scaling",
@@ -122,7 +172,7 @@ def main():
     ap.add_argument("--work", default=os.path.join(ROOT, "results",
                                                    "parallel_scaling"))
     a = ap.parse_args()
-    rows = [run(a.build, a.work, n, r, a.steps, s) for s in a.solvers
+    rows = [run(a.build, a.work, n, r, a.steps, s, a.dim) for s in a.solvers
             for n in a.sizes for r in a.ranks]
     commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short",
                              "HEAD"], capture_output=True, text=True).stdout.strip()
@@ -132,15 +182,15 @@ def main():
         cpu = m.group(1) if m else ""
     print(f"block_sliding_mpi strong scaling, commit {commit}, {cpu}, "
           f"{os.cpu_count()} cores, {platform.node()}")
-    print(f"{'solver':>7} {'n':>4} {'DoFs':>8} {'contacts':>8} {'ranks':>5} {'s/step':>9} "
+    print(f"{'solver':>13} {'n':>4} {'DoFs':>8} {'contacts':>8} {'ranks':>5} {'set-up s':>8} {'s/step':>9} "
           f"{'W x/step':>8} {'CG/solve':>8} {'solves':>6} {'speed-up':>8}")
     base = {}
     for r in rows:
         if r["ranks"] == min(a.ranks):
             base[(r["solver"], r["n"])] = r["seconds_per_step"]
         r["speedup"] = base[(r["solver"], r["n"])] / r["seconds_per_step"]
-        print(f"{r['solver']:>7} {r['n']:>4} {r['dofs']:>8} {r['contacts']:>8} {r['ranks']:>5} "
-              f"{r['seconds_per_step']:>9.4f} {r['products_per_step']:>8.1f} "
+        print(f"{r['solver']:>13} {r['n']:>4} {r['dofs']:>8} {r['contacts']:>8} {r['ranks']:>5} "
+              f"{r['setup_seconds']:>8.2f} {r['seconds_per_step']:>9.4f} {r['products_per_step']:>8.1f} "
               f"{r['cg_per_product']:>8.2f} {r['solve_fraction']:>6.0%} "
               f"{r['speedup']:>8.2f}")
     os.makedirs(a.out, exist_ok=True)
@@ -167,7 +217,9 @@ def main():
         ax1.set_xlabel("DoFs")
         ax1.set_ylabel("wall seconds per step")
         ax1.legend()
-        ax1.set_title("block_sliding_mpi, exact cone, (n+1)^2 contacts")
+        ax1.set_title("block_sliding_mpi, exact cone, (n+1)^2 contacts"
+                      if a.dim == 3 else
+                      "block_sliding_mpi, 2D, n+1 contacts")
         ax2.set_xlabel("DoFs")
         ax2.set_ylabel("speed-up over 1 rank")
         ax2.axhline(1.6, color="grey", ls=":", label="issue 14's 1.6")
@@ -184,7 +236,8 @@ def main():
     with open(os.path.join(a.work, "summary.json"), "w") as f:
         json.dump(summary, f, indent=2)
     top = max(a.ranks)
-    print(f"RESULT program=run_strong_scaling solver={a.solvers[0].replace(' ', '_')} "
+    print(f"RESULT program=run_strong_scaling dim={a.dim} "
+          f"solver={a.solvers[0].replace(' ', '_')} "
           f"contacts={big[top]['contacts']} "
           f"dofs={big[top]['dofs']} ranks={top} "
           f"seconds_per_step={big[top]['seconds_per_step']:.4g} "

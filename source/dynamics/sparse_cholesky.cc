@@ -581,24 +581,27 @@ namespace impactfe
     // order: a supernode's columns k1 <= k < k2 and its rows (the first
     // k2 - k1 of them those columns) hold a dense, column-major block;
     // forward, its triangle is solved and the rows below updated;
-    // backward, the reverse. @p t: work space for the rows below a
-    // supernode.
+    // backward, the reverse. Only the columns k < @p n_leading take part
+    // (a supernode may be cut: its own later rows then count as rows
+    // below). @p t: work space for the rows below a supernode.
     template <typename Number>
     void
     supernodal_substitution(const cholmod_factor &L,
                             const Number         *Lx,
                             Number               *z,
                             Number               *t,
-                            const bool            forward)
+                            const bool            forward,
+                            const int             n_leading)
     {
       const int *super = static_cast<const int *>(L.super);
       const int *pi    = static_cast<const int *>(L.pi);
       const int *px    = static_cast<const int *>(L.px);
       const int *rows  = static_cast<const int *>(L.s);
       if (forward)
-        for (std::size_t s = 0; s < L.nsuper; ++s)
+        for (std::size_t s = 0; s < L.nsuper && super[s] < n_leading; ++s)
           {
-            const int     k1 = super[s], n_columns = super[s + 1] - k1;
+            const int k1          = super[s],
+                      n_columns   = std::min(super[s + 1], n_leading) - k1;
             const int     n_rows  = pi[s + 1] - pi[s];
             const int     n_below = n_rows - n_columns;
             const Number *block   = Lx + px[s];
@@ -622,7 +625,10 @@ namespace impactfe
       else
         for (std::size_t s = L.nsuper; s-- > 0;)
           {
-            const int     k1 = super[s], n_columns = super[s + 1] - k1;
+            if (super[s] >= n_leading)
+              continue;
+            const int k1          = super[s],
+                      n_columns   = std::min(super[s + 1], n_leading) - k1;
             const int     n_rows  = pi[s + 1] - pi[s];
             const int     n_below = n_rows - n_columns;
             const Number *block   = Lx + px[s];
@@ -645,18 +651,16 @@ namespace impactfe
           }
     }
 
-    // The most rows below the columns of any supernode of @p L.
+    // The most rows of any supernode of @p L (a bound on the rows below
+    // any of its leading columns).
     std::size_t
-    most_rows_below(const cholmod_factor &L)
+    most_rows(const cholmod_factor &L)
     {
-      const int  *super      = static_cast<const int *>(L.super);
-      const int  *pi         = static_cast<const int *>(L.pi);
-      std::size_t most_below = 1;
+      const int  *pi   = static_cast<const int *>(L.pi);
+      std::size_t most = 1;
       for (std::size_t s = 0; s < L.nsuper; ++s)
-        most_below = std::max<std::size_t>(most_below,
-                                           (pi[s + 1] - pi[s]) -
-                                             (super[s + 1] - super[s]));
-      return most_below;
+        most = std::max<std::size_t>(most, pi[s + 1] - pi[s]);
+      return most;
     }
   } // namespace
 
@@ -680,16 +684,17 @@ namespace impactfe
         const double *values = static_cast<const double *>(L.x);
         data->single_values.assign(values, values + L.xsize);
         data->single_work.resize(n);
-        data->single_block.resize(most_rows_below(L));
+        data->single_block.resize(most_rows(L));
       }
     const int *perm = static_cast<const int *>(L.Perm);
     float     *z    = data->single_work.data();
     for (std::size_t k = 0; k < n; ++k)
       z[k] = static_cast<float>(x[perm[k]]);
+    const int all = n;
     supernodal_substitution(
-      L, data->single_values.data(), z, data->single_block.data(), true);
+      L, data->single_values.data(), z, data->single_block.data(), true, all);
     supernodal_substitution(
-      L, data->single_values.data(), z, data->single_block.data(), false);
+      L, data->single_values.data(), z, data->single_block.data(), false, all);
     for (std::size_t k = 0; k < n; ++k)
       x[perm[k]] = z[k];
   }
@@ -706,7 +711,9 @@ namespace impactfe
 
 
   void
-  SparseCholesky::solve_lower(double *z, const bool transpose) const
+  SparseCholesky::solve_lower(double            *z,
+                              const bool         transpose,
+                              const unsigned int n_leading) const
   {
     Assert(data->factor != nullptr, ExcMessage("factorize() first."));
     const cholmod_factor &L = *data->factor;
@@ -714,12 +721,13 @@ namespace impactfe
                 ExcMessage("SparseCholesky::solve_lower() needs a supernodal "
                            "factor (factorize_with_trailing_block())."));
     if (data->rows_below.empty())
-      data->rows_below.resize(most_rows_below(L));
+      data->rows_below.resize(most_rows(L));
     supernodal_substitution(L,
                             static_cast<const double *>(L.x),
                             z,
                             data->rows_below.data(),
-                            !transpose);
+                            !transpose,
+                            std::min<std::size_t>(n_leading, L.n));
   }
 
 

@@ -13,10 +13,74 @@ namespace impactfe
 {
   namespace distributed
   {
+    namespace
+    {
+      // The dense lower triangle of the sum over the ranks of L_r L_r^T,
+      // L_r the n x n lower triangle at @p factor (leading dimension @p ld)
+      // whose row j goes to row position[j] of the n_total x n_total
+      // result; then its Cholesky factor (column-major, lower), on every
+      // rank.
+      std::vector<double>
+      summed_cholesky_factor(const double                    *factor,
+                             const unsigned int               n,
+                             const unsigned int               ld,
+                             const std::vector<unsigned int> &position,
+                             const std::size_t                n_total,
+                             const MPI_Comm                   communicator,
+                             const std::string               &what)
+      {
+        std::vector<double> sum(n_total * n_total, 0.);
+        if (n > 0)
+          {
+            std::vector<double>   part(std::size_t(n) * n);
+            const types::blas_int n_b = n, ld_b = ld;
+            const double          one = 1., zero = 0.;
+            syrk("L",
+                 "N",
+                 &n_b,
+                 &n_b,
+                 &one,
+                 factor,
+                 &ld_b,
+                 &zero,
+                 part.data(),
+                 &n_b);
+            for (unsigned int j = 0; j < n; ++j)
+              for (unsigned int i = j; i < n; ++i)
+                {
+                  const std::size_t r = std::max(position[i], position[j]),
+                                    c = std::min(position[i], position[j]);
+                  sum[c * n_total + r] += part[std::size_t(j) * n + i];
+                }
+          }
+        const int mpi_error = MPI_Allreduce(MPI_IN_PLACE,
+                                            sum.data(),
+                                            static_cast<int>(sum.size()),
+                                            MPI_DOUBLE,
+                                            MPI_SUM,
+                                            communicator);
+        AssertThrowMPI(mpi_error);
+        const int n_t  = n_total;
+        int       info = 0;
+        if (n_t > 0)
+          dpotrf_("L", &n_t, sum.data(), &n_t, &info);
+        AssertThrow(info == 0,
+                    ExcMessage(what +
+                               " is not positive definite (LAPACK "
+                               "dpotrf info " +
+                               std::to_string(info) + ")."));
+        return sum;
+      }
+    } // namespace
+
+
+
     // @sect3{Set-up}
-    // The rank's factor with Gamma_i last; Gamma from all ranks; S summed
-    // over the ranks and factorised with C last; S_C from its trailing
-    // block.
+    // The rank's factor ordered [I, C_i, B_i]: its interior, its contact
+    // DoFs that no other rank has, and its shared DoFs B_i. Eliminating
+    // [I, C_i] leaves the Schur complement on B, which the solves use;
+    // eliminating only I leaves it on Gamma = B u C, whose Schur
+    // complement on C is S_C.
     void
     SubstructuredSolver::initialize(
       const MPI_Comm                              comm,
@@ -44,219 +108,184 @@ namespace impactfe
                                   g);
       };
 
-      // 1. The rank's factor, Gamma_i last.
+      // 1. The rank's factor, [C_i, B_i] last in that order.
       std::vector<types::global_dof_index> trailing;
       for (unsigned int l = 0; l < n_local; ++l)
-        if (on_interface[l] || is_contact(local_to_global[l]))
+        if (!on_interface[l] && is_contact(local_to_global[l]))
           trailing.push_back(l);
-      trailing_factor =
+      const unsigned int n_own_contact = trailing.size();
+      for (unsigned int l = 0; l < n_local; ++l)
+        if (on_interface[l])
+          trailing.push_back(l);
+      std::vector<double> trailing_factor =
         factor.factorize_with_trailing_block(subdomain_matrix, trailing, name);
       const unsigned int n_trailing = trailing.size();
-      n_interior                    = n_local - n_trailing;
+      const unsigned int n_shared   = n_trailing - n_own_contact;
+      n_leading                     = n_local - n_shared;
       const int *perm               = factor.permutation();
-      for (unsigned int k = 0; k < n_interior; ++k)
-        AssertThrow(owned.is_element(local_to_global[perm[k]]),
-                    ExcMessage("Substructured solve of " + name +
-                               ": an interior DoF of a subdomain is owned "
-                               "by another rank."));
+      owned_offset.resize(n_leading);
+      for (unsigned int k = 0; k < n_leading; ++k)
+        {
+          const types::global_dof_index g = local_to_global[perm[k]];
+          AssertThrow(owned.is_element(g),
+                      ExcMessage("Substructured solve of " + name +
+                                 ": a DoF that only this rank's cells "
+                                 "have is owned by another rank."));
+          owned_offset[k] = owned.index_within_set(g);
+        }
 
-      // 2. Gamma: B (sorted), then C in the given order.
+      // 2. B: every rank's shared DoFs; Gamma: B without C, then C in the
+      // given order.
       std::vector<types::global_dof_index> mine;
-      for (const auto l : trailing)
-        if (!is_contact(local_to_global[l]))
-          mine.push_back(local_to_global[l]);
+      for (unsigned int j = n_own_contact; j < n_trailing; ++j)
+        mine.push_back(local_to_global[trailing[j]]);
       std::vector<types::global_dof_index> shared;
       for (const auto &part : Utilities::MPI::all_gather(communicator, mine))
         shared.insert(shared.end(), part.begin(), part.end());
       std::sort(shared.begin(), shared.end());
       shared.erase(std::unique(shared.begin(), shared.end()), shared.end());
-      interface_dofs = shared;
-      interface_dofs.insert(interface_dofs.end(),
-                            contact_dofs.begin(),
-                            contact_dofs.end());
-      const std::size_t n_gamma = interface_dofs.size();
+      std::vector<types::global_dof_index> gamma;
+      for (const auto g : shared)
+        if (!is_contact(g))
+          gamma.push_back(g);
+      const std::size_t n_b_outside_c = gamma.size();
+      gamma.insert(gamma.end(), contact_dofs.begin(), contact_dofs.end());
+      const std::size_t n_gamma = gamma.size();
       DenseSchurComplement::check_dense_size(n_gamma, name);
       AssertThrow(n_gamma * n_gamma * sizeof(double) <= memory_limit,
                   ExcMessage(
                     "Substructured solve of " + name +
-                    ": the interface "
-                    "problem has " +
-                    std::to_string(n_gamma) + " DoFs (" +
-                    std::to_string(shared.size()) +
-                    " shared by ranks, the others contact DoFs), and its "
-                    "dense matrix would need " +
+                    ": the interface problem has " + std::to_string(n_gamma) +
+                    " DoFs (" + std::to_string(shared.size()) +
+                    " shared by ranks, " + std::to_string(contact_dofs.size()) +
+                    " contact DoFs), and its dense matrix would need " +
                     format_number(n_gamma * n_gamma * 8. / (1 << 30)) +
                     " GiB on every rank. Use fewer ranks, or 'Parallel "
                     "solver/Solver = direct' or 'amg cg'."));
-      std::vector<std::pair<types::global_dof_index, unsigned int>> position;
-      position.reserve(n_gamma);
-      for (unsigned int i = 0; i < n_gamma; ++i)
-        position.emplace_back(interface_dofs[i], i);
-      std::sort(position.begin(), position.end());
-      const auto gamma_index = [&](const types::global_dof_index g) {
-        const auto it = std::lower_bound(position.begin(),
-                                         position.end(),
-                                         std::make_pair(g, 0u));
-        AssertThrow(it != position.end() && it->first == g,
-                    ExcMessage("Substructured solve of " + name +
-                               ": a DoF of the interface is missing."));
-        return it->second;
-      };
-      trailing_position.resize(n_trailing);
-      for (unsigned int j = 0; j < n_trailing; ++j)
-        trailing_position[j] = gamma_index(local_to_global[trailing[j]]);
-      owned_interface.clear();
-      for (unsigned int i = 0; i < n_gamma; ++i)
-        if (owned.is_element(interface_dofs[i]))
-          owned_interface.push_back(i);
-      // every contact DoF is a DoF of its owner's cells, so in its Gamma_i
-      std::vector<unsigned int> covered(n_gamma, 0);
-      for (const auto p : trailing_position)
-        covered[p] = 1;
-      Utilities::MPI::max(covered, communicator, covered);
-      AssertThrow(std::all_of(covered.begin(),
-                              covered.end(),
-                              [](const unsigned int c) { return c != 0; }),
-                  ExcMessage("Substructured solve of " + name +
-                             ": a contact DoF is not a DoF of the body."));
-
-      // 3. S = sum over the ranks of L_t L_t^T (lower triangles), then its
-      // Cholesky factor on every rank.
-      interface_factor.assign(n_gamma * n_gamma, 0.);
-      if (n_trailing > 0)
-        {
-          std::vector<double>   part(std::size_t(n_trailing) * n_trailing);
-          const types::blas_int n_t = n_trailing;
-          const double          one = 1., zero = 0.;
-          syrk("L",
-               "N",
-               &n_t,
-               &n_t,
-               &one,
-               trailing_factor.data(),
-               &n_t,
-               &zero,
-               part.data(),
-               &n_t);
-          for (unsigned int j = 0; j < n_trailing; ++j)
-            for (unsigned int i = j; i < n_trailing; ++i)
-              {
-                const std::size_t r = std::max(trailing_position[i],
-                                               trailing_position[j]),
-                                  c = std::min(trailing_position[i],
-                                               trailing_position[j]);
-                interface_factor[c * n_gamma + r] +=
-                  part[std::size_t(j) * n_trailing + i];
-              }
-        }
-      const int mpi_error = MPI_Allreduce(MPI_IN_PLACE,
-                                          interface_factor.data(),
-                                          static_cast<int>(n_gamma * n_gamma),
-                                          MPI_DOUBLE,
-                                          MPI_SUM,
-                                          communicator);
-      AssertThrowMPI(mpi_error);
+      // The position in Gamma of each of the factor's trailing rows (C is
+      // not sorted: by a sorted copy).
+      std::vector<unsigned int> gamma_position(n_trailing);
       {
-        const int n    = n_gamma;
-        int       info = 0;
-        if (n > 0)
-          dpotrf_("L", &n, interface_factor.data(), &n, &info);
-        AssertThrow(info == 0,
-                    ExcMessage("Substructured solve of " + name +
-                               ": the interface matrix is not positive "
-                               "definite (LAPACK dpotrf info " +
-                               std::to_string(info) + ")."));
+        std::vector<std::pair<types::global_dof_index, unsigned int>> order;
+        for (unsigned int i = 0; i < n_gamma; ++i)
+          order.emplace_back(gamma[i], i);
+        std::sort(order.begin(), order.end());
+        for (unsigned int j = 0; j < n_trailing; ++j)
+          {
+            const types::global_dof_index g  = local_to_global[trailing[j]];
+            const auto                    it = std::lower_bound(order.begin(),
+                                             order.end(),
+                                             std::make_pair(g, 0u));
+            AssertThrow(it != order.end() && it->first == g,
+                        ExcMessage("Substructured solve of " + name +
+                                   ": a DoF of the interface is missing."));
+            gamma_position[j] = it->second;
+          }
       }
 
-      // 4. S_C: its factor is the trailing block of S's.
-      const std::size_t   n_b = shared.size(), n_c = contact_dofs.size();
-      std::vector<double> contact_factor(n_c * n_c, 0.);
-      for (std::size_t j = 0; j < n_c; ++j)
-        for (std::size_t i = j; i < n_c; ++i)
-          contact_factor[j * n_c + i] =
-            interface_factor[(n_b + j) * n_gamma + n_b + i];
-      contact_schur.compute_from_factor(contact_dofs,
-                                        std::move(contact_factor),
-                                        name);
+      // 3. S_C: the trailing block of the factor of S on Gamma, the sum of
+      // the ranks' L_t L_t^T; S itself is not kept.
+      {
+        std::vector<double> gamma_factor =
+          summed_cholesky_factor(trailing_factor.data(),
+                                 n_trailing,
+                                 n_trailing,
+                                 gamma_position,
+                                 n_gamma,
+                                 communicator,
+                                 "Substructured solve of " + name +
+                                   ": the Schur complement on the interface");
+        const std::size_t   n_c = contact_dofs.size();
+        std::vector<double> contact_factor(n_c * n_c, 0.);
+        for (std::size_t j = 0; j < n_c; ++j)
+          for (std::size_t i = j; i < n_c; ++i)
+            contact_factor[j * n_c + i] =
+              gamma_factor[(n_b_outside_c + j) * n_gamma + n_b_outside_c + i];
+        contact_schur.compute_from_factor(contact_dofs,
+                                          std::move(contact_factor),
+                                          name);
+      }
+
+      // 4. S_B, the Schur complement on B, from the trailing B_i blocks.
+      interface_dofs = shared;
+      shared_position.resize(n_shared);
+      for (unsigned int j = 0; j < n_shared; ++j)
+        shared_position[j] =
+          std::lower_bound(shared.begin(),
+                           shared.end(),
+                           local_to_global[trailing[n_own_contact + j]]) -
+          shared.begin();
+      const std::size_t offset =
+        std::size_t(n_own_contact) * n_trailing + n_own_contact;
+      interface_factor =
+        summed_cholesky_factor(trailing_factor.data() + offset,
+                               n_shared,
+                               n_trailing,
+                               shared_position,
+                               shared.size(),
+                               communicator,
+                               "Substructured solve of " + name +
+                                 ": the Schur complement on the DoFs the "
+                                 "ranks share");
+      owned_interface.clear();
+      for (unsigned int i = 0; i < shared.size(); ++i)
+        if (owned.is_element(shared[i]))
+          owned_interface.emplace_back(i, owned.index_within_set(shared[i]));
       local_work.assign(n_local, 0.);
-      interface_work.assign(n_gamma, 0.);
+      interface_work.assign(shared.size(), 0.);
     }
 
 
 
     // @sect3{A solve}
-    // With L_i = [L_II 0; L_GI L_GG] the rank's factor: y_I = L_II^{-1} b_I
-    // by a forward substitution of [b_I; 0], whose trailing part z_G gives
-    // the rank's reduction -L_GI y_I = L_GG z_G; S x_G = b_G + the ranks'
-    // reductions; then the backward substitution of [y_I; L_GG^T x_G]
-    // gives x_I = L_II^{-T} (y_I - L_GI^T x_G) and x_G again.
+    // With L = [L_11 0; L_B1 L_BB] the rank's factor (1 = [I, C_i]): the
+    // forward substitution of [b_1; 0] through the first block gives
+    // y_1 = L_11^{-1} b_1 and the rank's reduction -L_B1 y_1; S_B x_B =
+    // b_B + the ranks' reductions; the backward substitution through the
+    // first block with x_B gives x_1 = L_11^{-T} (y_1 - L_B1^T x_B).
     void
     SubstructuredSolver::solve(const DistributedVector &b,
                                DistributedVector       &x) const
     {
-      const int         *perm       = factor.permutation();
-      const unsigned int n_local    = local_to_global.size();
-      const int          n_trailing = n_local - n_interior;
-      const int          n_gamma    = interface_dofs.size();
-      const int          one        = 1;
-      double            *z          = local_work.data();
-      double            *g          = interface_work.data();
-      for (unsigned int k = 0; k < n_interior; ++k)
-        z[k] = b(local_to_global[perm[k]]);
-      std::fill(z + n_interior, z + n_local, 0.);
-      factor.solve_lower(z);
-      std::fill(g, g + n_gamma, 0.);
-      if (n_trailing > 0)
+      const unsigned int n_local  = local_to_global.size();
+      const int          n_shared = interface_dofs.size();
+      double            *z        = local_work.data();
+      double            *g        = interface_work.data();
+      const double      *b_local  = b.begin();
+      for (unsigned int k = 0; k < n_leading; ++k)
+        z[k] = b_local[owned_offset[k]];
+      std::fill(z + n_leading, z + n_local, 0.);
+      factor.solve_lower(z, false, n_leading);
+      std::fill(g, g + n_shared, 0.);
+      for (unsigned int j = 0; j < shared_position.size(); ++j)
+        g[shared_position[j]] = z[n_leading + j];
+      for (const auto &[i, offset] : owned_interface)
+        g[i] += b_local[offset];
+      if (n_shared > 0)
         {
-          double *z_g = z + n_interior;
-          dtrmv_("L",
-                 "N",
-                 "N",
-                 &n_trailing,
-                 trailing_factor.data(),
-                 &n_trailing,
-                 z_g,
-                 &one);
-          for (int j = 0; j < n_trailing; ++j)
-            g[trailing_position[j]] = z_g[j];
-        }
-      for (const auto i : owned_interface)
-        g[i] += b(interface_dofs[i]);
-      const int mpi_error = MPI_Allreduce(
-        MPI_IN_PLACE, g, n_gamma, MPI_DOUBLE, MPI_SUM, communicator);
-      AssertThrowMPI(mpi_error);
-      if (n_gamma > 0)
-        {
-          int info = 0;
+          const int mpi_error = MPI_Allreduce(
+            MPI_IN_PLACE, g, n_shared, MPI_DOUBLE, MPI_SUM, communicator);
+          AssertThrowMPI(mpi_error);
+          int       info = 0;
+          const int one  = 1;
           dpotrs_("L",
-                  &n_gamma,
+                  &n_shared,
                   &one,
                   interface_factor.data(),
-                  &n_gamma,
+                  &n_shared,
                   g,
-                  &n_gamma,
+                  &n_shared,
                   &info);
           AssertThrow(info == 0, ExcInternalError());
         }
-      if (n_trailing > 0)
-        {
-          double *z_g = z + n_interior;
-          for (int j = 0; j < n_trailing; ++j)
-            z_g[j] = g[trailing_position[j]];
-          dtrmv_("L",
-                 "T",
-                 "N",
-                 &n_trailing,
-                 trailing_factor.data(),
-                 &n_trailing,
-                 z_g,
-                 &one);
-        }
-      factor.solve_lower(z, true);
-      for (unsigned int k = 0; k < n_interior; ++k)
-        x(local_to_global[perm[k]]) = z[k];
-      for (const auto i : owned_interface)
-        x(interface_dofs[i]) = g[i];
+      for (unsigned int j = 0; j < shared_position.size(); ++j)
+        z[n_leading + j] = g[shared_position[j]];
+      factor.solve_lower(z, true, n_leading);
+      double *x_local = x.begin();
+      for (unsigned int k = 0; k < n_leading; ++k)
+        x_local[owned_offset[k]] = z[k];
+      for (const auto &[i, offset] : owned_interface)
+        x_local[offset] = g[i];
       x.compress(VectorOperation::insert);
     }
 

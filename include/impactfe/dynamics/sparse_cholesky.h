@@ -97,9 +97,17 @@ namespace impactfe
      * order (permutation()): half of a solve, for solvers that work
      * between the two substitutions (the substructured solves of the
      * distributed programs). Supernodal factors only.
+     *
+     * With @p n_leading, only the first n_leading columns of L take part:
+     * with L = [L_11 0; L_21 L_22] (L_11 of that size), forward gives
+     * z_1 <- L_11^{-1} z_1 and z_2 <- z_2 - L_21 z_1, and the transpose
+     * z_1 <- L_11^{-T} (z_1 - L_21^T z_2), z_2 unchanged.
      */
     void
-    solve_lower(double *z, const bool transpose = false) const;
+    solve_lower(
+      double            *z,
+      const bool         transpose = false,
+      const unsigned int n_leading = static_cast<unsigned int>(-1)) const;
     /** Rows (= columns) of the factorised matrix. */
     std::size_t
     size() const;

@@ -26,27 +26,31 @@ namespace impactfe
      * the matrix rank i assembles from its own cells
      * (DistributedElasticBody::assemble_subdomain_matrix()).
      *
-     * Each rank factorises A_i with its trailing unknowns Gamma_i last
-     * (SparseCholesky::factorize_with_trailing_block()): the DoFs it shares
-     * with other ranks, and the contact DoFs C. Its trailing block gives
-     * the rank's part of the Schur complement S of A on Gamma = union of
-     * the Gamma_i, S = sum_i (A_i)_GG - (A_i)_GI (A_i)_II^{-1} (A_i)_IG,
-     * which is summed over the ranks once and factorised densely on every
-     * rank with C last. A solve is then a forward substitution with each
-     * rank's factor, one sum over the ranks of a vector on Gamma, a dense
-     * solve with S and a backward substitution: the sparse work splits by
-     * subdomains with no communication, where a distributed sparse direct
-     * solver's triangular solves are latency-bound (doc/parallel.md).
+     * Each rank factorises A_i once (SparseCholesky::
+     * factorize_with_trailing_block()) ordered [I_i, C_i, B_i]: its
+     * interior DoFs, its contact DoFs that no other rank has, and the DoFs
+     * B_i it shares with other ranks, last. The bottom block of the factor
+     * gives the rank's part of the Schur complement S_B of A on B = union
+     * of the B_i, which is summed over the ranks once and factorised
+     * densely on every rank. A solve is then a forward substitution
+     * through [I_i, C_i] of each rank's factor, one sum over the ranks of
+     * a vector on B, a dense solve with S_B and the backward substitution:
+     * the sparse work splits by subdomains with no communication, where a
+     * distributed sparse direct solver's triangular solves are
+     * latency-bound (doc/parallel.md). On one rank B is empty and a solve
+     * is one solve pair.
      *
-     * Since C is eliminated last, the trailing block of S's factor is the
-     * Cholesky factor of the Schur complement S_C of A on C, and
-     * S_C^{-1} = (A^{-1})_CC: the contact problem's products W x and its
-     * preconditioner become dense products, as in the serial programs'
+     * The same trailing blocks, summed on Gamma = B u C and factorised
+     * once with C last, give the Schur complement S_C of A on the contact
+     * DoFs C as the trailing block of that factor, and S_C^{-1} =
+     * (A^{-1})_CC: the contact problem's products W x and its
+     * preconditioner become dense products, as with the serial programs'
      * DenseSchurComplement, on every rank with no communication.
      *
-     * The interface problem is dense: |Gamma|^2 numbers on every rank. That
-     * suits a few ranks (2D: |Gamma| of the order of the contact DoFs plus
-     * the cut lines); initialize() refuses an S larger than @p memory_limit.
+     * The interface problems are dense: |Gamma|^2 numbers on every rank
+     * during the set-up, |B|^2 kept. That suits a few ranks (2D: |B| of the
+     * order of the cut lines' DoFs); initialize() refuses a Gamma whose
+     * matrix would be larger than @p memory_limit.
      */
     class SubstructuredSolver
     {
@@ -76,7 +80,7 @@ namespace impactfe
       const DenseSchurComplement &
       contact_schur_complement() const;
 
-      /// |Gamma|, of which contact_schur_complement().size() are in C.
+      /// |B|, the DoFs the ranks share (none on one rank).
       unsigned int
       n_interface_dofs() const;
 
@@ -86,23 +90,25 @@ namespace impactfe
 
     private:
       MPI_Comm communicator = MPI_COMM_SELF;
-      /// A_i's factor; positions 0 to n_interior - 1 of its order are the
-      /// rank's interior DoFs, the others Gamma_i.
+      /// A_i's factor, ordered [I, C_i, B_i]: the rank's interior DoFs,
+      /// its contact DoFs that no other rank has (n_leading of them in
+      /// all), then those it shares.
       SparseCholesky                       factor;
       std::vector<types::global_dof_index> local_to_global;
-      unsigned int                         n_interior = 0;
-      /// The trailing block of A_i's factor (column-major, lower), and the
-      /// position in Gamma of each of its rows.
-      std::vector<double>       trailing_factor;
-      std::vector<unsigned int> trailing_position;
-      /// Gamma (B, the shared DoFs not in C, sorted; then C) and the
-      /// Cholesky factor of S in that order (column-major, lower).
+      unsigned int                         n_leading = 0;
+      /// Per leading position of the factor, the DoF's offset in this
+      /// rank's part of the distributed vectors.
+      std::vector<unsigned int> owned_offset;
+      /// The position in B of each of the factor's B_i rows.
+      std::vector<unsigned int> shared_position;
+      /// B, the DoFs the ranks share (sorted), and the Cholesky factor of
+      /// the Schur complement S_B of A on them (column-major, lower).
       std::vector<types::global_dof_index> interface_dofs;
       std::vector<double>                  interface_factor;
-      /// The positions in Gamma of the DoFs this rank owns.
-      std::vector<unsigned int> owned_interface;
-      DenseSchurComplement      contact_schur;
-      /// Work vectors: in the factor's order, and on Gamma.
+      /// The positions in B of the DoFs this rank owns, and their offsets.
+      std::vector<std::pair<unsigned int, unsigned int>> owned_interface;
+      DenseSchurComplement                               contact_schur;
+      /// Work vectors: in the factor's order, and on B.
       mutable std::vector<double> local_work, interface_work;
     };
   } // namespace distributed
