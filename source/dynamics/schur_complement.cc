@@ -84,6 +84,14 @@ namespace impactfe
                       " on its contact DoFs failed (LAPACK dpotri info " +
                       std::to_string(info) + ")."));
       }
+    // Both triangles, for the products by row blocks (vmult_rows()).
+    const std::size_t n = new_dofs.size();
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t i = j + 1; i < n; ++i)
+        {
+          new_schur[i * n + j]   = new_schur[j * n + i];
+          new_inverse[i * n + j] = new_inverse[j * n + i];
+        }
     contact_dofs.swap(new_dofs);
     inverse.swap(new_inverse);
     schur.swap(new_schur);
@@ -181,6 +189,60 @@ namespace impactfe
   DenseSchurComplement::vmult_inverse(const double *x, double *y) const
   {
     symmetric_product(inverse, size(), x, y);
+  }
+
+
+
+  void
+  DenseSchurComplement::vmult_rows(const double      *x,
+                                   double            *y,
+                                   const unsigned int first_row,
+                                   const unsigned int end_row,
+                                   const bool         use_inverse) const
+  {
+    const types::blas_int n = size();
+    AssertThrow(first_row <= end_row && end_row <= size(),
+                ExcMessage("DenseSchurComplement::vmult_rows(): rows " +
+                           std::to_string(first_row) + " to " +
+                           std::to_string(end_row) + " of " +
+                           std::to_string(size()) + "."));
+    const types::blas_int m = end_row - first_row;
+    if (m == 0)
+      return;
+    const types::blas_int step = 1;
+    if (use_inverse)
+      {
+        const double one = 1., zero = 0.;
+        dgemv_("N",
+               &m,
+               &n,
+               &one,
+               inverse.data() + first_row,
+               &n,
+               x,
+               &step,
+               &zero,
+               y + first_row,
+               &step);
+        return;
+      }
+    x_single.assign(x, x + n);
+    y_single.resize(n);
+    const float one = 1.f, zero = 0.f;
+    sgemv_("N",
+           &m,
+           &n,
+           &one,
+           schur_single.data() + first_row,
+           &n,
+           x_single.data(),
+           &step,
+           &zero,
+           y_single.data() + first_row,
+           &step);
+    std::copy(y_single.begin() + first_row,
+              y_single.begin() + end_row,
+              y + first_row);
   }
 
 

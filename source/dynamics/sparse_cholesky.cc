@@ -597,8 +597,17 @@ namespace impactfe
       const int *pi    = static_cast<const int *>(L.pi);
       const int *px    = static_cast<const int *>(L.px);
       const int *rows  = static_cast<const int *>(L.s);
+      // forward: a leading run of zeros in z stays zero, and the
+      // supernodes that hold only its columns change nothing
+      std::size_t first = 0;
       if (forward)
-        for (std::size_t s = 0; s < L.nsuper && super[s] < n_leading; ++s)
+        while (first < L.nsuper && super[first + 1] <= n_leading &&
+               std::all_of(z + super[first],
+                           z + super[first + 1],
+                           [](const Number v) { return v == Number(0); }))
+          ++first;
+      if (forward)
+        for (std::size_t s = first; s < L.nsuper && super[s] < n_leading; ++s)
           {
             const int k1          = super[s],
                       n_columns   = std::min(super[s + 1], n_leading) - k1;

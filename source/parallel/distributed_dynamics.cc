@@ -220,6 +220,16 @@ namespace impactfe
       const unsigned int n_c = contact_dofs.size();
       dense_in.assign(n_c, 0.);
       dense_out.assign(n_c, 0.);
+      // each rank computes a block of rows of the dense products
+      const unsigned int n_ranks =
+        Utilities::MPI::n_mpi_processes(body.communicator());
+      row_counts.resize(n_ranks);
+      row_starts.resize(n_ranks);
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        {
+          row_starts[r] = std::size_t(r) * n_c / n_ranks;
+          row_counts[r] = std::size_t(r + 1) * n_c / n_ranks - row_starts[r];
+        }
     }
 
 
@@ -323,7 +333,28 @@ namespace impactfe
         }
       const DenseSchurComplement &schur =
         substructured_solver->contact_schur_complement();
-      if (use_schur) // the preconditioner: single precision suffices
+      if (row_counts.size() > 1)
+        {
+          // S and S^{-1} are on every rank: each computes its block of
+          // rows, and all gather them
+          const unsigned int r =
+            Utilities::MPI::this_mpi_process(body.communicator());
+          schur.vmult_rows(dense_in.data(),
+                           dense_out.data(),
+                           row_starts[r],
+                           row_starts[r] + row_counts[r],
+                           !use_schur);
+          const int mpi_error = MPI_Allgatherv(MPI_IN_PLACE,
+                                               0,
+                                               MPI_DATATYPE_NULL,
+                                               dense_out.data(),
+                                               row_counts.data(),
+                                               row_starts.data(),
+                                               MPI_DOUBLE,
+                                               body.communicator());
+          AssertThrowMPI(mpi_error);
+        }
+      else if (use_schur) // the preconditioner: single precision suffices
         schur.vmult_single_precision(dense_in.data(), dense_out.data());
       else
         schur.vmult_inverse(dense_in.data(), dense_out.data());

@@ -86,6 +86,19 @@ namespace impactfe
     void
     vmult_inverse(const double *x, double *y) const;
 
+    /**
+     * Rows @p first_row to @p end_row - 1 of S^{-1} x (@p use_inverse) or
+     * of S x in single precision (as vmult_single_precision()), into the
+     * same rows of @p y: a block of rows per MPI rank, so that ranks that
+     * all hold S can split the products (the distributed programs).
+     */
+    void
+    vmult_rows(const double      *x,
+               double            *y,
+               const unsigned int first_row,
+               const unsigned int end_row,
+               const bool         use_inverse) const;
+
     std::size_t
     memory_consumption() const;
 
@@ -103,7 +116,8 @@ namespace impactfe
 
   private:
     std::vector<types::global_dof_index> contact_dofs;
-    /// S and S^{-1}, column-major; their lower triangles are used.
+    /// S and S^{-1}, column-major, both triangles (the symmetric products
+    /// read the lower one).
     std::vector<double> schur, inverse;
     /// S in single precision, and the vectors of its product.
     std::vector<float>         schur_single;
