@@ -33,7 +33,7 @@ namespace impactfe
     {
       prm.enter_subsection("Parallel solver");
       prm.declare_entry("Solver",
-                        "direct",
+                        "substructured",
                         Patterns::Selection("direct|amg cg|substructured"),
                         "The solves with the step matrix M~: direct (MUMPS "
                         "through Trilinos' Amesos: M~ factorised once, then "

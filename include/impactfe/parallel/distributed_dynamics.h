@@ -73,7 +73,7 @@ namespace impactfe
         /// problem's products are then dense.
         substructured
       };
-      Solver solver = Solver::direct;
+      Solver solver = Solver::substructured;
       /// Relative residual of each CG solve with M~.
       double       tolerance      = 1e-12;
       unsigned int max_iterations = 1000;
