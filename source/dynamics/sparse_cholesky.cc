@@ -583,7 +583,8 @@ namespace impactfe
     // forward, its triangle is solved and the rows below updated;
     // backward, the reverse. Only the columns k < @p n_leading take part
     // (a supernode may be cut: its own later rows then count as rows
-    // below). @p t: work space for the rows below a supernode.
+    // below); backward, only the columns k >= @p first_column are
+    // computed. @p t: work space for the rows below a supernode.
     template <typename Number>
     void
     supernodal_substitution(const cholmod_factor &L,
@@ -591,7 +592,8 @@ namespace impactfe
                             Number               *z,
                             Number               *t,
                             const bool            forward,
-                            const int             n_leading)
+                            const int             n_leading,
+                            const int             first_column = 0)
     {
       const int *super = static_cast<const int *>(L.super);
       const int *pi    = static_cast<const int *>(L.pi);
@@ -632,18 +634,22 @@ namespace impactfe
               }
           }
       else
-        for (std::size_t s = L.nsuper; s-- > 0;)
+        // backward: the columns first_column <= k < n_leading; a supernode
+        // cut by first_column keeps its columns from there on (the block
+        // from its row and column skip on)
+        for (std::size_t s = L.nsuper; s-- > 0 && super[s + 1] > first_column;)
           {
             if (super[s] >= n_leading)
               continue;
-            const int k1          = super[s],
+            const int k1          = std::max(super[s], first_column),
+                      skip        = k1 - super[s],
                       n_columns   = std::min(super[s + 1], n_leading) - k1;
-            const int     n_rows  = pi[s + 1] - pi[s];
-            const int     n_below = n_rows - n_columns;
-            const Number *block   = Lx + px[s];
+            const int     ld      = pi[s + 1] - pi[s];
+            const int     n_below = ld - skip - n_columns;
+            const Number *block   = Lx + px[s] + std::size_t(skip) * ld + skip;
             if (n_below > 0)
               {
-                const int *below = rows + pi[s] + n_columns;
+                const int *below = rows + pi[s] + skip + n_columns;
                 for (int i = 0; i < n_below; ++i)
                   t[i] = z[below[i]];
                 matrix_vector("T",
@@ -651,12 +657,12 @@ namespace impactfe
                               &n_columns,
                               Number(-1),
                               block + n_columns,
-                              &n_rows,
+                              &ld,
                               t,
                               Number(1),
                               z + k1);
               }
-            triangular_solve("T", &n_columns, block, &n_rows, z + k1);
+            triangular_solve("T", &n_columns, block, &ld, z + k1);
           }
     }
 
@@ -722,7 +728,8 @@ namespace impactfe
   void
   SparseCholesky::solve_lower(double            *z,
                               const bool         transpose,
-                              const unsigned int n_leading) const
+                              const unsigned int n_leading,
+                              const unsigned int first_column) const
   {
     Assert(data->factor != nullptr, ExcMessage("factorize() first."));
     const cholmod_factor &L = *data->factor;
@@ -736,7 +743,8 @@ namespace impactfe
                             z,
                             data->rows_below.data(),
                             !transpose,
-                            std::min<std::size_t>(n_leading, L.n));
+                            std::min<std::size_t>(n_leading, L.n),
+                            transpose ? first_column : 0);
   }
 
 

@@ -322,15 +322,7 @@ namespace impactfe
       const bool                 use_schur)
     {
       const unsigned int nd = contact.n_directions();
-      std::fill(dense_in.begin(), dense_in.end(), 0.);
-      for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
-        {
-          const unsigned int c     = lcp_candidates[a];
-          const auto        &frame = contact.candidate(c).frame;
-          for (unsigned int k = 0; k < nd; ++k)
-            for (unsigned int d = 0; d < dim; ++d)
-              dense_in[contact_slots[c][d]] += frame[k][d] * x[a * nd + k];
-        }
+      impulses_on_contact_dofs(x, dense_in);
       const DenseSchurComplement &schur =
         substructured_solver->contact_schur_complement();
       if (row_counts.size() > 1)
@@ -369,6 +361,49 @@ namespace impactfe
         }
       if (!use_schur)
         ++stats.products;
+    }
+
+
+
+    // H x on the contact DoFs for the impulses x of lcp_candidates, and
+    // the frames' components of values on the contact DoFs, per
+    // candidate: the substructured path's H and H^T (replicated, no
+    // communication).
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::impulses_on_contact_dofs(
+      const std::vector<double> &x,
+      std::vector<double>       &on_dofs) const
+    {
+      const unsigned int nd = contact.n_directions();
+      on_dofs.assign(contact_slots.size() * dim, 0.);
+      for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
+        {
+          const unsigned int c     = lcp_candidates[a];
+          const auto        &frame = contact.candidate(c).frame;
+          for (unsigned int k = 0; k < nd; ++k)
+            for (unsigned int d = 0; d < dim; ++d)
+              on_dofs[contact_slots[c][d]] += frame[k][d] * x[a * nd + k];
+        }
+    }
+
+
+
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::local_components(
+      const std::vector<double> &on_dofs,
+      std::vector<double>       &local) const
+    {
+      const unsigned int nd = contact.n_directions();
+      local.assign(contact_slots.size() * nd, 0.);
+      for (unsigned int c = 0; c < contact_slots.size(); ++c)
+        {
+          const auto &frame = contact.candidate(c).frame;
+          for (unsigned int k = 0; k < nd; ++k)
+            for (unsigned int d = 0; d < dim; ++d)
+              local[c * nd + k] += frame[k][d] * on_dofs[contact_slots[c][d]];
+        }
     }
 
 
@@ -491,16 +526,9 @@ namespace impactfe
             return p == 0.;
           }))
         correction = 0.;
-      else if (dense)
-        {
-          // the dense products give W P on the contact DoFs only:
-          // M~^{-1} H P is one solve
-          impulse_force = 0.;
-          contact.add_impulses(lcp_candidates, lcp_P, impulse_force);
-          solve_step_matrix(impulse_force, correction);
-        }
       // else the solver's last product was with lcp_P: correction =
-      // M~^{-1} H P
+      // M~^{-1} H P (the substructured path makes no correction: the time
+      // step finishes its solve with H P instead)
       for (unsigned int a = 0; a < n; ++a)
         last_states[lcp_candidates[a]] = active_set_solver.states()[a];
     }
@@ -599,7 +627,20 @@ namespace impactfe
           rhs.add(displacement_factor, work);
         }
       rhs.add(scheme->free_rhs_coefficients().force, body.external_force());
-      solve_step_matrix(rhs, v_free);
+      // The substructured solver starts the solve with F~ and gives the
+      // free velocity on the contact DoFs; it finishes it with F~ + H P
+      // once P is known (one solve pair per step).
+      if (substructured_solver)
+        {
+          const auto start = std::chrono::steady_clock::now();
+          substructured_solver->start_solve(rhs, contact_dof_values);
+          stats.solve_seconds += std::chrono::duration<double>(
+                                   std::chrono::steady_clock::now() - start)
+                                   .count();
+          ++stats.solves;
+        }
+      else
+        solve_step_matrix(rhs, v_free);
 
       // 2. b_N of the scheme: g(u + a h v) / d + c V_N(v).
       if (rule.gap_prediction != 0.)
@@ -617,7 +658,10 @@ namespace impactfe
           gap_terms[c] / rule.gap_divisor +
           (rule.gap_velocity != 0. ? rule.gap_velocity * normal_velocity[c] :
                                      0.);
-      contact.local_velocities(v_free, local_free_velocity);
+      if (substructured_solver)
+        local_components(contact_dof_values, local_free_velocity);
+      else
+        contact.local_velocities(v_free, local_free_velocity);
 
       // 3. The candidates that can touch, and the contact problem; a
       // candidate left out that the impulses push in joins, and the
@@ -646,7 +690,17 @@ namespace impactfe
               break;
             }
           solve_contact_problem();
-          contact.local_velocities(correction, all_correction);
+          if (substructured_solver)
+            {
+              // M~^{-1} H P on the contact DoFs is S_C^{-1} (H P)
+              impulses_on_contact_dofs(lcp_P, contact_dof_values);
+              dense_out.resize(contact_dof_values.size());
+              substructured_solver->contact_schur_complement().vmult_inverse(
+                contact_dof_values.data(), dense_out.data());
+              local_components(dense_out, all_correction);
+            }
+          else
+            contact.local_velocities(correction, all_correction);
           bool grown = false;
           for (unsigned int c = 0; c < n; ++c)
             if (!in_lcp[c] && local_free_velocity[c * nd] + gap_terms[c] +
@@ -667,8 +721,23 @@ namespace impactfe
 
       // 4. v = v_free + M~^{-1} H P, then u from the scheme's rule.
       v_old = v;
-      v     = v_free;
-      v += correction;
+      if (substructured_solver)
+        {
+          if (lcp_candidates.empty())
+            contact_dof_values.assign(contact_slots.size() * dim, 0.);
+          else
+            impulses_on_contact_dofs(lcp_P, contact_dof_values);
+          const auto start = std::chrono::steady_clock::now();
+          substructured_solver->finish_solve(contact_dof_values, v);
+          stats.solve_seconds += std::chrono::duration<double>(
+                                   std::chrono::steady_clock::now() - start)
+                                   .count();
+        }
+      else
+        {
+          v = v_free;
+          v += correction;
+        }
       u_old = u;
       if (rule.new_velocity_weight == 1.)
         u.add(h, v);

@@ -122,6 +122,7 @@ namespace impactfe
       const unsigned int n_trailing = trailing.size();
       const unsigned int n_shared   = n_trailing - n_own_contact;
       n_leading                     = n_local - n_shared;
+      n_interior                    = n_leading - n_own_contact;
       const int *perm               = factor.permutation();
       owned_offset.resize(n_leading);
       for (unsigned int k = 0; k < n_leading; ++k)
@@ -232,7 +233,35 @@ namespace impactfe
         if (owned.is_element(shared[i]))
           owned_interface.emplace_back(i, owned.index_within_set(shared[i]));
       local_work.assign(n_local, 0.);
+      started.assign(n_local, 0.);
       interface_work.assign(shared.size(), 0.);
+      started_shared.assign(shared.size(), 0.);
+      shared_rhs.assign(shared.size(), 0.);
+
+      // Where each contact DoF is: this rank's own (a factor position), or
+      // shared (a position in B).
+      own_contacts.clear();
+      shared_contacts.clear();
+      {
+        std::vector<std::pair<types::global_dof_index, unsigned int>> order;
+        for (unsigned int i = 0; i < contact_dofs.size(); ++i)
+          order.emplace_back(contact_dofs[i], i);
+        std::sort(order.begin(), order.end());
+        const auto contact_index = [&](const types::global_dof_index g) {
+          return std::lower_bound(order.begin(),
+                                  order.end(),
+                                  std::make_pair(g, 0u))
+            ->second;
+        };
+        for (unsigned int j = 0; j < n_own_contact; ++j)
+          own_contacts.emplace_back(contact_index(local_to_global[trailing[j]]),
+                                    n_interior + j);
+        for (unsigned int i = 0; i < shared.size(); ++i)
+          if (is_contact(shared[i]))
+            shared_contacts.emplace_back(contact_index(shared[i]), i);
+      }
+      n_contact_dofs = contact_dofs.size();
+      first_rank     = Utilities::MPI::this_mpi_process(communicator) == 0;
     }
 
 
@@ -244,23 +273,28 @@ namespace impactfe
     // b_B + the ranks' reductions; the backward substitution through the
     // first block with x_B gives x_1 = L_11^{-T} (y_1 - L_B1^T x_B).
     void
-    SubstructuredSolver::solve(const DistributedVector &b,
-                               DistributedVector       &x) const
+    SubstructuredSolver::load(const DistributedVector &b, double *z) const
     {
-      const unsigned int n_local  = local_to_global.size();
-      const int          n_shared = interface_dofs.size();
-      double            *z        = local_work.data();
-      double            *g        = interface_work.data();
-      const double      *b_local  = b.begin();
+      const double *b_local = b.begin();
       for (unsigned int k = 0; k < n_leading; ++k)
         z[k] = b_local[owned_offset[k]];
-      std::fill(z + n_leading, z + n_local, 0.);
-      factor.solve_lower(z, false, n_leading);
-      std::fill(g, g + n_shared, 0.);
+      std::fill(z + n_leading, z + local_to_global.size(), 0.);
+    }
+
+
+
+    // g = b_B (the owned entries of each rank, in @p b_shared) + the ranks'
+    // reductions from @p z, summed over the ranks, then S_B^{-1} g into g;
+    // and z_B = x_B for the backward substitution.
+    void
+    SubstructuredSolver::solve_interface(double       *z,
+                                         const double *b_shared,
+                                         double       *g) const
+    {
+      const int n_shared = interface_dofs.size();
+      std::copy(b_shared, b_shared + n_shared, g);
       for (unsigned int j = 0; j < shared_position.size(); ++j)
-        g[shared_position[j]] = z[n_leading + j];
-      for (const auto &[i, offset] : owned_interface)
-        g[i] += b_local[offset];
+        g[shared_position[j]] += z[n_leading + j];
       if (n_shared > 0)
         {
           const int mpi_error = MPI_Allreduce(
@@ -280,13 +314,100 @@ namespace impactfe
         }
       for (unsigned int j = 0; j < shared_position.size(); ++j)
         z[n_leading + j] = g[shared_position[j]];
-      factor.solve_lower(z, true, n_leading);
+    }
+
+
+
+    void
+    SubstructuredSolver::store(const double      *z,
+                               const double      *g,
+                               DistributedVector &x) const
+    {
       double *x_local = x.begin();
       for (unsigned int k = 0; k < n_leading; ++k)
         x_local[owned_offset[k]] = z[k];
       for (const auto &[i, offset] : owned_interface)
         x_local[offset] = g[i];
       x.compress(VectorOperation::insert);
+    }
+
+
+
+    void
+    SubstructuredSolver::solve(const DistributedVector &b,
+                               DistributedVector       &x) const
+    {
+      double *z = local_work.data();
+      load(b, z);
+      factor.solve_lower(z, false, n_leading);
+      std::vector<double> &b_shared = shared_rhs;
+      std::fill(b_shared.begin(), b_shared.end(), 0.);
+      for (const auto &[i, offset] : owned_interface)
+        b_shared[i] = b.begin()[offset];
+      solve_interface(z, b_shared.data(), interface_work.data());
+      factor.solve_lower(z, true, n_leading);
+      store(z, interface_work.data(), x);
+    }
+
+
+
+    // @sect3{A solve in two halves}
+    // start_solve(): the forward substitution of b (kept), x_B, and the
+    // contact DoFs' values: the rank's own ones by the backward
+    // substitution through their columns only (the interior's are not
+    // needed), the shared ones are in x_B. finish_solve(): the forward
+    // substitution of c (zero on the interior, so only from the contact
+    // DoFs' columns on) added to b's, x_B again, and the whole backward
+    // substitution. Together one solve pair with A's factors, where x =
+    // A^{-1} b and A^{-1} c separately would be one and a half.
+    void
+    SubstructuredSolver::start_solve(const DistributedVector &b,
+                                     std::vector<double>     &x_contact) const
+    {
+      double *z = started.data();
+      load(b, z);
+      factor.solve_lower(z, false, n_leading);
+      std::fill(started_shared.begin(), started_shared.end(), 0.);
+      for (const auto &[i, offset] : owned_interface)
+        started_shared[i] = b.begin()[offset];
+      // on a copy of z: the forward substitution of b is kept for
+      // finish_solve()
+      double *w = local_work.data();
+      std::copy(z + n_interior, z + local_to_global.size(), w + n_interior);
+      solve_interface(w, started_shared.data(), interface_work.data());
+      factor.solve_lower(w, true, n_leading, n_interior);
+      x_contact.assign(n_contact_dofs, 0.);
+      for (const auto &[i, k] : own_contacts)
+        x_contact[i] = w[k];
+      if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+        Utilities::MPI::sum(x_contact, communicator, x_contact);
+      for (const auto &[i, j] : shared_contacts)
+        x_contact[i] = interface_work[j];
+    }
+
+
+
+    void
+    SubstructuredSolver::finish_solve(const std::vector<double> &c,
+                                      DistributedVector         &x) const
+    {
+      AssertDimension(c.size(), n_contact_dofs);
+      const unsigned int n_local = local_to_global.size();
+      double            *w       = local_work.data();
+      std::fill(w, w + n_local, 0.);
+      for (const auto &[i, k] : own_contacts)
+        w[k] = c[i];
+      factor.solve_lower(w, false, n_leading);
+      double *z = started.data();
+      for (unsigned int k = n_interior; k < n_local; ++k)
+        z[k] += w[k];
+      // c on the shared contact DoFs: once in the sum over the ranks
+      if (first_rank)
+        for (const auto &[i, j] : shared_contacts)
+          started_shared[j] += c[i];
+      solve_interface(z, started_shared.data(), interface_work.data());
+      factor.solve_lower(z, true, n_leading);
+      store(z, interface_work.data(), x);
     }
 
 

@@ -7,7 +7,10 @@
 // - the contact Schur complement's inverse S_C^{-1} equals (A^{-1})_CC,
 //   column by column, by solves with unit vectors on the contact DoFs C
 //   (the nodes of the bottom edge);
-// - S_C S_C^{-1} x = x.
+// - S_C S_C^{-1} x = x;
+// - a solve in two halves (start_solve(), finish_solve() with c on C, a
+//   solve() in between) equals solve() with b + c, and its first half's
+//   values on C are those of A^{-1} b.
 
 #include <deal.II/base/mpi.h>
 
@@ -157,6 +160,39 @@ main(int argc, char **argv)
   for (unsigned int i = 0; i < n_c; ++i)
     error = std::max(error, std::abs(solved[i] - unit[i]));
   check(error < 1e-10, "S_C S_C^{-1} x = x");
+
+  // 4. start_solve() + finish_solve() = solve() with b + c, c on C; and
+  // start_solve()'s values on C are those of A^{-1} b.
+  for (const auto i : owned)
+    b(i) = std::sin(0.37 * i + 1.);
+  b.compress(VectorOperation::insert);
+  std::vector<double> c(n_c), x_contact;
+  for (unsigned int i = 0; i < n_c; ++i)
+    c[i] = std::cos(0.7 * i + 0.2);
+  solver.start_solve(b, x_contact);
+  solver.solve(b, x); // in between, as the Lemke fallback's products do
+  double contact_error = 0., contact_scale = 0.;
+  for (unsigned int i = 0; i < n_c; ++i)
+    if (owned.is_element(schur.dofs()[i]))
+      {
+        contact_error =
+          std::max(contact_error, std::abs(x_contact[i] - x(schur.dofs()[i])));
+        contact_scale = std::max(contact_scale, std::abs(x(schur.dofs()[i])));
+      }
+  contact_error = Utilities::MPI::max(contact_error, comm);
+  contact_scale = Utilities::MPI::max(contact_scale, comm);
+  check(contact_error <= 1e-12 * contact_scale,
+        "start_solve() gives A^{-1} b on the contact DoFs");
+  DistributedVector two_halves(owned, comm);
+  solver.finish_solve(c, two_halves);
+  for (unsigned int i = 0; i < n_c; ++i)
+    if (owned.is_element(schur.dofs()[i]))
+      b(schur.dofs()[i]) += c[i];
+  b.compress(VectorOperation::insert);
+  solver.solve(b, x);
+  two_halves -= x;
+  check(two_halves.linfty_norm() <= 1e-12 * x.linfty_norm(),
+        "start_solve() and finish_solve() give A^{-1} (b + c)");
 
   if (root)
     deallog << "failed checks: " << impactfe_tests::n_failed_checks

@@ -101,13 +101,17 @@ namespace impactfe
      * With @p n_leading, only the first n_leading columns of L take part:
      * with L = [L_11 0; L_21 L_22] (L_11 of that size), forward gives
      * z_1 <- L_11^{-1} z_1 and z_2 <- z_2 - L_21 z_1, and the transpose
-     * z_1 <- L_11^{-T} (z_1 - L_21^T z_2), z_2 unchanged.
+     * z_1 <- L_11^{-T} (z_1 - L_21^T z_2), z_2 unchanged. The transpose
+     * with @p first_column computes only the entries k >= first_column
+     * of z_1 (the later rows of L_11^T do not need the earlier ones), and
+     * leaves the others as they were. The forward substitution skips a
+     * leading run of zeros in z by itself.
      */
     void
-    solve_lower(
-      double            *z,
-      const bool         transpose = false,
-      const unsigned int n_leading = static_cast<unsigned int>(-1)) const;
+    solve_lower(double            *z,
+                const bool         transpose    = false,
+                const unsigned int n_leading    = static_cast<unsigned int>(-1),
+                const unsigned int first_column = 0) const;
     /** Rows (= columns) of the factorised matrix. */
     std::size_t
     size() const;

@@ -158,7 +158,7 @@ namespace impactfe
       /// Per candidate, the positions of its DoFs in the substructured
       /// solver's contact Schur complement; and that product's vectors.
       std::vector<std::array<unsigned int, dim>> contact_slots;
-      std::vector<double>                        dense_in, dense_out;
+      std::vector<double> dense_in, dense_out, contact_dof_values;
       /// The rows of the dense products each rank computes (MPI_Allgatherv).
       std::vector<int>  row_counts, row_starts;
       DistributedVector u, v, u_old, v_old, v_free, rhs, correction,
@@ -192,6 +192,16 @@ namespace impactfe
       /// y = H^T S_C^{-1} H x (W x) or, with @p use_schur, H^T S_C H x,
       /// with the substructured solver's dense contact Schur complement S_C
       /// (no solve, no communication).
+      /// @p on_dofs = H x on the contact DoFs (contact_slots) for the
+      /// impulses @p x of lcp_candidates.
+      void
+      impulses_on_contact_dofs(const std::vector<double> &x,
+                               std::vector<double>       &on_dofs) const;
+      /// Per candidate and direction, the frame's components of
+      /// @p on_dofs (values on the contact DoFs).
+      void
+      local_components(const std::vector<double> &on_dofs,
+                       std::vector<double>       &local) const;
       void
       dense_contact_product(const std::vector<double> &x,
                             std::vector<double>       &y,

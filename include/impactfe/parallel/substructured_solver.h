@@ -76,6 +76,29 @@ namespace impactfe
       void
       solve(const DistributedVector &b, DistributedVector &x) const;
 
+      /**
+       * The first half of x = A^{-1} (b + c) for a c on the contact DoFs
+       * that is not known yet (a time step's impulses, which depend on the
+       * free velocity): @p x_contact = (A^{-1} b) on the contact DoFs, in
+       * the order given to initialize(), on every rank. Costs the forward
+       * substitution with the rank's factor and a small part of the
+       * backward one.
+       */
+      void
+      start_solve(const DistributedVector &b,
+                  std::vector<double>     &x_contact) const;
+
+      /**
+       * The second half: x = A^{-1} (b + c), b that of the last
+       * start_solve() (once per start_solve()), @p c on the contact DoFs in
+       * the order given to initialize(), the same on every rank. Costs the
+       * forward substitution from the contact DoFs on and the backward
+       * one: with start_solve(), one solve pair, where A^{-1} b and then
+       * A^{-1} c would cost one and a half.
+       */
+      void
+      finish_solve(const std::vector<double> &c, DistributedVector &x) const;
+
       /// S_C and S_C^{-1} on the contact DoFs (the same on every rank).
       const DenseSchurComplement &
       contact_schur_complement() const;
@@ -89,13 +112,25 @@ namespace impactfe
       n_factor_entries() const;
 
     private:
+      /// z[k] = b at the factor's leading positions, zero after.
+      void
+      load(const DistributedVector &b, double *z) const;
+      /// The dense solve with S_B of b_shared + the ranks' reductions in z,
+      /// into g and into z's shared part.
+      void
+      solve_interface(double *z, const double *b_shared, double *g) const;
+      /// x from the leading part of z and from x_B in g.
+      void
+      store(const double *z, const double *g, DistributedVector &x) const;
+
       MPI_Comm communicator = MPI_COMM_SELF;
+      bool     first_rank   = true;
       /// A_i's factor, ordered [I, C_i, B_i]: the rank's interior DoFs,
       /// its contact DoFs that no other rank has (n_leading of them in
       /// all), then those it shares.
       SparseCholesky                       factor;
       std::vector<types::global_dof_index> local_to_global;
-      unsigned int                         n_leading = 0;
+      unsigned int                         n_leading = 0, n_interior = 0;
       /// Per leading position of the factor, the DoF's offset in this
       /// rank's part of the distributed vectors.
       std::vector<unsigned int> owned_offset;
@@ -108,8 +143,17 @@ namespace impactfe
       /// The positions in B of the DoFs this rank owns, and their offsets.
       std::vector<std::pair<unsigned int, unsigned int>> owned_interface;
       DenseSchurComplement                               contact_schur;
-      /// Work vectors: in the factor's order, and on B.
-      mutable std::vector<double> local_work, interface_work;
+      /// The contact DoFs (their index in the order of initialize()) that
+      /// only this rank has, with their factor position, and those in B,
+      /// with their position there.
+      std::vector<std::pair<unsigned int, unsigned int>> own_contacts,
+        shared_contacts;
+      unsigned int n_contact_dofs = 0;
+      /// Work vectors: in the factor's order, on B, and solve()'s b on B;
+      /// start_solve()'s forward substitution and its b on B (kept for
+      /// finish_solve(), whatever solve() does in between).
+      mutable std::vector<double> local_work, interface_work, shared_rhs,
+        started, started_shared;
     };
   } // namespace distributed
 } // namespace impactfe
