@@ -32,6 +32,24 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 
+# the parts of the scene's file that both dimensions share
+TIME_STEPPING = """subsection Time stepping
+  set Scheme    = theta-euler
+  set Theta     = 0.55
+  set Time step = 5e-4
+  set End time  = {end_time}
+end
+"""
+PARALLEL_AND_OUTPUT = """subsection Parallel solver
+  set Solver = {solver}
+end
+subsection Output
+  set Output directory = {out}
+  set VTU output       = false
+  set Plot             = false
+end
+"""
+
 PRM_2D = """set Dimension = 2
 subsection Geometry
   set Length                  = 0.1
@@ -55,24 +73,10 @@ subsection Material
   set Poisson's ratio = 0.3
   set Plane model     = plane strain
 end
-subsection Time stepping
-  set Scheme    = theta-euler
-  set Theta     = 0.55
-  set Time step = 5e-4
-  set End time  = {end_time}
-end
-subsection Contact solver
+{time_stepping}subsection Contact solver
   set Method = active set
 end
-subsection Parallel solver
-  set Solver = {solver}
-end
-subsection Output
-  set Output directory = {out}
-  set VTU output       = false
-  set Plot             = false
-end
-"""
+{parallel_and_output}"""
 
 PRM = """set Dimension = 3
 subsection Geometry
@@ -95,25 +99,11 @@ subsection Material
   set Density         = 1e3
   set Poisson's ratio = 0.3
 end
-subsection Time stepping
-  set Scheme    = theta-euler
-  set Theta     = 0.55
-  set Time step = 5e-4
-  set End time  = {end_time}
-end
-subsection Contact solver
+{time_stepping}subsection Contact solver
   set Method        = active set
   set Friction cone = exact
 end
-subsection Parallel solver
-  set Solver = {solver}
-end
-subsection Output
-  set Output directory = {out}
-  set VTU output       = false
-  set Plot             = false
-end
-"""
+{parallel_and_output}"""
 
 
 def mpiexec(ranks):
@@ -131,9 +121,12 @@ def run(build, work, n, ranks, steps, solver, dim):
     os.makedirs(out, exist_ok=True)
     prm = os.path.join(out, "block.prm")
     with open(prm, "w") as f:
-        f.write((PRM if dim == 3 else PRM_2D).format(n=n, m=m, height=0.1 * m / n,
-                           end_time=steps * 5e-4 * (1 + 1e-9), out=out,
-                           solver=solver))
+        common = {"time_stepping": TIME_STEPPING.format(
+                      end_time=steps * 5e-4 * (1 + 1e-9)),
+                  "parallel_and_output": PARALLEL_AND_OUTPUT.format(
+                      solver=solver, out=out)}
+        f.write((PRM if dim == 3 else PRM_2D).format(
+            n=n, m=m, height=0.1 * m / n, **common))
     proc = subprocess.run(mpiexec(ranks) + [os.path.join(build, "bin",
                                                          "block_sliding_mpi"),
                                             prm],
