@@ -84,14 +84,6 @@ namespace impactfe
                       " on its contact DoFs failed (LAPACK dpotri info " +
                       std::to_string(info) + ")."));
       }
-    // Both triangles, for the products by row blocks (vmult_rows()).
-    const std::size_t n = new_dofs.size();
-    for (std::size_t j = 0; j < n; ++j)
-      for (std::size_t i = j + 1; i < n; ++i)
-        {
-          new_schur[i * n + j]   = new_schur[j * n + i];
-          new_inverse[i * n + j] = new_inverse[j * n + i];
-        }
     contact_dofs.swap(new_dofs);
     inverse.swap(new_inverse);
     schur.swap(new_schur);
@@ -193,56 +185,106 @@ namespace impactfe
 
 
 
-  void
-  DenseSchurComplement::vmult_rows(const double      *x,
-                                   double            *y,
-                                   const unsigned int first_row,
-                                   const unsigned int end_row,
-                                   const bool         use_inverse) const
+  namespace
   {
-    const types::blas_int n = size();
-    AssertThrow(first_row <= end_row && end_row <= size(),
-                ExcMessage("DenseSchurComplement::vmult_rows(): rows " +
-                           std::to_string(first_row) + " to " +
-                           std::to_string(end_row) + " of " +
-                           std::to_string(size()) + "."));
-    const types::blas_int m = end_row - first_row;
-    if (m == 0)
-      return;
-    const types::blas_int step = 1;
+    double
+    dot(const int n, const double *x, const double *y)
+    {
+      const int one = 1;
+      return ddot_(&n, x, &one, y, &one);
+    }
+
+    float
+    dot(const int n, const float *x, const float *y)
+    {
+      const int one = 1;
+      return sdot_(&n, x, &one, y, &one);
+    }
+
+    void
+    axpy(const int n, const double a, const double *x, double *y)
+    {
+      const int one = 1;
+      daxpy_(&n, &a, x, &one, y, &one);
+    }
+
+    void
+    axpy(const int n, const float a, const float *x, float *y)
+    {
+      const int one = 1;
+      saxpy_(&n, &a, x, &one, y, &one);
+    }
+
+    // y += the part of A x that the columns first <= j < end of A's lower
+    // triangle (column-major, n x n) give: each entry A_ij (i >= j) read
+    // once, for y_i += A_ij x_j and, off the diagonal, y_j += A_ij x_i.
+    template <typename Number>
+    void
+    add_lower_columns(const Number      *A,
+                      const std::size_t  n,
+                      const unsigned int first,
+                      const unsigned int end,
+                      const Number      *x,
+                      Number            *y)
+    {
+      for (std::size_t j = first; j < end; ++j)
+        {
+          const Number *column = A + j * n + j;
+          const int     below  = n - j - 1;
+          y[j] += column[0] * x[j];
+          if (below > 0)
+            {
+              axpy(below, x[j], column + 1, y + j + 1);
+              y[j] += dot(below, column + 1, x + j + 1);
+            }
+        }
+    }
+  } // namespace
+
+
+
+  std::pair<unsigned int, unsigned int>
+  DenseSchurComplement::part_columns(const unsigned int part,
+                                     const unsigned int n_parts) const
+  {
+    // columns [0, c) of the triangle hold c n - c^2 / 2 entries: the
+    // fraction k / n_parts of n^2 / 2 at c = n (1 - sqrt(1 - k / n_parts))
+    const double n      = size();
+    const auto   column = [&](const unsigned int k) {
+      return k >= n_parts ? size() :
+                              static_cast<unsigned int>(std::lround(
+                              n * (1. - std::sqrt(1. - double(k) / n_parts))));
+    };
+    return {column(part), column(part + 1)};
+  }
+
+
+
+  void
+  DenseSchurComplement::add_part_of_product(const double      *x,
+                                            double            *y,
+                                            const unsigned int part,
+                                            const unsigned int n_parts,
+                                            const bool use_inverse) const
+  {
+    AssertThrow(part < n_parts,
+                ExcMessage("DenseSchurComplement::add_part_of_product(): "
+                           "part " +
+                           std::to_string(part) + " of " +
+                           std::to_string(n_parts) + "."));
+    const auto [first, end] = part_columns(part, n_parts);
+    const std::size_t n     = size();
     if (use_inverse)
       {
-        const double one = 1., zero = 0.;
-        dgemv_("N",
-               &m,
-               &n,
-               &one,
-               inverse.data() + first_row,
-               &n,
-               x,
-               &step,
-               &zero,
-               y + first_row,
-               &step);
+        add_lower_columns(inverse.data(), n, first, end, x, y);
         return;
       }
     x_single.assign(x, x + n);
-    y_single.resize(n);
-    const float one = 1.f, zero = 0.f;
-    sgemv_("N",
-           &m,
-           &n,
-           &one,
-           schur_single.data() + first_row,
-           &n,
-           x_single.data(),
-           &step,
-           &zero,
-           y_single.data() + first_row,
-           &step);
-    std::copy(y_single.begin() + first_row,
-              y_single.begin() + end_row,
-              y + first_row);
+    y_single.assign(n, 0.f);
+    add_lower_columns(
+      schur_single.data(), n, first, end, x_single.data(), y_single.data());
+    for (std::size_t i = 0; i < n; ++i)
+      y[i] += y_single[i];
   }
 
 

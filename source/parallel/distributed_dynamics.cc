@@ -220,16 +220,6 @@ namespace impactfe
       const unsigned int n_c = contact_dofs.size();
       dense_in.assign(n_c, 0.);
       dense_out.assign(n_c, 0.);
-      // each rank computes a block of rows of the dense products
-      const unsigned int n_ranks =
-        Utilities::MPI::n_mpi_processes(body.communicator());
-      row_counts.resize(n_ranks);
-      row_starts.resize(n_ranks);
-      for (unsigned int r = 0; r < n_ranks; ++r)
-        {
-          row_starts[r] = std::size_t(r) * n_c / n_ranks;
-          row_counts[r] = std::size_t(r + 1) * n_c / n_ranks - row_starts[r];
-        }
     }
 
 
@@ -325,25 +315,26 @@ namespace impactfe
       impulses_on_contact_dofs(x, dense_in);
       const DenseSchurComplement &schur =
         substructured_solver->contact_schur_complement();
-      if (row_counts.size() > 1)
+      const unsigned int n_ranks =
+        Utilities::MPI::n_mpi_processes(body.communicator());
+      if (n_ranks > 1)
         {
-          // S and S^{-1} are on every rank: each computes its block of
-          // rows, and all gather them
-          const unsigned int r =
-            Utilities::MPI::this_mpi_process(body.communicator());
-          schur.vmult_rows(dense_in.data(),
-                           dense_out.data(),
-                           row_starts[r],
-                           row_starts[r] + row_counts[r],
-                           !use_schur);
-          const int mpi_error = MPI_Allgatherv(MPI_IN_PLACE,
-                                               0,
-                                               MPI_DATATYPE_NULL,
-                                               dense_out.data(),
-                                               row_counts.data(),
-                                               row_starts.data(),
-                                               MPI_DOUBLE,
-                                               body.communicator());
+          // S and S^{-1} are on every rank: each computes the part of the
+          // product that an even share of their stored triangle gives, and
+          // the parts are summed
+          std::fill(dense_out.begin(), dense_out.end(), 0.);
+          schur.add_part_of_product(dense_in.data(),
+                                    dense_out.data(),
+                                    Utilities::MPI::this_mpi_process(
+                                      body.communicator()),
+                                    n_ranks,
+                                    !use_schur);
+          const int mpi_error = MPI_Allreduce(MPI_IN_PLACE,
+                                              dense_out.data(),
+                                              dense_out.size(),
+                                              MPI_DOUBLE,
+                                              MPI_SUM,
+                                              body.communicator());
           AssertThrowMPI(mpi_error);
         }
       else if (use_schur) // the preconditioner: single precision suffices

@@ -82,6 +82,33 @@ extern "C"
          const float *beta,
          float       *y,
          const int   *incy);
+  // dot products and y += a x, double and single precision
+  double
+  ddot_(const int    *n,
+        const double *x,
+        const int    *incx,
+        const double *y,
+        const int    *incy);
+  float
+  sdot_(const int   *n,
+        const float *x,
+        const int   *incx,
+        const float *y,
+        const int   *incy);
+  void
+  daxpy_(const int    *n,
+         const double *a,
+         const double *x,
+         const int    *incx,
+         double       *y,
+         const int    *incy);
+  void
+  saxpy_(const int   *n,
+         const float *a,
+         const float *x,
+         const int   *incx,
+         float       *y,
+         const int   *incy);
   // triangular solves and products, double and single precision
   void
   dtrsv_(const char   *uplo,

@@ -7,7 +7,8 @@
 // - the contact Schur complement's inverse S_C^{-1} equals (A^{-1})_CC,
 //   column by column, by solves with unit vectors on the contact DoFs C
 //   (the nodes of the bottom edge);
-// - S_C S_C^{-1} x = x;
+// - S_C S_C^{-1} x = x, and the parts of add_part_of_product() (for
+//   ranks that split the dense products) sum to the products;
 // - a solve in two halves (start_solve(), finish_solve() with c on C, a
 //   solve() in between) equals solve() with b + c, and its first half's
 //   values on C are those of A^{-1} b.
@@ -160,6 +161,32 @@ main(int argc, char **argv)
   for (unsigned int i = 0; i < n_c; ++i)
     error = std::max(error, std::abs(solved[i] - unit[i]));
   check(error < 1e-10, "S_C S_C^{-1} x = x");
+
+  // 3b. The parts of add_part_of_product() sum to the products.
+  double part_error = 0.;
+  for (const unsigned int n_parts : {1u, 2u, 3u})
+    for (const bool use_inverse : {true, false})
+      {
+        std::fill(column.begin(), column.end(), 0.);
+        for (unsigned int part = 0; part < n_parts; ++part)
+          schur.add_part_of_product(
+            unit.data(), column.data(), part, n_parts, use_inverse);
+        if (use_inverse)
+          schur.vmult_inverse(unit.data(), solved.data());
+        else
+          schur.vmult_single_precision(unit.data(), solved.data());
+        double scale = 0., difference = 0.;
+        for (unsigned int i = 0; i < n_c; ++i)
+          {
+            scale      = std::max(scale, std::abs(solved[i]));
+            difference = std::max(difference, std::abs(column[i] - solved[i]));
+          }
+        part_error =
+          std::max(part_error,
+                   difference / scale / (use_inverse ? 1e-13 : 1e-5));
+      }
+  check(part_error <= 1.,
+        "the parts of the dense products sum to them (1, 2, 3 parts)");
 
   // 4. start_solve() + finish_solve() = solve() with b + c, c on C; and
   // start_solve()'s values on C are those of A^{-1} b.

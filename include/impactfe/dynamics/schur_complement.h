@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace impactfe
@@ -87,17 +88,19 @@ namespace impactfe
     vmult_inverse(const double *x, double *y) const;
 
     /**
-     * Rows @p first_row to @p end_row - 1 of S^{-1} x (@p use_inverse) or
-     * of S x in single precision (as vmult_single_precision()), into the
-     * same rows of @p y: a block of rows per MPI rank, so that ranks that
-     * all hold S can split the products (the distributed programs).
+     * y += part @p part of n_parts of S^{-1} x (@p use_inverse) or of S x
+     * in single precision (as vmult_single_precision()): the parts split
+     * the stored triangle by columns into pieces of equal size, each entry
+     * read once, so that ranks that all hold S split a product evenly and
+     * sum their y (the distributed programs). The sum over the parts is
+     * the product.
      */
     void
-    vmult_rows(const double      *x,
-               double            *y,
-               const unsigned int first_row,
-               const unsigned int end_row,
-               const bool         use_inverse) const;
+    add_part_of_product(const double      *x,
+                        double            *y,
+                        const unsigned int part,
+                        const unsigned int n_parts,
+                        const bool         use_inverse) const;
 
     std::size_t
     memory_consumption() const;
@@ -115,9 +118,12 @@ namespace impactfe
              const std::size_t memory_limit = std::size_t(1) << 30);
 
   private:
+    /// The columns of part @p part of n_parts (add_part_of_product()).
+    std::pair<unsigned int, unsigned int>
+    part_columns(const unsigned int part, const unsigned int n_parts) const;
+
     std::vector<types::global_dof_index> contact_dofs;
-    /// S and S^{-1}, column-major, both triangles (the symmetric products
-    /// read the lower one).
+    /// S and S^{-1}, column-major; their lower triangles are used.
     std::vector<double> schur, inverse;
     /// S in single precision, and the vectors of its product.
     std::vector<float>         schur_single;
