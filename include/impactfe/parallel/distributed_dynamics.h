@@ -159,7 +159,7 @@ namespace impactfe
       /// solver's contact Schur complement; and that product's vectors.
       std::vector<std::array<unsigned int, dim>> contact_slots;
       std::vector<double> dense_in, dense_out, contact_dof_values;
-      DistributedVector u, v, u_old, v_old, v_free, rhs, correction,
+      DistributedVector   u, v, u_old, v_old, v_free, rhs, correction,
         impulse_force, work;
       double                   current_time = 0.;
       DistributedStepReport    report;
