@@ -526,7 +526,8 @@ namespace impactfe
 
 
 
-    // W of the candidates column by column (n n_d solves), then Lemke's
+    // W of the candidates column by column (n n_d solves, or dense
+    // products with the substructured solver), then Lemke's
     // method on the contact LCP (the exact cone by re-aligned facets in 3D,
     // or the facet form), verified as in the serial programs.
     template <int dim>
@@ -546,7 +547,11 @@ namespace impactfe
       for (unsigned int j = 0; j < n * nd; ++j)
         {
           unit[j] = 1.;
-          delassus_product(unit, column);
+          // with the substructured solver a column is a dense product
+          if (substructured_solver)
+            dense_contact_product(unit, column, false);
+          else
+            delassus_product(unit, column);
           unit[j] = 0.;
           for (unsigned int i = 0; i < n * nd; ++i)
             problem.W(i, j) = column[i];
@@ -593,8 +598,10 @@ namespace impactfe
                                       lcp::contact_states(problem, solution.P);
       for (unsigned int a = 0; a < n; ++a)
         last_states[lcp_candidates[a]] = states[a];
-      // correction = M~^{-1} H P
-      delassus_product(lcp_P, column);
+      // correction = M~^{-1} H P (the substructured path's time step
+      // finishes its solve with H P instead)
+      if (!substructured_solver)
+        delassus_product(lcp_P, column);
     }
 
 
