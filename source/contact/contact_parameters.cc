@@ -67,11 +67,16 @@ namespace impactfe
       "Largest Lemke fallback",
       "3000",
       Patterns::Integer(0),
-      "The largest number of candidates whose problem falls back to "
-      "Lemke's method when the active set method does not converge [-]. "
-      "A larger problem stops the run with a message naming the step: "
-      "its dense W and Lemke's pivoting would take gigabytes and minutes "
-      "(3000 frictional 2D contacts: 3 min per step).");
+      "The largest problem that falls back to Lemke's method when the "
+      "active set method does not converge, in candidates of a 2D "
+      "frictional problem [-]: the fallback's LCP may have at most 3 times "
+      "this many unknowns (a 2D frictional candidate has 3, a frictionless "
+      "one 1, a 3D one 'Number of facets' + 2; the exact cone solves a "
+      "sequence of such LCPs). A larger problem stops the run with a "
+      "message naming the step: its dense W and Lemke's pivoting would "
+      "take gigabytes and minutes to hours (3000 frictional 2D contacts: 3 "
+      "min per step; 1024 3D contacts with the exact cone: more than 20 "
+      "min).");
     prm.declare_entry("Warm start",
                       "true",
                       Patterns::Bool(),
@@ -145,5 +150,43 @@ namespace impactfe
                 ExcMessage("Contact solver: 'Exact cone tolerance' must be "
                            "> 0, got " +
                            format_number(exact_cone_tolerance) + "."));
+  }
+
+
+  std::size_t
+  ContactSolverParameters::lemke_lcp_size(const std::size_t  n_candidates,
+                                          const unsigned int n_directions) const
+  {
+    const std::size_t per_candidate =
+      n_directions == 1 ? 1 : (n_directions == 2 ? 3 : n_facets + 2);
+    return n_candidates * per_candidate;
+  }
+
+
+
+  bool
+  ContactSolverParameters::lemke_fallback_allowed(
+    const std::size_t  n_candidates,
+    const unsigned int n_directions) const
+  {
+    return lemke_lcp_size(n_candidates, n_directions) <=
+           3 * static_cast<std::size_t>(largest_lemke_fallback);
+  }
+
+
+
+  std::string
+  ContactSolverParameters::lemke_fallback_limit_text(
+    const std::size_t  n_candidates,
+    const unsigned int n_directions) const
+  {
+    return "its LCP for Lemke's method on the dense W would have " +
+           std::to_string(lemke_lcp_size(n_candidates, n_directions)) +
+           " unknowns, more than the " +
+           std::to_string(3 *
+                          static_cast<std::size_t>(largest_lemke_fallback)) +
+           " that 'Largest Lemke fallback' = " +
+           std::to_string(largest_lemke_fallback) +
+           " allows (3 per candidate of a 2D frictional problem)";
   }
 } // namespace impactfe

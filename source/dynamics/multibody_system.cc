@@ -1237,17 +1237,18 @@ namespace impactfe
           }
 
         if (report.active_set_fallback &&
-            lcp_candidates.size() > solver_parameters.largest_lemke_fallback)
+            !solver_parameters.lemke_fallback_allowed(lcp_candidates.size(),
+                                                      nd))
           throw ContactSolverFailure(
             "The contact problem of step " + std::to_string(step_number) +
             " (t = " + format_number(report.time) + " s, " +
             std::to_string(lcp_candidates.size()) +
             " contact candidates) was not solved: the active set method did "
             "not converge (" +
-            active_set_stats.last_fallback_reason +
-            "), and the problem is larger than 'Largest Lemke fallback' = " +
-            std::to_string(solver_parameters.largest_lemke_fallback) +
-            " candidates for Lemke's method on the dense W.");
+            active_set_stats.last_fallback_reason + "), and " +
+            solver_parameters.lemke_fallback_limit_text(lcp_candidates.size(),
+                                                        nd) +
+            ".");
         clock.charge(costs.lcp);
         ensure_delassus_columns(lcp_candidates);
         clock.charge(costs.delassus);

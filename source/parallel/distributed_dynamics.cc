@@ -497,16 +497,14 @@ namespace impactfe
           stats.last_fallback_reason = result.message;
           report.fallback            = true;
           AssertThrow(
-            n <= solver_parameters.largest_lemke_fallback,
+            solver_parameters.lemke_fallback_allowed(n, nd),
             ExcMessage(
               "The contact problem at t = " + format_number(report.time) +
               " s (" + std::to_string(n) +
               " candidates) was not solved: the active set method "
               "did not converge (" +
-              result.message +
-              "), and the problem is larger than 'Largest Lemke "
-              "fallback' = " +
-              std::to_string(solver_parameters.largest_lemke_fallback) + "."));
+              result.message + "), and " +
+              solver_parameters.lemke_fallback_limit_text(n, nd) + "."));
           solve_by_lemke();
           return;
         }

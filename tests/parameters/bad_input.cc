@@ -153,6 +153,15 @@ main()
            with("Mesh", "Mesh file = flat_hexahedron.msh"),
            BLOCK_SLIDING_3D_EXECUTABLE);
 
+  // 25 contacts are within 'Largest Lemke fallback' = 30 as candidates,
+  // but their exact-cone LCP (10 unknowns each) is not: the run stops at
+  // once instead of pivoting on a problem too large for the limit.
+  run_case("block_3d_fallback_lcp_too_large",
+           with("Contact solver",
+                "Method = active set\n  set Active set iterations = 1\n"
+                "  set Largest Lemke fallback = 30"),
+           BLOCK_SLIDING_3D_EXECUTABLE);
+
   // The 3D plate: the friction cone and the contact boundary.
   const std::string plate_3d = OBLIQUE_PLATE_3D_EXECUTABLE;
   run_case("odd_number_of_facets",

@@ -5,6 +5,7 @@
 
 #include <impactfe/lcp/exact_cone.h>
 
+#include <cstddef>
 #include <string>
 
 namespace impactfe
@@ -38,9 +39,12 @@ namespace impactfe
     /// Active set products with the dense Schur complement of M~ on the
     /// contact DoFs where that is cheaper (dynamics/schur_complement.h).
     bool dense_schur_complement = true;
-    /// Largest problem (candidates) that may fall back to Lemke's method
-    /// when the active set method does not converge; larger ones stop the
-    /// run with a message instead of a dense W of that size.
+    /// Largest problem that may fall back to Lemke's method when the
+    /// active set method does not converge, in candidates of a 2D
+    /// frictional problem: the fallback's LCP may have at most
+    /// 3 largest_lemke_fallback unknowns (lemke_fallback_allowed()). Larger
+    /// ones stop the run with a message instead of a dense W and a
+    /// pivoting of that size.
     unsigned int largest_lemke_fallback = 3000;
     /// Start Lemke from the previous step's active set.
     bool warm_start = true;
@@ -52,6 +56,26 @@ namespace impactfe
     lcp::ConeModel friction_cone        = lcp::ConeModel::exact;
     unsigned int   n_facets             = 8;
     double         exact_cone_tolerance = 1e-10;
+
+    /// Unknowns of the LCP that Lemke's method solves for @p n_candidates
+    /// contacts with @p n_directions directions (1: frictionless): per
+    /// candidate 1 (frictionless), 3 (2D, Klarbring's form) or
+    /// n_facets + 2 (3D, the facet form; the exact cone solves a sequence
+    /// of such LCPs).
+    std::size_t
+    lemke_lcp_size(const std::size_t  n_candidates,
+                   const unsigned int n_directions) const;
+
+    /// Whether that LCP is within 'Largest Lemke fallback'.
+    bool
+    lemke_fallback_allowed(const std::size_t  n_candidates,
+                           const unsigned int n_directions) const;
+
+    /// The end of the message of a refused fallback: the LCP's size and
+    /// the limit.
+    std::string
+    lemke_fallback_limit_text(const std::size_t  n_candidates,
+                              const unsigned int n_directions) const;
 
     static void
     declare_parameters(ParameterHandler &prm);

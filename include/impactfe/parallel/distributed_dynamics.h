@@ -99,8 +99,9 @@ namespace impactfe
      * preconditioned by H^T M~ H (the contact nodes' block of M~, one
      * distributed product), and its answer is verified. If it does not
      * converge, W of the candidates is built by products (n_c n_d solves) and
-     * Lemke's method solves the problem (reported as a fallback), up to
-     * `Largest Lemke fallback` candidates. `Method = lemke` always takes that
+     * Lemke's method solves the problem (reported as a fallback), if its
+     * LCP is within `Largest Lemke fallback` (ContactSolverParameters::
+     * lemke_fallback_allowed()). `Method = lemke` always takes that
      * route (for small scenes and tests).
      */
     template <int dim>
