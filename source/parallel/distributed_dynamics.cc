@@ -141,16 +141,14 @@ namespace impactfe
 
       const IndexSet &owned = body.locally_owned_dofs();
       const MPI_Comm  comm  = body.communicator();
-      for (DistributedVector *x : {&u,
-                                   &v,
-                                   &u_old,
-                                   &v_old,
-                                   &v_free,
-                                   &rhs,
-                                   &correction,
-                                   &impulse_force,
-                                   &work})
+      for (DistributedVector *x :
+           {&u, &v, &u_old, &v_old, &rhs, &impulse_force, &work})
         x->reinit(owned, comm);
+      // the substructured solver's step needs neither (start_solve() and
+      // finish_solve())
+      if (!substructured_solver)
+        for (DistributedVector *x : {&v_free, &correction})
+          x->reinit(owned, comm);
       const unsigned int n  = contact.n_candidates();
       const unsigned int nd = contact.n_directions();
       active.assign(n, false);
@@ -511,7 +509,8 @@ namespace impactfe
       stats.record(result.verification);
       lcp_P = active_set_solver.impulses();
       // with every contact open the solver makes no last product
-      if (std::all_of(lcp_P.begin(), lcp_P.end(), [](const double p) {
+      if (!substructured_solver &&
+          std::all_of(lcp_P.begin(), lcp_P.end(), [](const double p) {
             return p == 0.;
           }))
         correction = 0.;
@@ -672,7 +671,8 @@ namespace impactfe
                                           std::abs(gap_terms[c])});
         }
       std::fill(local_impulses.begin(), local_impulses.end(), 0.);
-      correction                          = 0.;
+      if (!substructured_solver)
+        correction = 0.;
       std::vector<double> &all_correction = gap_work;
       for (;;)
         {
@@ -682,7 +682,8 @@ namespace impactfe
               lcp_candidates.push_back(c);
           if (lcp_candidates.empty())
             {
-              correction = 0.;
+              if (!substructured_solver)
+                correction = 0.;
               break;
             }
           solve_contact_problem();

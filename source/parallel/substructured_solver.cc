@@ -119,6 +119,13 @@ namespace impactfe
           trailing.push_back(l);
       std::vector<double> trailing_factor =
         factor.factorize_with_trailing_block(subdomain_matrix, trailing, name);
+      // the blocks below need C_i before B_i: the factor's order of the
+      // trailing unknowns (returned in trailing) must keep them apart
+      for (unsigned int k = 0; k < trailing.size(); ++k)
+        AssertThrow(on_interface[trailing[k]] == (k >= n_own_contact),
+                    ExcMessage("Substructured solve of " + name +
+                               ": the factor reordered the contact DoFs and "
+                               "the shared DoFs among its last unknowns."));
       const unsigned int n_trailing = trailing.size();
       const unsigned int n_shared   = n_trailing - n_own_contact;
       n_leading                     = n_local - n_shared;

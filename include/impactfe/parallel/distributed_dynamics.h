@@ -160,7 +160,9 @@ namespace impactfe
       /// solver's contact Schur complement; and that product's vectors.
       std::vector<std::array<unsigned int, dim>> contact_slots;
       std::vector<double> dense_in, dense_out, contact_dof_values;
-      DistributedVector   u, v, u_old, v_old, v_free, rhs, correction,
+      /// v_free and correction (M~^{-1} H P) are not used (nor sized)
+      /// with the substructured solver.
+      DistributedVector u, v, u_old, v_old, v_free, rhs, correction,
         impulse_force, work;
       double                   current_time = 0.;
       DistributedStepReport    report;
