@@ -40,6 +40,13 @@ TIME_STEPPING = """subsection Time stepping
   set End time  = {end_time}
 end
 """
+# the block's material in both dimensions (the 2D template adds its plane
+# model before the subsection ends)
+MATERIAL = """subsection Material
+  set Young's modulus = 1e9
+  set Density         = 1e3
+  set Poisson's ratio = 0.3
+"""
 PARALLEL_AND_OUTPUT = """subsection Parallel solver
   set Solver = {solver}
 end
@@ -67,11 +74,7 @@ subsection Obstacle
   set Normal               = 0, 1
   set Friction coefficient = 0.5
 end
-subsection Material
-  set Young's modulus = 1e9
-  set Density         = 1e3
-  set Poisson's ratio = 0.3
-  set Plane model     = plane strain
+{material}  set Plane model     = plane strain
 end
 {time_stepping}subsection Contact solver
   set Method = active set
@@ -94,11 +97,7 @@ end
 subsection Obstacle
   set Friction coefficient = 0.5
 end
-subsection Material
-  set Young's modulus = 1e9
-  set Density         = 1e3
-  set Poisson's ratio = 0.3
-end
+{material}end
 {time_stepping}subsection Contact solver
   set Method        = active set
   set Friction cone = exact
@@ -121,7 +120,8 @@ def run(build, work, n, ranks, steps, solver, dim):
     os.makedirs(out, exist_ok=True)
     prm = os.path.join(out, "block.prm")
     with open(prm, "w") as f:
-        common = {"time_stepping": TIME_STEPPING.format(
+        common = {"material": MATERIAL,
+                  "time_stepping": TIME_STEPPING.format(
                       end_time=steps * 5e-4 * (1 + 1e-9)),
                   "parallel_and_output": PARALLEL_AND_OUTPUT.format(
                       solver=solver, out=out)}
