@@ -153,13 +153,14 @@ main()
            with("Mesh", "Mesh file = flat_hexahedron.msh"),
            BLOCK_SLIDING_3D_EXECUTABLE);
 
-  // 25 contacts are within 'Largest Lemke fallback' = 30 as candidates,
-  // but their exact-cone LCP (10 unknowns each) is not: the run stops at
-  // once instead of pivoting on a problem too large for the limit.
+  // 25 contacts are within 'Largest Lemke fallback' = 100 as candidates,
+  // and one facet LCP of theirs (250 unknowns) within its 300 unknowns,
+  // but not the exact cone's two: the run stops at once instead of
+  // pivoting on a problem too large for the limit.
   run_case("block_3d_fallback_lcp_too_large",
            with("Contact solver",
                 "Method = active set\n  set Active set iterations = 1\n"
-                "  set Largest Lemke fallback = 30"),
+                "  set Largest Lemke fallback = 100"),
            BLOCK_SLIDING_3D_EXECUTABLE);
 
   // The 3D plate: the friction cone and the contact boundary.

@@ -41,7 +41,7 @@ namespace impactfe
     bool dense_schur_complement = true;
     /// Largest problem that may fall back to Lemke's method when the
     /// active set method does not converge, in candidates of a 2D
-    /// frictional problem: the fallback's LCP may have at most
+    /// frictional problem: the fallback's LCPs may have at most
     /// 3 largest_lemke_fallback unknowns (lemke_fallback_allowed()). Larger
     /// ones stop the run with a message instead of a dense W and a
     /// pivoting of that size.
@@ -66,7 +66,13 @@ namespace impactfe
     lemke_lcp_size(const std::size_t  n_candidates,
                    const unsigned int n_directions) const;
 
-    /// Whether that LCP is within 'Largest Lemke fallback'.
+    /// How many such LCPs a fallback solves at least: 2 for the exact
+    /// cone in 3D (facet LCPs re-aligned with the slips), else 1.
+    unsigned int
+    lemke_lcps_per_problem(const unsigned int n_directions) const;
+
+    /// Whether those LCPs' unknowns, summed, are within 'Largest Lemke
+    /// fallback'.
     bool
     lemke_fallback_allowed(const std::size_t  n_candidates,
                            const unsigned int n_directions) const;
