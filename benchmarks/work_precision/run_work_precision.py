@@ -29,7 +29,7 @@ What is measured (see benchmarks/work_precision/README.md):
 Errors: 1D err_v, err_f, energy_ratio from summary.json (the program's
 definitions against the exact solution). 2D: err_force = the L1 norm in time
 of the total normal contact force minus that of a fine reference run,
-divided by (reference peak force x reference contact duration).
+divided by the reference's total normal impulse (a relative L1 error).
 
 Run files go to results/work_precision/ (git-ignored); the CSV, PNG and the
 generated part of work_precision.md go to --out (default doc).
@@ -240,6 +240,77 @@ def cost_at_error(front, target):
     return None
 
 
+def error_at_cost(front, budget):
+    """The error reachable for a CPU budget along a Pareto front [(cost,
+    err)] sorted by cost: log-log interpolation between its points (a run at
+    an intermediate step or mesh), its last error beyond its dearest point,
+    None below its cheapest one."""
+    if not front or budget < front[0][0]:
+        return None
+    for (c0, e0), (c1, e1) in zip(front, front[1:]):
+        if c0 <= budget <= c1:
+            s = (math.log(budget) - math.log(c0)) / (math.log(c1) - math.log(c0))
+            return math.exp(math.log(e0) + s * (math.log(e1) - math.log(e0)))
+    return front[-1][1]
+
+
+BUDGETS = 41
+
+
+def budget_table(fronts, own):
+    """Which scheme has the smallest error at equal CPU. fronts: {label:
+    Pareto front}; own: the labels of impactfe's schemes (the budgets span
+    their cheapest to their dearest run). Returns (table rows, the leader's
+    label, the budgets the leader loses) over BUDGETS budgets evenly spaced
+    in log CPU. A scheme wins a budget if no other scheme's interpolated
+    error there is smaller."""
+    costs = [c for lab in own for c, _ in fronts[lab]]
+    lo, hi = math.log(min(costs)), math.log(max(costs))
+    budgets = [math.exp(lo + (hi - lo) * i / (BUDGETS - 1)) for i in range(BUDGETS)]
+    at = {lab: [error_at_cost(f, b) for b in budgets] for lab, f in fronts.items()}
+    wins = {lab: 0 for lab in fronts}
+    for i in range(BUDGETS):
+        errs = [at[lab][i] for lab in fronts if at[lab][i] is not None]
+        for lab in fronts:
+            if at[lab][i] is not None and at[lab][i] <= min(errs):
+                wins[lab] += 1
+    leader = max(own, key=lambda lab: wins[lab])
+    losses = []
+    for i, b in enumerate(budgets):
+        others = [(at[lab][i], lab) for lab in fronts
+                  if lab != leader and at[lab][i] is not None]
+        if not others:
+            continue
+        best, best_label = min(others)
+        mine = at[leader][i]
+        if mine is None or mine > best:
+            losses.append((b, mine, best, best_label))
+    rows = [[lab, wins[lab]] for lab in fronts]
+    return rows, leader, losses
+
+
+def budget_section(fronts, own, err_name):
+    """Markdown: the budget table and the budgets its leader loses."""
+    rows, leader, losses = budget_table(fronts, own)
+    lines = [f"\nBest {err_name} at equal CPU (loop CPU): {BUDGETS} budgets evenly spaced "
+             "in log CPU from impactfe's cheapest to its dearest run; at each, every "
+             "scheme's error interpolated log-log along its Pareto front (none below its "
+             "cheapest run); a scheme wins a budget where no other is smaller (ties count "
+             "for both):\n",
+             md_table(["scheme", f"budgets won (of {BUDGETS})"], rows)]
+    if not losses:
+        lines.append(f"\n{leader} has the smallest error at every budget.")
+    else:
+        lines.append(f"\nBudgets that {leader} (most wins) loses:\n")
+        lines.append(md_table(
+            ["loop CPU s", f"its {err_name}", f"smallest {err_name}", "by", "scheme"],
+            [[fmt(b, ".3g"), "no run this cheap" if mine is None else fmt(mine, ".3g"),
+              fmt(best, ".3g"),
+              "" if mine is None else f"{100 * (mine / best - 1):.1f} %", lab]
+             for b, mine, best, lab in losses]))
+    return "\n".join(lines)
+
+
 def md_table(header, rows):
     out = ["| " + " | ".join(header) + " |",
            "|" + "|".join("---" for _ in header) + "|"]
@@ -402,6 +473,12 @@ def extend_bars(args, rows):
             need = again[2]
             progress(f"extension: {label}: now about {need:.0f} cells per bar needed "
                      f"({again[0]:.3g} s loop CPU)")
+            if again[0] > args.extend_budget:
+                # Without this check a slowly converging scheme went on
+                # doubling its mesh (theta = 0.5: 40960 cells, > 15 min).
+                progress(f"extension: {label}: more than --extend-budget "
+                         f"{args.extend_budget} s: stopped")
+                break
     return rows
 
 
@@ -534,11 +611,19 @@ def impulse_difference(a, b, t_end):
     return float(np.max(np.abs(ia - ib)) / ib[-1])
 
 
-def force_norm(reference, summary, h):
-    """Reference peak force x contact duration (t_last − t_first + h, the
-    end times of the first and last steps with a positive force)."""
-    duration = summary["last_contact"] - summary["first_contact"] + h
-    return float(np.max(reference[1])) * duration, duration
+def reference_impulse(reference):
+    """∫_0^T F_ref dt, the norm of err_force: the reference's total normal
+    impulse, with the force piecewise constant as in l1_force_difference.
+    (Its peak force, the norm until 2026-11-28, is a one-step spike where
+    the 2D bars' faces meet, and grew like h_ref^-0.6.)"""
+    t, f = reference
+    return float(np.sum(f[1:] * np.diff(t)))
+
+
+def contact_duration(summary, h):
+    """t_last − t_first + h, the end times of the first and last steps with
+    a positive force."""
+    return summary["last_contact"] - summary["first_contact"] + h
 
 
 def scene_row(name, scheme, theta, level, mesh, dx, factor, h, c_p, result, n,
@@ -605,7 +690,8 @@ def run_scene(args, name):
                  f"finest grid step {finest_grid_h:g}")
     ref = run_ref("reference", ref_mesh, ref_h)
     ref_force = read_force(ref["out_dir"])
-    norm, duration = force_norm(ref_force, ref["summary"], ref_h)
+    norm = reference_impulse(ref_force)
+    duration = contact_duration(ref["summary"], ref_h)
     ref2 = run_ref("reference_2h", ref_mesh, 2 * ref_h)
     h_same = h_paper * grid["same_mesh_factor"]
     same = run_ref("same_mesh_reference", paper_mesh, h_same)
@@ -848,6 +934,11 @@ def bars_tables(rows, peers):
         lines.append("\n\\* The peers' `cpu_run_seconds` is their set-up plus time loop "
                      "inside an already running Python process: no process start-up, "
                      "unlike ours. Compare the loop columns.")
+    own = list(groups(good))
+    fronts = {label: runs.pareto_front(points(rs, "cpu_loop_seconds", "err_v"))
+              for label, rs in list(groups(good).items()) + list(groups(ok_rows(peers)).items())}
+    lines.append(budget_section({k: f for k, f in fronts.items() if f},
+                                [k for k in own if fronts[k]], "err_v"))
     # Energy at the finest level.
     finest = max(levels)
     table = []
@@ -895,7 +986,7 @@ def plot_scene(name, rows, out, caption):
         ax.set_xlabel("CPU seconds, " + ("time loop (summary.json)"
                                          if cost_key == "cpu_loop_seconds"
                                          else "whole process (getrusage)"))
-        ax.set_ylabel("err_force (L1 in time / (peak × duration))")
+        ax.set_ylabel("err_force (L1 in time / reference impulse)")
     axes[0].legend(fontsize=7, loc="lower left")
     ref = refs.get("reference", {})
     fig.suptitle(f"{sc['title']}: error of the total normal force against CPU seconds; "
@@ -993,6 +1084,10 @@ def scene_tables(name, rows):
                            "err_impulse", "peak force",
                            "energy ratio", "loop CPU s", "run CPU s", "max penetration"],
                           table))
+    fronts = {label: runs.pareto_front(points(rs, "cpu_loop_seconds", "err_force"))
+              for label, rs in groups(grid_rows).items()}
+    lines.append(budget_section({k: f for k, f in fronts.items() if f}, list(fronts),
+                                "err_force"))
     failed = [r for r in rows if r.get("level", "") != "" and r.get("status") != "ok"]
     if failed:
         lines.append(f"\nRuns with a non-zero exit code ({len(failed)}; those with "

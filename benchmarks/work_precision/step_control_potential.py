@@ -34,6 +34,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.abspath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, os.path.join(HERE, ".."))
 from common import runs  # noqa: E402
+sys.path.insert(0, HERE)
+import run_work_precision as work_precision  # noqa: E402  (err_force's norm)
 
 
 def history(run_dir):
@@ -102,9 +104,7 @@ def scene_2d(runs_dir, name, tags, reference_tag):
         near = np.zeros(len(t), bool)
         for i in changes:
             near[max(i - 2, 0):min(i + 3, len(t))] = True
-        positive = np.nonzero(ref["normal_force"] > 0)[0]
-        norm = float(np.max(ref["normal_force"])) * (
-            ref["time"][positive[-1]] - ref["time"][positive[0]] + ref["time"][1])
+        norm = work_precision.reference_impulse((ref["time"], ref["normal_force"]))
         table.append({"scene": name, "run": tag, "steps": len(t) - 1,
                       "err_force": float(density.sum() / norm),
                       "err_force_near_changes": float(density[near[index]].sum() / norm),
