@@ -362,7 +362,7 @@ namespace TaylorBarProgram
     parse_parameters(prm);
     set_thread_limit(1);
     setup_system();
-    CpuStopwatch timer;
+    Stopwatch timer;
     for (unsigned int step = 0; step < n_steps; ++step)
       {
         timer.start();

@@ -151,22 +151,40 @@ namespace impactfe
     return now.tv_sec + 1e-9 * now.tv_nsec;
   }
 
-  void
-  CpuStopwatch::start()
+  double
+  wall_seconds()
   {
-    started_at = process_cpu_seconds();
+    timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return now.tv_sec + 1e-9 * now.tv_nsec;
+  }
+
+  Stopwatch::Stopwatch(const Clock clock)
+    : clock(clock)
+  {}
+
+  double
+  Stopwatch::now() const
+  {
+    return clock == Clock::wall ? wall_seconds() : process_cpu_seconds();
   }
 
   void
-  CpuStopwatch::stop()
+  Stopwatch::start()
+  {
+    started_at = now();
+  }
+
+  void
+  Stopwatch::stop()
   {
     if (started_at >= 0.)
-      accumulated += process_cpu_seconds() - started_at;
+      accumulated += now() - started_at;
     started_at = -1.;
   }
 
   double
-  CpuStopwatch::seconds() const
+  Stopwatch::seconds() const
   {
     return accumulated;
   }

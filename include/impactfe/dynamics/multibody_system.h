@@ -53,9 +53,10 @@ namespace impactfe
 
 
   /**
-   * Where the CPU time of a run goes (seconds of the calling thread,
-   * accumulated since setup(); only measured after
-   * MultibodySystem::enable_cost_breakdown()).
+   * Where the time of a run goes (wall seconds, accumulated since setup();
+   * only measured after MultibodySystem::enable_cost_breakdown()). Wall,
+   * not CPU, time: a CPU clock is too dear to be read several times per
+   * step (see wall_seconds()).
    */
   struct CostBreakdown
   {
