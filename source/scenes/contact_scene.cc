@@ -90,12 +90,13 @@ namespace impactfe
     // proportion to wall time. CPU clocks are system calls, too dear to be
     // read at every step (see wall_seconds()).
     Stopwatch loop_timer;
+    Stopwatch loop_wall(Stopwatch::Clock::wall);
     Stopwatch step_wall(Stopwatch::Clock::wall);
-    Stopwatch output_wall(Stopwatch::Clock::wall);
     // A free-flight step covers k steps of h (`Free-flight step factor`),
     // and is tried only where k steps of h are left before the end time.
     const unsigned int n_steps = parameters.time_stepping.n_steps();
     loop_timer.start();
+    loop_wall.start();
     for (unsigned int step = 0; step < n_steps;)
       {
         step_wall.start();
@@ -104,15 +105,14 @@ namespace impactfe
         step_wall.stop();
         ++n_steps_taken;
         step += report.n_substeps;
-        output_wall.start();
         output_results(report);
-        output_wall.stop();
       }
+    loop_wall.stop();
     loop_timer.stop();
-    const double loop_wall = step_wall.seconds() + output_wall.seconds();
     loop_cpu_seconds =
-      loop_wall > 0. ? loop_timer.seconds() * step_wall.seconds() / loop_wall :
-                       loop_timer.seconds();
+      loop_wall.seconds() > 0. ?
+        loop_timer.seconds() * step_wall.seconds() / loop_wall.seconds() :
+        loop_timer.seconds();
     recorder->finish();
     report_results();
   }

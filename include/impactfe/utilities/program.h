@@ -83,7 +83,7 @@ namespace impactfe
    * per-step phase timing. It is read in user space (vDSO, 30 ns). The CPU
    * clocks are system calls: 1.3 us a read on this project's virtual
    * machine on 2026-11-28. Six CPU-clock reads per step made a 1D step (320
-   * cells per bar) cost 17.7 us instead of 6.2 us.
+   * cells per bar) cost 17.7 us instead of 6.8 us.
    */
   double
   wall_seconds();
