@@ -1377,8 +1377,7 @@ namespace impactfe
   double
   MultibodySystem<dim>::kinetic_energy(const unsigned int b) const
   {
-    update_energies();
-    return energies[b].first;
+    return body_integrals(b).kinetic_energy;
   }
 
   template <int dim>
@@ -1395,29 +1394,40 @@ namespace impactfe
   double
   MultibodySystem<dim>::elastic_energy(const unsigned int b) const
   {
-    update_energies();
-    return energies[b].second;
+    return body_integrals(b).elastic_energy;
   }
 
 
 
-  // The monitor, the history and the scene ask for the energies several
-  // times per step; each costs a product with M or K, so they are computed
-  // once per state.
+  // Each energy costs a product with M or K, each momentum and force
+  // component a dot product: once per state (body_integrals()).
   template <int dim>
-  void
-  MultibodySystem<dim>::update_energies() const
+  const typename MultibodySystem<dim>::BodyIntegrals &
+  MultibodySystem<dim>::body_integrals(const unsigned int b) const
   {
-    if (energies_version == state_version &&
-        energies.size() == body_list.size())
-      return;
-    energies.resize(body_list.size());
-    for (unsigned int b = 0; b < body_list.size(); ++b)
-      energies[b] = {0.5 * body_list[b]->mass_matrix().matrix_norm_square(
-                             current.velocity.block(b)),
-                     0.5 * body_list[b]->stiffness_matrix().matrix_norm_square(
-                             current.displacement.block(b))};
-    energies_version = state_version;
+    if (integrals_version != state_version ||
+        integrals.size() != body_list.size())
+      {
+        integrals.resize(body_list.size());
+        for (unsigned int i = 0; i < body_list.size(); ++i)
+          {
+            const Vector<double> &v = current.velocity.block(i);
+            BodyIntegrals        &x = integrals[i];
+            x.kinetic_energy =
+              0.5 * body_list[i]->mass_matrix().matrix_norm_square(v);
+            x.elastic_energy =
+              0.5 * body_list[i]->stiffness_matrix().matrix_norm_square(
+                      current.displacement.block(i));
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                x.momentum[d] = mass_unit_fields[d].block(i) * v;
+                x.contact_force[d] =
+                  unit_fields[d].block(i) * contact_force_field.block(i);
+              }
+          }
+        integrals_version = state_version;
+      }
+    return integrals[b];
   }
 
   template <int dim>
@@ -1434,20 +1444,14 @@ namespace impactfe
   Tensor<1, dim>
   MultibodySystem<dim>::momentum(const unsigned int b) const
   {
-    Tensor<1, dim> p;
-    for (unsigned int d = 0; d < dim; ++d)
-      p[d] = mass_unit_fields[d].block(b) * current.velocity.block(b);
-    return p;
+    return body_integrals(b).momentum;
   }
 
   template <int dim>
   Tensor<1, dim>
   MultibodySystem<dim>::contact_force(const unsigned int b) const
   {
-    Tensor<1, dim> f;
-    for (unsigned int d = 0; d < dim; ++d)
-      f[d] = unit_fields[d].block(b) * contact_force_field.block(b);
-    return f;
+    return body_integrals(b).contact_force;
   }
 
   template <int dim>

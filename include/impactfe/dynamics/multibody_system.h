@@ -306,12 +306,20 @@ namespace impactfe
     bool last_step_had_impulses = true;
 
     MechanicalOperators operators;
-    /// Counts the changes of the state; the energies are cached per state.
-    unsigned long                                  state_version    = 0;
-    mutable unsigned long                          energies_version = ~0ul;
-    mutable std::vector<std::pair<double, double>> energies;
-    void
-    update_energies() const;
+    /// Counts the changes of the state (a step changes the contact forces
+    /// with it). The monitor, the history and the scene ask for the
+    /// energies, momenta and contact forces several times per step; they
+    /// are computed once per state.
+    unsigned long state_version = 0;
+    struct BodyIntegrals
+    {
+      double         kinetic_energy = 0., elastic_energy = 0.;
+      Tensor<1, dim> momentum, contact_force;
+    };
+    mutable unsigned long              integrals_version = ~0ul;
+    mutable std::vector<BodyIntegrals> integrals;
+    const BodyIntegrals &
+    body_integrals(const unsigned int body) const;
     /// F~ of the scheme from M, C, K and the load, combined once.
     FreeRhsOperator free_rhs_operator;
     /// Step matrices M~ per body and their factorisations.
