@@ -248,6 +248,7 @@ namespace impactfe
                                               unit_fields[d].block(b));
           }
       }
+    ++state_version; // the cached momenta used the old fields
 
     solve_cost = 0.;
     for (const auto &solver : step_solvers)
