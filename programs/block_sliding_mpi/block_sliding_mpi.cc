@@ -2,9 +2,10 @@
  *
  * block_sliding_mpi: the elastic block of block_sliding_3d (and its 2D
  * section) sliding on a rigid plane under gravity with Coulomb friction,
- * on a distributed mesh: p4est, Trilinos matrices and vectors, CG with
- * ML's AMG for the solves with M~, and the contact problem replicated on
- * every rank and solved by the active set method.
+ * or a body read from a mesh file thrown at a rigid obstacle, on a
+ * distributed mesh: p4est, Trilinos matrices and vectors, CG with ML's
+ * AMG for the solves with M~, and the contact problem replicated on every
+ * rank and solved by the active set method.
  *
  * ---------------------------------------------------------------------
  */
@@ -15,11 +16,13 @@
 // runs with `block_sliding_3d` on one process and with `mpirun -np N
 // block_sliding_mpi` on N, and the two write the same columns of
 // history.csv (time, forces, momentum, energies, active contacts), which
-// must agree to the solves' tolerance (tests/parallel/). Two entries are
+// must agree to the solves' tolerance (tests/parallel/). These entries are
 // this program's own: the top-level `Dimension` (2: the block's section in
-// the x-y plane, sliding along x; 3: the box) and the subsection `Parallel
-// solver`. What the distributed step does and does not do yet is in
-// doc/parallel.md.
+// the x-y plane, sliding along x; 3: the box), the subsection `Parallel
+// solver`, and `Scene = impact` with `Initial conditions/Initial velocity`:
+// the body of `Mesh file` thrown at the obstacle, as cylinder_impact and
+// oblique_plate do with the same file (cylinder_impact_mpi.prm). What the
+// distributed step does and does not do yet is in doc/parallel.md.
 #include <deal.II/base/mpi.h>
 
 #include <impactfe/parallel/sliding_block_scene.h>

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace impactfe
@@ -62,6 +63,22 @@ namespace impactfe
                         Patterns::Integer(2, 3),
                         "2: the block's section in the x-y plane (plane "
                         "strain, sliding along x); 3: the box [-].");
+      prm.declare_entry(
+        "Scene",
+        "sliding block",
+        Patterns::Selection("sliding block|impact"),
+        "sliding block: the box of subsection Geometry (or the mesh of "
+        "subsection Mesh) launched along the plane, checked against the "
+        "rigid-block model. impact: the body of 'Mesh file' thrown at the "
+        "obstacle with 'Initial velocity', checked by its impulse balance "
+        "and the contact verification (the cylinder and the plate).");
+      prm.enter_subsection("Initial conditions");
+      prm.declare_entry("Initial velocity",
+                        "",
+                        Patterns::List(Patterns::Double(), 0, 3),
+                        "Scene = impact: the body's uniform initial "
+                        "velocity, one component per dimension [m/s].");
+      prm.leave_subsection();
       SceneParameters::declare_parameters(prm, "results/block_sliding_mpi");
       MeshParameters::declare_parameters(prm, "Mesh", 2);
       ObstacleParameters::declare_parameters(prm, "0, 0, 0", "0, 1, 0", "0.5");
@@ -74,12 +91,36 @@ namespace impactfe
                              "' does not exist."));
       prm.parse_input(file);
       dimension = prm.get_integer("Dimension");
+      impact    = prm.get("Scene") == "impact";
+      prm.enter_subsection("Initial conditions");
+      const std::string velocity = prm.get("Initial velocity");
+      prm.leave_subsection();
+      initial_velocity.clear();
+      for (const std::string &v : Utilities::split_string_list(velocity))
+        initial_velocity.push_back(Utilities::string_to_double(v));
       scene.parse_parameters(prm);
       mesh.parse_parameters(prm, "Mesh");
       obstacle.parse_parameters(prm, dimension);
       material.parse_parameters(prm, dimension);
       linear_solver.parse_parameters(prm);
       box.parse_parameters(prm);
+      if (impact)
+        {
+          AssertThrow(initial_velocity.size() == dimension,
+                      ExcMessage("Initial conditions: 'Initial velocity' "
+                                 "must have " +
+                                 std::to_string(dimension) +
+                                 " components with Scene = impact, got '" +
+                                 velocity + "'."));
+          AssertThrow(mesh.from_file(),
+                      ExcMessage("Scene = impact: set 'Mesh file' in "
+                                 "subsection Mesh (the body to throw)."));
+        }
+      else
+        AssertThrow(initial_velocity.empty(),
+                    ExcMessage("Initial conditions: 'Initial velocity' is "
+                               "for Scene = impact; the sliding block uses "
+                               "'Sliding speed' and 'Sliding direction'."));
       AssertThrow(dimension == 3 || std::abs(std::sin(box.phi)) < 1e-12,
                   ExcMessage("Initial conditions: 'Sliding direction' must "
                              "be 0 or pi in 2D (the block slides along x), "
@@ -148,6 +189,35 @@ namespace impactfe
 
 
 
+    // The obstacle's finite differences need the body's size: the box's
+    // length, or the extent of the mesh read from a file, over all ranks.
+    template <int dim>
+    double
+    SlidingBlockScene<dim>::body_size() const
+    {
+      if (!parameters.impact)
+        return parameters.box.length;
+      double extent = 0.;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          double lowest  = std::numeric_limits<double>::max(),
+                 highest = std::numeric_limits<double>::lowest();
+          for (const auto &cell : body.triangulation().active_cell_iterators())
+            if (cell->is_locally_owned())
+              for (const unsigned int v : cell->vertex_indices())
+                {
+                  lowest  = std::min(lowest, cell->vertex(v)[d]);
+                  highest = std::max(highest, cell->vertex(v)[d]);
+                }
+          extent = std::max(extent,
+                            Utilities::MPI::max(highest, comm) +
+                              Utilities::MPI::max(-lowest, comm));
+        }
+      return extent;
+    }
+
+
+
     // @sect3{Set-up}
     template <int dim>
     void
@@ -158,7 +228,7 @@ namespace impactfe
       g[1] = -parameters.material.density * parameters.box.gravity;
       body.set_body_force(g);
       body.setup();
-      obstacle = parameters.obstacle.create<dim>(parameters.box.length);
+      obstacle = parameters.obstacle.create<dim>(body_size());
       contact.setup(body,
                     parameters.mesh.contact_boundary_id,
                     *obstacle,
@@ -171,11 +241,14 @@ namespace impactfe
         parameters.linear_solver);
       solver->setup();
       work.reinit(body.locally_owned_dofs(), comm);
-      solver->set_initial_velocity(parameters.box.speed * direction());
+      solver->set_initial_velocity(launch_velocity());
       normal[1] = 1.;
-      tracker   = std::make_unique<RigidBlockTracker<dim>>(
-        normal, direction(), parameters.scene.time_stepping.time_step);
-      tracker->start(parameters.box.speed * direction());
+      if (!parameters.impact)
+        {
+          tracker = std::make_unique<RigidBlockTracker<dim>>(
+            normal, direction(), parameters.scene.time_stepping.time_step);
+          tracker->start(launch_velocity());
+        }
 
       std::vector<std::string> columns = {"time",
                                           "normal_force",
@@ -317,6 +390,9 @@ namespace impactfe
           const Tensor<1, dim> p = body.momentum(solver->velocity());
           largest_momentum       = std::max(largest_momentum, p.norm());
           balance_error = std::max(balance_error, (p - p0 - impulses).norm());
+          output_results(step);
+          if (!tracker)
+            continue;
           const Tensor<1, dim> mean = p / body.total_mass();
           tracker->record(solver->time(),
                           mean,
@@ -330,7 +406,6 @@ namespace impactfe
           if (tracker->stop_time() < 0. &&
               std::hypot(along, across) > 0.01 * parameters.box.speed)
             largest_turn = std::max(largest_turn, std::atan2(across, along));
-          output_results(step);
         }
       balance_error /= largest_momentum;
       report_results();
@@ -356,10 +431,12 @@ namespace impactfe
         body.momentum(solver->displacement()) * direction() / mass;
       const auto        &ts = parameters.scene.time_stepping;
       std::ostringstream out;
-      out << "Block sliding on a plane in " << dim << "D on " << n_ranks
-          << " MPI rank" << (n_ranks > 1 ? "s" : "") << ", scheme "
-          << to_string(ts.scheme) << " (theta = " << ts.theta
-          << "), h = " << ts.time_step << " s, " << n_steps << " steps\n"
+      out << (parameters.impact ? "Impact on an obstacle in " :
+                                  "Block sliding on a plane in ")
+          << dim << "D on " << n_ranks << " MPI rank"
+          << (n_ranks > 1 ? "s" : "") << ", scheme " << to_string(ts.scheme)
+          << " (theta = " << ts.theta << "), h = " << ts.time_step << " s, "
+          << n_steps << " steps\n"
           << "  Mesh: " << body.triangulation().n_global_active_cells()
           << " Q1 cells, " << body.dof_handler().n_dofs() << " DoFs, "
           << contact.n_candidates()
@@ -367,15 +444,27 @@ namespace impactfe
           << ", mu = " << contact.friction_coefficient() << "\n"
           << "  Contact candidates owned per rank: " << owned_range.min
           << " to " << owned_range.max << "\n"
-          << "  Mass " << format_figure(mass, 1e-9) << " kg; launched at "
-          << parameters.box.speed
-          << " m/s in the direction phi = " << parameters.box.phi << " rad\n"
-          << "  Largest angle between the mean sliding velocity and the "
-             "launch direction: "
-          << format_figure(largest_turn, 1e-6) << " rad\n"
-          << "  Mean velocity at the end: " << format_figure(speed, 1e-6)
-          << " m/s\n"
-          << "  Normal impulse " << format_figure(normal_impulse, 1e-9)
+          << "  Mass " << format_figure(mass, 1e-9) << " kg; ";
+      if (parameters.impact)
+        {
+          const Tensor<1, dim> p = body.momentum(solver->velocity());
+          out << "initial velocity (";
+          for (unsigned int d = 0; d < dim; ++d)
+            out << (d > 0 ? ", " : "") << launch_velocity()[d];
+          out << ") m/s, mean velocity at the end (";
+          for (unsigned int d = 0; d < dim; ++d)
+            out << (d > 0 ? ", " : "") << format_figure(p[d] / mass, 1e-9);
+          out << ") m/s\n";
+        }
+      else
+        out << "launched at " << parameters.box.speed
+            << " m/s in the direction phi = " << parameters.box.phi << " rad\n"
+            << "  Largest angle between the mean sliding velocity and the "
+               "launch direction: "
+            << format_figure(largest_turn, 1e-6) << " rad\n"
+            << "  Mean velocity at the end: " << format_figure(speed, 1e-6)
+            << " m/s\n";
+      out << "  Normal impulse " << format_figure(normal_impulse, 1e-9)
           << ", tangential impulse " << format_figure(tangential_impulse, 1e-9)
           << "\n"
           << "  Impulse balance: max |p(t) - p(0) - impulses| / max |p| = "
@@ -404,13 +493,14 @@ namespace impactfe
                                contact.friction_coefficient(),
                                ts.end_time);
       JsonObject         sliding;
-      ok &= tracker->report_sliding(out,
-                                    rigid,
-                                    distance,
-                                    along,
-                                    ts.end_time,
-                                    parameters.box.bounds,
-                                    sliding);
+      if (tracker)
+        ok &= tracker->report_sliding(out,
+                                      rigid,
+                                      distance,
+                                      along,
+                                      ts.end_time,
+                                      parameters.box.bounds,
+                                      sliding);
       if (parameters.scene.output.print_performance)
         out << "  Wall seconds: set-up " << setup_seconds << ", time loop "
             << loop_seconds << " (" << loop_seconds / n_steps << " per step); "
@@ -425,6 +515,7 @@ namespace impactfe
 
       JsonObject summary;
       summary.add("program", "block_sliding_mpi")
+        .add("scene", parameters.impact ? "impact" : "sliding block")
         .add("dimension", double(dim))
         .add("ranks", double(n_ranks))
         .add("scheme", to_string(ts.scheme))
@@ -446,8 +537,9 @@ namespace impactfe
         .add("cg_iterations", double(stats.cg_iterations))
         .add("solve_wall_seconds", stats.solve_seconds)
         .add("largest_violation", largest_violation)
-        .add("sliding", sliding)
         .add("checks_passed", ok ? "yes" : "no");
+      if (tracker)
+        summary.add("sliding", sliding);
       on_rank_zero(comm, [&]() {
         summary.write(parameters.scene.output.directory + "/summary.json");
       });

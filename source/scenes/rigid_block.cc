@@ -44,7 +44,7 @@ namespace impactfe
     prm.declare_entry("Gravity",
                       "9.81",
                       Patterns::Double(),
-                      "g [m/s^2], towards the plane (-y). Must be > 0.");
+                      "g [m/s^2], towards the plane (-y). Must be >= 0.");
     prm.leave_subsection();
     StabilityBounds::declare_parameters(prm);
   }
@@ -76,7 +76,7 @@ namespace impactfe
     prm.enter_subsection("Loads");
     gravity = prm.get_double("Gravity");
     prm.leave_subsection();
-    require_positive(gravity, "Loads", "Gravity");
+    require_non_negative(gravity, "Loads", "Gravity");
     bounds.parse_parameters(prm);
   }
 

@@ -304,6 +304,15 @@ main()
            "/proc/impactfe_cannot_write_here\n  set VTU output = false\n"
            "end\n",
            mpi);
+  // Scene = impact throws the body of a mesh file with a velocity vector
+  run_case("mpi_impact_velocity_of_two_components_in_3d",
+           "set Scene = impact\n" +
+             with("Initial conditions", "Initial velocity = 0, -1"),
+           mpi);
+  run_case("mpi_impact_without_mesh_file",
+           "set Scene = impact\n" +
+             with("Initial conditions", "Initial velocity = 0, -1, 0"),
+           mpi);
   run_case("mpi_bad_solver_tolerance",
            with("Parallel solver", "Tolerance = 2"),
            mpi);

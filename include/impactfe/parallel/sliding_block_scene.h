@@ -1,6 +1,7 @@
-// The scene of programs/block_sliding_mpi: an elastic block (2D or 3D)
-// sliding on a rigid plane under gravity with Coulomb friction, on a
-// distributed mesh (issue 14, doc/parallel.md).
+// The scenes of programs/block_sliding_mpi, on a distributed mesh (issue
+// 14, doc/parallel.md): an elastic block (2D or 3D) sliding on a rigid
+// plane under gravity with Coulomb friction, or a body read from a mesh
+// file thrown at a rigid obstacle (the cylinder and the plate).
 #ifndef impactfe_parallel_sliding_block_scene_h
 #define impactfe_parallel_sliding_block_scene_h
 
@@ -25,11 +26,16 @@ namespace impactfe
     /**
      * The parameters of block_sliding_mpi: every entry of block_sliding_3d
      * (the scene's, the obstacle's, the material's and the common ones), so
-     * that its files run here too, plus `Dimension` and `Parallel solver`.
+     * that its files run here too, plus `Dimension`, `Scene`, `Initial
+     * conditions/Initial velocity` and `Parallel solver`.
      */
     struct SlidingBlockParameters
     {
-      unsigned int             dimension = 3;
+      unsigned int dimension = 3;
+      /// The sliding box, checked against the rigid block; or a body from
+      /// `Mesh file` thrown at the obstacle with initial_velocity.
+      bool                     impact = false;
+      std::vector<double>      initial_velocity;
       SceneParameters          scene;
       MeshParameters           mesh;
       ObstacleParameters       obstacle;
@@ -82,6 +88,21 @@ namespace impactfe
           s[dim - 1] = std::sin(parameters.box.phi);
         return s;
       }
+
+      /// The body's uniform velocity at t = 0.
+      Tensor<1, dim>
+      launch_velocity() const
+      {
+        Tensor<1, dim> v = parameters.box.speed * direction();
+        if (parameters.impact)
+          for (unsigned int d = 0; d < dim; ++d)
+            v[d] = parameters.initial_velocity[d];
+        return v;
+      }
+
+      /// The largest extent of the mesh (the obstacle's length scale).
+      double
+      body_size() const;
 
       const SlidingBlockParameters                  parameters;
       const std::string                             parameter_file;

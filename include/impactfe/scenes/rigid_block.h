@@ -66,7 +66,7 @@ namespace impactfe
 
     static void
     declare_parameters(ParameterHandler &prm);
-    /// Parses and checks (lengths, v0 and g > 0, phi finite).
+    /// Parses and checks (lengths and v0 > 0, g >= 0, phi finite).
     void
     parse_parameters(ParameterHandler &prm);
   };
