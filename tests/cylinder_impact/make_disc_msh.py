@@ -9,10 +9,19 @@ The segments of the lower half of the circle get the physical tag 1 (the
 contact boundary id); the rest of the boundary is untagged (id 0).
 
 usage: make_disc_msh.py > disc_4x3.msh
+       make_disc_msh.py N_CORE N_RINGS CENTRE_HEIGHT > file.msh
+(the second form: the paper's cylinder, 12 9 11.5, is
+parameter_files/cylinder_12x9.msh, the mesh of cylinder_impact.prm with its
+initial gap of 1.5, for block_sliding_mpi's cylinder_impact_mpi.prm)
 """
 import math
+import sys
 
 R, CX, CY, N, M = 10.0, 0.0, 10.0, 4, 3
+if len(sys.argv) == 4:
+    N, M, CY = int(sys.argv[1]), int(sys.argv[2]), float(sys.argv[3])
+elif len(sys.argv) != 1:
+    sys.exit(__doc__)
 A = 0.37 * R
 
 points = {}  # (kind, a, b) -> (x, y)
