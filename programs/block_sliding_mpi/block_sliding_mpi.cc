@@ -21,7 +21,8 @@
 // the x-y plane, sliding along x; 3: the box), the subsection `Parallel
 // solver`, and `Scene = impact` with `Initial conditions/Initial velocity`:
 // the body of `Mesh file` thrown at the obstacle, as cylinder_impact and
-// oblique_plate do with the same file (cylinder_impact_mpi.prm). What the
+// oblique_plate do with the same file (cylinder_impact_mpi.prm,
+// oblique_plate_mpi.prm; `Geometry/Thickness` in 2D). What the
 // distributed step does and does not do yet is in doc/parallel.md.
 #include <deal.II/base/mpi.h>
 

@@ -14,6 +14,7 @@
 #include <impactfe/parallel/distributed_body.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace impactfe
 {
@@ -23,14 +24,20 @@ namespace impactfe
     DistributedElasticBody<dim>::DistributedElasticBody(
       const MPI_Comm                  communicator,
       const MaterialParameters       &material,
-      const DiscretizationParameters &discretization)
+      const DiscretizationParameters &discretization,
+      const double                    out_of_plane_measure)
       : mpi_communicator(communicator)
       , material_parameters(material)
       , discretization_parameters(discretization)
+      , out_of_plane(out_of_plane_measure)
       , mesh(communicator)
       , fe(FE_Q<dim>(1), dim)
       , dofs(mesh)
-    {}
+    {
+      AssertThrow(out_of_plane > 0. && std::isfinite(out_of_plane),
+                  ExcMessage("DistributedElasticBody: the thickness must "
+                             "be > 0."));
+    }
 
 
 
@@ -272,7 +279,7 @@ namespace impactfe
                                      viscous,
                                      material_parameters.density,
                                      body_force_density,
-                                     1.,
+                                     out_of_plane,
                                      cell_operators);
             cell->get_dof_indices(local_dofs);
             add(cell_operators, local_dofs, viscous);

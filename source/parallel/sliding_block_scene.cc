@@ -72,6 +72,13 @@ namespace impactfe
         "rigid-block model. impact: the body of 'Mesh file' thrown at the "
         "obstacle with 'Initial velocity', checked by its impulse balance "
         "and the contact verification (the cylinder and the plate).");
+      prm.enter_subsection("Geometry");
+      prm.declare_entry("Thickness",
+                        "1",
+                        Patterns::Double(),
+                        "Dimension = 2: the out-of-plane thickness of the "
+                        "body (plane strain or stress) [m]. Must be > 0.");
+      prm.leave_subsection();
       prm.enter_subsection("Initial conditions");
       prm.declare_entry("Initial velocity",
                         "",
@@ -92,6 +99,14 @@ namespace impactfe
       prm.parse_input(file);
       dimension = prm.get_integer("Dimension");
       impact    = prm.get("Scene") == "impact";
+      prm.enter_subsection("Geometry");
+      thickness = prm.get_double("Thickness");
+      prm.leave_subsection();
+      require_positive(thickness, "Geometry", "Thickness");
+      AssertThrow(dimension == 2 || thickness == 1.,
+                  ExcMessage("Geometry: 'Thickness' is for Dimension = 2, "
+                             "got " +
+                             format_number(thickness) + " in 3D."));
       prm.enter_subsection("Initial conditions");
       const std::string velocity = prm.get("Initial velocity");
       prm.leave_subsection();
@@ -144,7 +159,8 @@ namespace impactfe
       , pcout(std::cout, Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
       , body(MPI_COMM_WORLD,
              parameters.material,
-             parameters.scene.discretization)
+             parameters.scene.discretization,
+             dim == 2 ? parameters.thickness : 1.)
     {}
 
 

@@ -313,6 +313,7 @@ main()
            "set Scene = impact\n" +
              with("Initial conditions", "Initial velocity = 0, -1, 0"),
            mpi);
+  run_case("mpi_thickness_in_3d", with("Geometry", "Thickness = 0.5"), mpi);
   run_case("mpi_bad_solver_tolerance",
            with("Parallel solver", "Tolerance = 2"),
            mpi);

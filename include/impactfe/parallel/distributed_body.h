@@ -46,9 +46,12 @@ namespace impactfe
     class DistributedElasticBody
     {
     public:
+      /// @p out_of_plane_measure: the thickness in 2D [m] (1 in 3D), as
+      /// for the serial ElasticBody.
       DistributedElasticBody(const MPI_Comm                  communicator,
                              const MaterialParameters       &material,
-                             const DiscretizationParameters &discretization);
+                             const DiscretizationParameters &discretization,
+                             const double out_of_plane_measure = 1.);
 
       parallel::distributed::Triangulation<dim> &
       triangulation();
@@ -130,6 +133,7 @@ namespace impactfe
       MPI_Comm                                  mpi_communicator;
       MaterialParameters                        material_parameters;
       DiscretizationParameters                  discretization_parameters;
+      double                                    out_of_plane;
       parallel::distributed::Triangulation<dim> mesh;
       FESystem<dim>                             fe;
       DoFHandler<dim>                           dofs;

@@ -34,7 +34,9 @@ namespace impactfe
       unsigned int dimension = 3;
       /// The sliding box, checked against the rigid block; or a body from
       /// `Mesh file` thrown at the obstacle with initial_velocity.
-      bool                     impact = false;
+      bool impact = false;
+      /// 2D: the out-of-plane thickness [m].
+      double                   thickness = 1.;
       std::vector<double>      initial_velocity;
       SceneParameters          scene;
       MeshParameters           mesh;
