@@ -300,6 +300,21 @@ namespace impactfe
       body.stiffness_matrix().vmult(work, u);
       const double         elastic_energy = 0.5 * (work * u);
       const Tensor<1, dim> p              = body.momentum(v); // collective
+      if (parameters.impact)
+        {
+          const double energy =
+            kinetic_energy + elastic_energy - body.external_force() * u;
+          if (step == 0)
+            initial_energy = energy;
+          else
+            largest_increase = std::max(largest_increase, energy - last_energy);
+          last_energy = energy;
+          largest_stored_energy =
+            std::max(largest_stored_energy, kinetic_energy + elastic_energy);
+          contact.gaps(u, gaps);
+          for (const double g : gaps)
+            largest_penetration = std::max(largest_penetration, -g);
+        }
       if (history)
         {
           const double per_impulse = solver->integrator().force_per_impulse();
@@ -503,6 +518,43 @@ namespace impactfe
                     parameters.scene.verification.max_impulse_balance_error);
       ok &=
         print_check(out, "contact verification", largest_violation, "<=", 1e-8);
+      // relative to the initial energy, or to the largest stored one when
+      // the body starts at rest
+      const double energy_scale =
+        initial_energy > 0. ?
+          initial_energy :
+          std::max(largest_stored_energy, std::numeric_limits<double>::min());
+      const double energy_ratio =
+        initial_energy > 0. ?
+          last_energy / initial_energy :
+          1. + (last_energy - initial_energy) / energy_scale;
+      if (parameters.impact)
+        {
+          const ContactVerificationParameters &bounds =
+            parameters.scene.verification;
+          out << "  Signorini: largest penetration "
+              << format_figure(largest_penetration, 1e-12) << "\n"
+              << "  Energy (kinetic + elastic - work of the loads): final / "
+                 "initial = "
+              << format_figure(energy_ratio, 1e-12)
+              << ", largest increase in a step = "
+              << format_figure(largest_increase / energy_scale, 1e-12)
+              << " of the initial energy\n";
+          ok &= print_check(out,
+                            "penetration",
+                            largest_penetration,
+                            "<=",
+                            bounds.max_penetration);
+          ok &= print_check(out,
+                            "energy increase in a step",
+                            largest_increase / energy_scale,
+                            "<=",
+                            bounds.max_energy_increase);
+          ok &= print_check(
+            out, "energy ratio", energy_ratio, ">=", bounds.min_energy_ratio);
+          ok &= print_check(
+            out, "energy ratio", energy_ratio, "<=", bounds.max_energy_ratio);
+        }
       const RigidSliding rigid(parameters.box.speed,
                                0.,
                                parameters.box.gravity,
@@ -547,6 +599,8 @@ namespace impactfe
         .add("normal_impulse", normal_impulse)
         .add("tangential_impulse", tangential_impulse)
         .add("impulse_balance_error", balance_error)
+        .add("energy_ratio", energy_ratio)
+        .add("max_penetration", largest_penetration)
         .add("contact_problems", double(stats.contact_problems))
         .add("fallbacks", double(stats.fallbacks))
         .add("products", double(stats.products))

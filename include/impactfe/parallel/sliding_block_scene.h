@@ -122,9 +122,16 @@ namespace impactfe
       DistributedStepReport                         last_report;
       DistributedVector                             work;
       double normal_impulse = 0., tangential_impulse = 0., balance_error = 0.,
-             largest_turn        = 0.;
-      double       setup_seconds = 0., loop_seconds = 0.;
-      unsigned int n_steps = 0;
+             largest_turn = 0.;
+      /// Scene = impact: kinetic + elastic energy minus the loads' work,
+      /// at t = 0 and at the last step, its largest increase in a step, the
+      /// largest kinetic + elastic energy (the scale when the body starts
+      /// at rest, as in ContactMonitor), and the largest penetration.
+      double initial_energy = 0., last_energy = 0., largest_increase = 0.,
+             largest_stored_energy = 0., largest_penetration = 0.;
+      std::vector<double> gaps;
+      double              setup_seconds = 0., loop_seconds = 0.;
+      unsigned int        n_steps = 0;
     };
   } // namespace distributed
 } // namespace impactfe
