@@ -1,11 +1,14 @@
 #include <deal.II/base/exceptions.h>
 
 #include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/tria_description.h>
 
 #include <impactfe/bodies/mesh_input.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 namespace impactfe
 {
@@ -126,6 +129,70 @@ namespace impactfe
 
 
 
+  // Each body's vertices are appended with an offset; the boundary ids are
+  // set afterwards on the faces found by their vertex numbers, which
+  // create_triangulation() keeps.
+  template <int dim>
+  void
+  merge_body_meshes(const std::vector<const Triangulation<dim> *> &bodies,
+                    Triangulation<dim>                            &result)
+  {
+    std::vector<Point<dim>>                                 vertices;
+    std::vector<CellData<dim>>                              cells;
+    std::map<std::vector<unsigned int>, types::boundary_id> face_ids;
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        const Triangulation<dim> &body = *bodies[b];
+        AssertThrow(body.n_levels() == 1,
+                    ExcMessage("merge_body_meshes: body " + std::to_string(b) +
+                               "'s mesh is refined; give its coarse mesh."));
+        const unsigned int offset = vertices.size();
+        vertices.insert(vertices.end(),
+                        body.get_vertices().begin(),
+                        body.get_vertices().end());
+        for (const auto &cell : body.active_cell_iterators())
+          {
+            CellData<dim> data(cell->n_vertices());
+            for (const unsigned int v : cell->vertex_indices())
+              data.vertices[v] = cell->vertex_index(v) + offset;
+            data.material_id = b;
+            cells.push_back(data);
+            for (const auto &face : cell->face_iterators())
+              if (face->at_boundary() && face->boundary_id() != 0)
+                {
+                  std::vector<unsigned int> key;
+                  for (const unsigned int v : face->vertex_indices())
+                    key.push_back(face->vertex_index(v) + offset);
+                  std::sort(key.begin(), key.end());
+                  face_ids[key] = face->boundary_id();
+                }
+          }
+      }
+    Triangulation<dim> merged;
+    merged.create_triangulation(vertices, cells, SubCellData());
+    for (const auto &cell : merged.active_cell_iterators())
+      for (const auto &face : cell->face_iterators())
+        if (face->at_boundary())
+          {
+            std::vector<unsigned int> key;
+            for (const unsigned int v : face->vertex_indices())
+              key.push_back(face->vertex_index(v));
+            std::sort(key.begin(), key.end());
+            const auto found = face_ids.find(key);
+            if (found != face_ids.end())
+              face->set_boundary_id(found->second);
+          }
+    result.copy_triangulation(merged);
+  }
+
+
+
+  template void
+  merge_body_meshes<2>(const std::vector<const Triangulation<2> *> &,
+                       Triangulation<2> &);
+  template void
+  merge_body_meshes<3>(const std::vector<const Triangulation<3> *> &,
+                       Triangulation<3> &);
   template void
   MeshParameters::read<1>(Triangulation<1> &, const std::string &) const;
   template void

@@ -397,12 +397,15 @@ namespace impactfe
     // known.
     template <int dim>
     void
-    DistributedElasticBody<dim>::fill_uniform(DistributedVector    &vector,
-                                              const Tensor<1, dim> &value) const
+    DistributedElasticBody<dim>::fill_uniform(
+      DistributedVector       &vector,
+      const Tensor<1, dim>    &value,
+      const types::material_id part) const
     {
       std::vector<types::global_dof_index> local_dofs(fe.n_dofs_per_cell());
       for (const auto &cell : dofs.active_cell_iterators())
-        if (cell->is_locally_owned())
+        if (cell->is_locally_owned() && (part == numbers::invalid_material_id ||
+                                         cell->material_id() == part))
           {
             cell->get_dof_indices(local_dofs);
             for (unsigned int i = 0; i < local_dofs.size(); ++i)
@@ -423,6 +426,47 @@ namespace impactfe
       Tensor<1, dim> p;
       for (unsigned int d = 0; d < dim; ++d)
         p[d] = mass_unit_fields[d] * velocity;
+      return p;
+    }
+
+
+
+    template <int dim>
+    double
+    DistributedElasticBody<dim>::part_mass(const types::material_id part)
+    {
+      auto found = part_mass_unit_fields.find(part);
+      if (found == part_mass_unit_fields.end())
+        {
+          auto &[fields, part_total] = part_mass_unit_fields[part];
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              DistributedVector unit(owned, mpi_communicator);
+              Tensor<1, dim>    e;
+              e[d] = 1.;
+              fill_uniform(unit, e, part);
+              fields[d].reinit(owned, mpi_communicator);
+              mass.vmult(fields[d], unit);
+              if (d == 0)
+                part_total = fields[d] * unit;
+            }
+          found = part_mass_unit_fields.find(part);
+        }
+      return found->second.second;
+    }
+
+
+
+    template <int dim>
+    Tensor<1, dim>
+    DistributedElasticBody<dim>::momentum(const DistributedVector &velocity,
+                                          const types::material_id part)
+    {
+      part_mass(part);
+      const auto    &fields = part_mass_unit_fields.at(part).first;
+      Tensor<1, dim> p;
+      for (unsigned int d = 0; d < dim; ++d)
+        p[d] = fields[d] * velocity;
       return p;
     }
 

@@ -2,24 +2,22 @@
 
 #include <impactfe/contact/contact_set.h>
 #include <impactfe/parallel/distributed_contact.h>
+#include <impactfe/utilities/program.h>
 
 #include <algorithm>
+#include <limits>
 #include <set>
+#include <sstream>
 
 namespace impactfe
 {
   namespace distributed
   {
     // @sect3{The candidates}
-    // Each rank lists the nodes of the contact boundary whose DoFs it owns
-    // (a node's DoFs have one owner), as numbers: position, DoFs, rank.
-    // After an all-gather every rank sorts the same list by position.
     template <int dim>
     void
-    DistributedObstacleContact<dim>::setup(
+    DistributedContact<dim>::start_setup(
       const DistributedElasticBody<dim> &body,
-      const types::boundary_id           boundary_id,
-      const RigidObstacle<dim>          &obstacle,
       const double                       friction_coefficient)
     {
       AssertThrow(friction_coefficient >= 0.,
@@ -29,14 +27,31 @@ namespace impactfe
       this_rank    = Utilities::MPI::this_mpi_process(communicator);
       mu           = friction_coefficient;
       directions   = mu > 0. ? dim : 1;
+      candidate_list.clear();
+    }
 
+
+
+    // Each rank lists the nodes of the boundary whose DoFs it owns (a
+    // node's DoFs have one owner), as numbers: position, DoFs, rank. The
+    // all-gather gives every rank the same list.
+    template <int dim>
+    std::vector<typename DistributedContact<dim>::Node>
+    DistributedContact<dim>::gather_boundary_nodes(
+      const DistributedElasticBody<dim> &body,
+      const types::boundary_id           boundary_id,
+      const types::material_id           part,
+      std::vector<Point<dim>>           &positions) const
+    {
       const IndexSet                   &owned = body.locally_owned_dofs();
       std::set<types::global_dof_index> seen;
       std::vector<double>               mine;
       // ghost cells too: a node this rank owns may lie on a boundary face
       // of a neighbour's cell only (meshes read from files)
       for (const auto &cell : body.dof_handler().active_cell_iterators())
-        if (cell->is_locally_owned() || cell->is_ghost())
+        if ((cell->is_locally_owned() || cell->is_ghost()) &&
+            (part == numbers::invalid_material_id ||
+             cell->material_id() == part))
           for (const auto &face : cell->face_iterators())
             if (face->at_boundary() && face->boundary_id() == boundary_id)
               for (const unsigned int v : face->vertex_indices())
@@ -56,26 +71,35 @@ namespace impactfe
       const std::vector<std::vector<double>> all =
         Utilities::MPI::all_gather(communicator, mine);
 
-      candidate_list.clear();
+      std::vector<Node> nodes;
+      positions.clear();
       const unsigned int record = 2 * dim + 1;
       for (const std::vector<double> &list : all)
         for (std::size_t i = 0; i + record <= list.size(); i += record)
           {
-            Candidate c;
+            Node       node;
+            Point<dim> x;
             for (unsigned int d = 0; d < dim; ++d)
               {
-                c.position[d] = list[i + d];
-                c.dofs[d] =
+                x[d] = list[i + d];
+                node.dofs[d] =
                   static_cast<types::global_dof_index>(list[i + dim + d]);
               }
-            c.owner       = static_cast<unsigned int>(list[i + 2 * dim]);
-            c.frame       = contact_frame(obstacle.normal(c.position));
-            c.initial_gap = obstacle.signed_distance(c.position);
-            candidate_list.push_back(c);
+            node.owner = static_cast<unsigned int>(list[i + 2 * dim]);
+            nodes.push_back(node);
+            positions.push_back(x);
           }
+      return nodes;
+    }
+
+
+
+    template <int dim>
+    void
+    DistributedContact<dim>::finish_setup(const std::string &where)
+    {
       AssertThrow(!candidate_list.empty(),
-                  ExcMessage("Contact: the body has no vertex on boundary id " +
-                             std::to_string(boundary_id) +
+                  ExcMessage("Contact: " + where +
                              ", so the contact boundary is empty."));
       std::sort(candidate_list.begin(),
                 candidate_list.end(),
@@ -90,8 +114,114 @@ namespace impactfe
 
 
     template <int dim>
+    void
+    DistributedContact<dim>::setup(const DistributedElasticBody<dim> &body,
+                                   const types::boundary_id  boundary_id,
+                                   const RigidObstacle<dim> &obstacle,
+                                   const double friction_coefficient)
+    {
+      start_setup(body, friction_coefficient);
+      pairs = false;
+      std::vector<Point<dim>> positions;
+      const std::vector<Node> nodes = gather_boundary_nodes(
+        body, boundary_id, numbers::invalid_material_id, positions);
+      for (unsigned int i = 0; i < nodes.size(); ++i)
+        {
+          Candidate c;
+          c.position    = positions[i];
+          c.nodes[0]    = nodes[i];
+          c.frame       = contact_frame(obstacle.normal(c.position));
+          c.initial_gap = obstacle.signed_distance(c.position);
+          candidate_list.push_back(c);
+        }
+      finish_setup("the body has no vertex on boundary id " +
+                   std::to_string(boundary_id));
+    }
+
+
+
+    // Side B's partner of a node of A lies on the line through it along n:
+    // the distance across n is below 1e-8 of the interface's size (the
+    // meshes match); the nearest such node along n wins.
+    template <int dim>
+    void
+    DistributedContact<dim>::setup_node_to_node(
+      const DistributedElasticBody<dim> &body,
+      const types::material_id           part_a,
+      const types::boundary_id           boundary_a,
+      const types::material_id           part_b,
+      const types::boundary_id           boundary_b,
+      const Tensor<1, dim>              &normal,
+      const double                       friction_coefficient)
+    {
+      AssertThrow(std::abs(normal.norm() - 1.) < 1e-12,
+                  ExcMessage("Contact: the node-to-node normal must be a "
+                             "unit vector, got length " +
+                             format_number(normal.norm()) + "."));
+      start_setup(body, friction_coefficient);
+      pairs = true;
+      std::vector<Point<dim>> x_a, x_b;
+      const std::vector<Node> side_a =
+        gather_boundary_nodes(body, boundary_a, part_a, x_a);
+      std::vector<Node> side_b =
+        gather_boundary_nodes(body, boundary_b, part_b, x_b);
+      AssertThrow(!side_b.empty(),
+                  ExcMessage("Contact: the second body has no vertex on "
+                             "boundary id " +
+                             std::to_string(boundary_b) + "."));
+      double size = 0.;
+      for (const std::vector<Point<dim>> *list : {&x_a, &x_b})
+        for (const Point<dim> &x : *list)
+          size = std::max(size, x.distance(x_a.empty() ? x_b[0] : x_a[0]));
+      const double tolerance = 1e-8 * std::max(size, 1e-300);
+      const auto   frame     = contact_frame(normal);
+      for (unsigned int i = 0; i < side_a.size(); ++i)
+        {
+          unsigned int partner = numbers::invalid_unsigned_int;
+          double       best    = std::numeric_limits<double>::max();
+          for (unsigned int j = 0; j < side_b.size(); ++j)
+            {
+              const Tensor<1, dim> r     = x_a[i] - x_b[j];
+              const double         along = r * normal;
+              if ((r - along * normal).norm() <= tolerance &&
+                  std::abs(along) < best)
+                {
+                  best    = std::abs(along);
+                  partner = j;
+                }
+            }
+          if (partner == numbers::invalid_unsigned_int)
+            {
+              std::ostringstream where;
+              where << "Contact: the node at (";
+              for (unsigned int d = 0; d < dim; ++d)
+                where << (d > 0 ? ", " : "") << x_a[i][d];
+              where << ") of the first body's boundary id " << boundary_a
+                    << " has no partner on the second body's boundary id "
+                    << boundary_b
+                    << " along the normal; node-to-node contact needs "
+                       "matching interface meshes.";
+              AssertThrow(false, ExcMessage(where.str()));
+            }
+          Candidate c;
+          c.position        = x_a[i];
+          c.n_nodes         = 2;
+          c.nodes[0]        = side_a[i];
+          c.nodes[1]        = side_b[partner];
+          c.nodes[1].weight = -1.;
+          c.frame           = frame;
+          c.initial_gap     = (x_a[i] - x_b[partner]) * normal;
+          candidate_list.push_back(c);
+        }
+      finish_setup("the first body has no vertex on boundary id " +
+                   std::to_string(boundary_a));
+    }
+
+
+
+    template <int dim>
     unsigned int
-    DistributedObstacleContact<dim>::n_candidates() const
+    DistributedContact<dim>::n_candidates() const
     {
       return candidate_list.size();
     }
@@ -100,7 +230,7 @@ namespace impactfe
 
     template <int dim>
     unsigned int
-    DistributedObstacleContact<dim>::n_directions() const
+    DistributedContact<dim>::n_directions() const
     {
       return directions;
     }
@@ -109,7 +239,7 @@ namespace impactfe
 
     template <int dim>
     double
-    DistributedObstacleContact<dim>::friction_coefficient() const
+    DistributedContact<dim>::friction_coefficient() const
     {
       return mu;
     }
@@ -117,8 +247,8 @@ namespace impactfe
 
 
     template <int dim>
-    const typename DistributedObstacleContact<dim>::Candidate &
-    DistributedObstacleContact<dim>::candidate(const unsigned int c) const
+    const typename DistributedContact<dim>::Candidate &
+    DistributedContact<dim>::candidate(const unsigned int c) const
     {
       return candidate_list[c];
     }
@@ -127,31 +257,58 @@ namespace impactfe
 
     template <int dim>
     bool
-    DistributedObstacleContact<dim>::owns(const unsigned int c) const
+    DistributedContact<dim>::owns(const unsigned int c) const
     {
-      return candidate_list[c].owner == this_rank;
+      return candidate_list[c].nodes[0].owner == this_rank;
+    }
+
+
+
+    template <int dim>
+    bool
+    DistributedContact<dim>::between_bodies() const
+    {
+      return pairs;
     }
 
 
 
     // @sect3{Replicated values}
-    // Each owner writes its candidates' values into a zeroed array, and the
-    // ranks sum it: one value per entry, so the sum is exact.
+    // Each rank writes the part of each candidate's value that the nodes
+    // it owns give into a zeroed array, and the ranks sum it: against an
+    // obstacle one term per entry (the sum is exact); a pair's two nodes
+    // may have different owners.
+    template <int dim>
+    double
+    DistributedContact<dim>::owned_part(const Candidate         &candidate,
+                                        const unsigned int       direction,
+                                        const DistributedVector &field) const
+    {
+      double value = 0.;
+      for (unsigned int i = 0; i < candidate.n_nodes; ++i)
+        {
+          const Node &node = candidate.nodes[i];
+          if (node.owner != this_rank)
+            continue;
+          double along = 0.;
+          for (unsigned int d = 0; d < dim; ++d)
+            along += candidate.frame[direction][d] * field[node.dofs[d]];
+          value += node.weight * along;
+        }
+      return value;
+    }
+
+
+
     template <int dim>
     void
-    DistributedObstacleContact<dim>::gaps(const DistributedVector &u,
-                                          std::vector<double>     &gap) const
+    DistributedContact<dim>::gaps(const DistributedVector &u,
+                                  std::vector<double>     &gap) const
     {
       partial.assign(candidate_list.size(), 0.);
       for (unsigned int c = 0; c < candidate_list.size(); ++c)
-        if (owns(c))
-          {
-            const Candidate &cand = candidate_list[c];
-            double           g    = cand.initial_gap;
-            for (unsigned int d = 0; d < dim; ++d)
-              g += cand.frame[0][d] * u[cand.dofs[d]];
-            partial[c] = g;
-          }
+        partial[c] = (owns(c) ? candidate_list[c].initial_gap : 0.) +
+                     owned_part(candidate_list[c], 0, u);
       gap.resize(partial.size());
       Utilities::MPI::sum(partial, communicator, gap);
     }
@@ -160,16 +317,13 @@ namespace impactfe
 
     template <int dim>
     void
-    DistributedObstacleContact<dim>::normal_velocities(
+    DistributedContact<dim>::normal_velocities(
       const DistributedVector &v,
       std::vector<double>     &normal_velocity) const
     {
       partial.assign(candidate_list.size(), 0.);
       for (unsigned int c = 0; c < candidate_list.size(); ++c)
-        if (owns(c))
-          for (unsigned int d = 0; d < dim; ++d)
-            partial[c] +=
-              candidate_list[c].frame[0][d] * v[candidate_list[c].dofs[d]];
+        partial[c] = owned_part(candidate_list[c], 0, v);
       normal_velocity.resize(partial.size());
       Utilities::MPI::sum(partial, communicator, normal_velocity);
     }
@@ -178,18 +332,14 @@ namespace impactfe
 
     template <int dim>
     void
-    DistributedObstacleContact<dim>::local_velocities(
-      const DistributedVector &v,
-      std::vector<double>     &local) const
+    DistributedContact<dim>::local_velocities(const DistributedVector &v,
+                                              std::vector<double> &local) const
     {
       const unsigned int n = candidate_list.size();
       partial.assign(n * directions, 0.);
       for (unsigned int c = 0; c < n; ++c)
-        if (owns(c))
-          for (unsigned int k = 0; k < directions; ++k)
-            for (unsigned int d = 0; d < dim; ++d)
-              partial[c * directions + k] +=
-                candidate_list[c].frame[k][d] * v[candidate_list[c].dofs[d]];
+        for (unsigned int k = 0; k < directions; ++k)
+          partial[c * directions + k] = owned_part(candidate_list[c], k, v);
       local.resize(partial.size());
       Utilities::MPI::sum(partial, communicator, local);
     }
@@ -198,21 +348,16 @@ namespace impactfe
 
     template <int dim>
     void
-    DistributedObstacleContact<dim>::local_values(
+    DistributedContact<dim>::local_values(
       const DistributedVector         &field,
       const std::vector<unsigned int> &candidates,
       std::vector<double>             &local) const
     {
       partial.assign(candidates.size() * directions, 0.);
       for (unsigned int a = 0; a < candidates.size(); ++a)
-        if (owns(candidates[a]))
-          {
-            const Candidate &cand = candidate_list[candidates[a]];
-            for (unsigned int k = 0; k < directions; ++k)
-              for (unsigned int d = 0; d < dim; ++d)
-                partial[a * directions + k] +=
-                  cand.frame[k][d] * field[cand.dofs[d]];
-          }
+        for (unsigned int k = 0; k < directions; ++k)
+          partial[a * directions + k] =
+            owned_part(candidate_list[candidates[a]], k, field);
       local.resize(partial.size());
       Utilities::MPI::sum(partial, communicator, local);
     }
@@ -221,30 +366,35 @@ namespace impactfe
 
     template <int dim>
     void
-    DistributedObstacleContact<dim>::add_impulses(
+    DistributedContact<dim>::add_impulses(
       const std::vector<unsigned int> &candidates,
       const std::vector<double>       &x,
       DistributedVector               &target) const
     {
       for (unsigned int a = 0; a < candidates.size(); ++a)
-        if (owns(candidates[a]))
-          {
-            const Candidate &cand = candidate_list[candidates[a]];
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                double f = 0.;
-                for (unsigned int k = 0; k < directions; ++k)
-                  f += cand.frame[k][d] * x[a * directions + k];
-                if (f != 0.)
-                  target[cand.dofs[d]] += f;
-              }
-          }
+        {
+          const Candidate &cand = candidate_list[candidates[a]];
+          for (unsigned int i = 0; i < cand.n_nodes; ++i)
+            {
+              const Node &node = cand.nodes[i];
+              if (node.owner != this_rank)
+                continue;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  double f = 0.;
+                  for (unsigned int k = 0; k < directions; ++k)
+                    f += cand.frame[k][d] * x[a * directions + k];
+                  if (f != 0.)
+                    target[node.dofs[d]] += node.weight * f;
+                }
+            }
+        }
       target.compress(VectorOperation::add);
     }
 
 
 
-    template class DistributedObstacleContact<2>;
-    template class DistributedObstacleContact<3>;
+    template class DistributedContact<2>;
+    template class DistributedContact<3>;
   } // namespace distributed
 } // namespace impactfe

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 
 namespace impactfe
 {
@@ -84,11 +85,11 @@ namespace impactfe
 
     template <int dim>
     DistributedImpactSolver<dim>::DistributedImpactSolver(
-      const DistributedElasticBody<dim>     &body,
-      const DistributedObstacleContact<dim> &contact,
-      const TimeSteppingParameters          &time,
-      const ContactSolverParameters         &solver,
-      const ParallelSolverParameters        &linear_solver)
+      const DistributedElasticBody<dim> &body,
+      const DistributedContact<dim>     &contact,
+      const TimeSteppingParameters      &time,
+      const ContactSolverParameters     &solver,
+      const ParallelSolverParameters    &linear_solver)
       : body(body)
       , contact(contact)
       , solver_parameters(solver)
@@ -198,10 +199,23 @@ namespace impactfe
                                      subdomain_matrix,
                                      local_to_global,
                                      on_interface);
-      std::vector<types::global_dof_index> contact_dofs;
+      // each node once (a node of side B may serve several candidates)
+      std::vector<types::global_dof_index>            contact_dofs;
+      std::map<types::global_dof_index, unsigned int> slot_of_node;
+      contact_slots.resize(contact.n_candidates());
       for (unsigned int c = 0; c < contact.n_candidates(); ++c)
-        for (unsigned int d = 0; d < dim; ++d)
-          contact_dofs.push_back(contact.candidate(c).dofs[d]);
+        for (unsigned int i = 0; i < contact.candidate(c).n_nodes; ++i)
+          {
+            const auto &node = contact.candidate(c).nodes[i];
+            const auto  slot =
+              slot_of_node.emplace(node.dofs[0], contact_dofs.size());
+            if (slot.second)
+              contact_dofs.insert(contact_dofs.end(),
+                                  node.dofs.begin(),
+                                  node.dofs.end());
+            for (unsigned int d = 0; d < dim; ++d)
+              contact_slots[c][i][d] = slot.first->second + d;
+          }
       substructured_solver = std::make_unique<SubstructuredSolver>();
       substructured_solver->initialize(body.communicator(),
                                        subdomain_matrix,
@@ -210,14 +224,10 @@ namespace impactfe
                                        contact_dofs,
                                        body.locally_owned_dofs(),
                                        "the step matrix");
-      // the dense complement keeps C in the given order
-      contact_slots.resize(contact.n_candidates());
-      for (unsigned int c = 0; c < contact.n_candidates(); ++c)
-        for (unsigned int d = 0; d < dim; ++d)
-          contact_slots[c][d] = c * dim + d;
-      const unsigned int n_c = contact_dofs.size();
-      dense_in.assign(n_c, 0.);
-      dense_out.assign(n_c, 0.);
+      // (the dense complement keeps C in the given order)
+      n_contact_dofs = contact_dofs.size();
+      dense_in.assign(n_contact_dofs, 0.);
+      dense_out.assign(n_contact_dofs, 0.);
     }
 
 
@@ -225,9 +235,10 @@ namespace impactfe
     template <int dim>
     void
     DistributedImpactSolver<dim>::set_initial_velocity(
-      const Tensor<1, dim> &velocity)
+      const Tensor<1, dim>    &velocity,
+      const types::material_id part)
     {
-      body.fill_uniform(v, velocity);
+      body.fill_uniform(v, velocity, part);
     }
 
 
@@ -341,13 +352,8 @@ namespace impactfe
         schur.vmult_inverse(dense_in.data(), dense_out.data());
       y.assign(lcp_candidates.size() * nd, 0.);
       for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
-        {
-          const unsigned int c     = lcp_candidates[a];
-          const auto        &frame = contact.candidate(c).frame;
-          for (unsigned int k = 0; k < nd; ++k)
-            for (unsigned int d = 0; d < dim; ++d)
-              y[a * nd + k] += frame[k][d] * dense_out[contact_slots[c][d]];
-        }
+        for (unsigned int k = 0; k < nd; ++k)
+          y[a * nd + k] = frame_component(lcp_candidates[a], k, dense_out);
       if (!use_schur)
         ++stats.products;
     }
@@ -365,14 +371,17 @@ namespace impactfe
       std::vector<double>       &on_dofs) const
     {
       const unsigned int nd = contact.n_directions();
-      on_dofs.assign(contact_slots.size() * dim, 0.);
+      on_dofs.assign(n_contact_dofs, 0.);
       for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
         {
-          const unsigned int c     = lcp_candidates[a];
-          const auto        &frame = contact.candidate(c).frame;
-          for (unsigned int k = 0; k < nd; ++k)
-            for (unsigned int d = 0; d < dim; ++d)
-              on_dofs[contact_slots[c][d]] += frame[k][d] * x[a * nd + k];
+          const unsigned int c         = lcp_candidates[a];
+          const auto        &candidate = contact.candidate(c);
+          for (unsigned int i = 0; i < candidate.n_nodes; ++i)
+            for (unsigned int k = 0; k < nd; ++k)
+              for (unsigned int d = 0; d < dim; ++d)
+                on_dofs[contact_slots[c][i][d]] += candidate.nodes[i].weight *
+                                                   candidate.frame[k][d] *
+                                                   x[a * nd + k];
         }
     }
 
@@ -385,14 +394,28 @@ namespace impactfe
       std::vector<double>       &local) const
     {
       const unsigned int nd = contact.n_directions();
-      local.assign(contact_slots.size() * nd, 0.);
+      local.resize(contact_slots.size() * nd);
       for (unsigned int c = 0; c < contact_slots.size(); ++c)
-        {
-          const auto &frame = contact.candidate(c).frame;
-          for (unsigned int k = 0; k < nd; ++k)
-            for (unsigned int d = 0; d < dim; ++d)
-              local[c * nd + k] += frame[k][d] * on_dofs[contact_slots[c][d]];
-        }
+        for (unsigned int k = 0; k < nd; ++k)
+          local[c * nd + k] = frame_component(c, k, on_dofs);
+    }
+
+
+
+    template <int dim>
+    double
+    DistributedImpactSolver<dim>::frame_component(
+      const unsigned int         c,
+      const unsigned int         direction,
+      const std::vector<double> &on_dofs) const
+    {
+      const auto &candidate = contact.candidate(c);
+      double      value     = 0.;
+      for (unsigned int i = 0; i < candidate.n_nodes; ++i)
+        for (unsigned int d = 0; d < dim; ++d)
+          value += candidate.nodes[i].weight * candidate.frame[direction][d] *
+                   on_dofs[contact_slots[c][i][d]];
+      return value;
     }
 
 
@@ -428,20 +451,26 @@ namespace impactfe
           return;
         }
 
-      // 1/W_jj ~ f_k^T M~_node f_k, the node's block of M~ in the frame
-      // (M~ is nearly block diagonal where the mass dominates)
+      // 1/W_jj ~ f_k^T M~_node f_k, the nodes' blocks of M~ in the frame
+      // (M~ is nearly block diagonal where the mass dominates; the two
+      // nodes of a pair belong to different bodies), each from the rank
+      // that owns the node's rows
+      const unsigned int this_rank =
+        Utilities::MPI::this_mpi_process(body.communicator());
       lcp_penalty.assign(n * nd, 0.);
       for (unsigned int a = 0; a < n; ++a)
-        if (contact.owns(lcp_candidates[a]))
-          {
-            const auto &cand = contact.candidate(lcp_candidates[a]);
-            for (unsigned int k = 0; k < nd; ++k)
-              for (unsigned int d = 0; d < dim; ++d)
-                for (unsigned int e = 0; e < dim; ++e)
-                  lcp_penalty[a * nd + k] +=
-                    cand.frame[k][d] * cand.frame[k][e] *
-                    step_matrix.el(cand.dofs[d], cand.dofs[e]);
-          }
+        {
+          const auto &cand = contact.candidate(lcp_candidates[a]);
+          for (unsigned int i = 0; i < cand.n_nodes; ++i)
+            if (cand.nodes[i].owner == this_rank)
+              for (unsigned int k = 0; k < nd; ++k)
+                for (unsigned int d = 0; d < dim; ++d)
+                  for (unsigned int e = 0; e < dim; ++e)
+                    lcp_penalty[a * nd + k] +=
+                      cand.frame[k][d] * cand.frame[k][e] *
+                      step_matrix.el(cand.nodes[i].dofs[d],
+                                     cand.nodes[i].dofs[e]);
+        }
       Utilities::MPI::sum(lcp_penalty, body.communicator(), lcp_penalty);
 
       // With the substructured solver, W and the preconditioner H^T S_C H
@@ -721,7 +750,7 @@ namespace impactfe
       if (substructured_solver)
         {
           if (lcp_candidates.empty())
-            contact_dof_values.assign(contact_slots.size() * dim, 0.);
+            contact_dof_values.assign(n_contact_dofs, 0.);
           else
             impulses_on_contact_dofs(lcp_P, contact_dof_values);
           const auto start = std::chrono::steady_clock::now();

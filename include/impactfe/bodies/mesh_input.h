@@ -7,6 +7,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <string>
+#include <vector>
 
 namespace impactfe
 {
@@ -49,6 +50,22 @@ namespace impactfe
     read(Triangulation<dim> &triangulation,
          const std::string  &parameter_file) const;
   };
+
+
+
+  /**
+   * One mesh of several bodies, for a program that holds them in one
+   * (distributed) triangulation: the coarse cells of @p bodies side by
+   * side, sharing no vertex even where they touch, with material id i on
+   * the cells of body i and the boundary ids of each body's faces kept
+   * (deal.II's GridGenerator::merge_triangulations() merges touching
+   * vertices and drops the boundary ids). @p result must be empty; the
+   * bodies must be coarse meshes without hanging nodes.
+   */
+  template <int dim>
+  void
+  merge_body_meshes(const std::vector<const Triangulation<dim> *> &bodies,
+                    Triangulation<dim>                            &result);
 } // namespace impactfe
 
 #endif

@@ -24,6 +24,8 @@
 #include <impactfe/bodies/material.h>
 
 #include <functional>
+#include <map>
+#include <utility>
 #include <vector>
 
 namespace impactfe
@@ -93,10 +95,14 @@ namespace impactfe
       double
       total_mass() const;
 
-      /// The vector with @p value at every node (all components).
+      /// @p value at every node (all components) of the cells with
+      /// material id @p part (all cells by default: one body); the other
+      /// entries are left as they are.
       void
-      fill_uniform(DistributedVector    &vector,
-                   const Tensor<1, dim> &value) const;
+      fill_uniform(
+        DistributedVector       &vector,
+        const Tensor<1, dim>    &value,
+        const types::material_id part = numbers::invalid_material_id) const;
 
       /**
        * This rank's subdomain matrix a M + b K + c C (@p mass_coefficient,
@@ -121,6 +127,19 @@ namespace impactfe
       Tensor<1, dim>
       momentum(const DistributedVector &velocity) const;
 
+      /**
+       * The momentum of the cells with material id @p part alone (a body
+       * of a mesh that holds two, which share no node): e_d restricted to
+       * the part's nodes. Its weights M e_d are made at the first call for
+       * a part (collective).
+       */
+      Tensor<1, dim>
+      momentum(const DistributedVector &velocity,
+               const types::material_id part);
+      /// 1^T M 1 of the cells with material id @p part (collective).
+      double
+      part_mass(const types::material_id part);
+
     private:
       /// Calls @p add with the element operators, the DoFs of each locally
       /// owned cell and whether the law is viscous.
@@ -143,7 +162,11 @@ namespace impactfe
       DistributedVector                         body_force;
       /// M e_d for each direction d (the momentum weights).
       std::array<DistributedVector, dim> mass_unit_fields;
-      double                             mass_total = 0.;
+      /// The same per part (momentum(velocity, part)), and its mass.
+      std::map<types::material_id,
+               std::pair<std::array<DistributedVector, dim>, double>>
+             part_mass_unit_fields;
+      double mass_total = 0.;
     };
   } // namespace distributed
 } // namespace impactfe

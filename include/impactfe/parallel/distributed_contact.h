@@ -1,7 +1,9 @@
-// Node-to-obstacle contact candidates of a distributed body: each
-// candidate is owned by the rank that owns its node's DoFs, and the
-// candidate data the contact problem needs (frames, gaps, local
-// velocities) are replicated on every rank (issue 14, doc/parallel.md).
+// The contact candidates of a distributed body: its nodes against a rigid
+// obstacle, or node-to-node pairs between two parts of its mesh (two
+// bodies). Each candidate is owned by the rank that owns its first node's
+// DoFs, and the candidate data the contact problem needs (frames, gaps,
+// local velocities) are replicated on every rank (issue 14,
+// doc/parallel.md).
 #ifndef impactfe_parallel_distributed_contact_h
 #define impactfe_parallel_distributed_contact_h
 
@@ -16,39 +18,70 @@ namespace impactfe
   namespace distributed
   {
     /**
-     * The nodes of a body's boundary @p boundary_id against a rigid
-     * obstacle, with the serial ContactSet's conventions: the frame
-     * (contact_frame()) and the initial gap at the reference position,
-     * g(u) = g_0 + n . u, V = frame . v. The candidates are numbered in the
-     * order of their reference positions (x, then y, then z), whatever the
-     * partition, so runs on different numbers of ranks pose the same
-     * problem. A product with H or H^T touches the owned candidates only;
-     * the replicated values are summed over the ranks (each candidate has
-     * one owner, so the sum is exact).
+     * Contact candidates with the serial ContactSet's conventions: side A
+     * is a node of the body, side B a rigid obstacle or a node of another
+     * part of the mesh; the frame (contact_frame()) has its normal n
+     * pointing from B towards A, and g(u) = g_0 + n . (u_A - u_B),
+     * V = frame . (v_A - v_B), the impulse P acts on A and -P on B. Small
+     * perturbations: frames, g_0 and the pairs are fixed at the reference
+     * configuration. The candidates are numbered in the order of side A's
+     * reference positions (x, then y, then z), whatever the partition, so
+     * runs on different numbers of ranks pose the same problem. A product
+     * with H or H^T touches the DoFs this rank owns only, and the replicated
+     * values are summed over the ranks: no ghost exchange, also when the
+     * two nodes of a pair have different owners.
      */
     template <int dim>
-    class DistributedObstacleContact
+    class DistributedContact
     {
     public:
+      /// A node of a candidate: its DoFs, the rank that owns them, and its
+      /// weight in H (1 for side A, -1 for side B's node).
+      struct Node
+      {
+        std::array<types::global_dof_index, dim> dofs{};
+        unsigned int                             owner  = 0;
+        double                                   weight = 1.;
+      };
       struct Candidate
       {
+        /// Side A's reference position.
         Point<dim>                           position;
         std::array<std::array<double, 3>, 3> frame{};
         double                               initial_gap = 0.;
-        /// The rank that owns the node, and its DoFs there.
-        unsigned int                             owner = 0;
-        std::array<types::global_dof_index, dim> dofs{};
+        /// Side A's node, then (node-to-node) side B's.
+        unsigned int        n_nodes = 1;
+        std::array<Node, 2> nodes{};
       };
 
       /**
-       * The candidates: every node of @p boundary_id. @p n_directions is 1
-       * (frictionless: no tangential unknowns) or dim.
+       * The candidates: every node of @p boundary_id against @p obstacle.
+       * The local directions are 1 (frictionless: no tangential unknowns)
+       * or dim.
        */
       void
       setup(const DistributedElasticBody<dim> &body,
             const types::boundary_id           boundary_id,
             const RigidObstacle<dim>          &obstacle,
             const double                       friction_coefficient);
+
+      /**
+       * Node-to-node candidates between two parts of the body's mesh (the
+       * cells with material ids @p part_a and @p part_b, two bodies with
+       * matching interface meshes): each node of part A on @p boundary_a is
+       * paired with the node of part B on @p boundary_b on the same line
+       * along @p normal (a unit vector from B towards A), as
+       * ContactSet::add_node_to_node(). The initial gap is the distance
+       * along n. Throws, naming the node, if one has no partner.
+       */
+      void
+      setup_node_to_node(const DistributedElasticBody<dim> &body,
+                         const types::material_id           part_a,
+                         const types::boundary_id           boundary_a,
+                         const types::material_id           part_b,
+                         const types::boundary_id           boundary_b,
+                         const Tensor<1, dim>              &normal,
+                         const double friction_coefficient);
 
       unsigned int
       n_candidates() const;
@@ -58,9 +91,12 @@ namespace impactfe
       friction_coefficient() const;
       const Candidate &
       candidate(const unsigned int c) const;
-      /// Whether this rank owns candidate @p c.
+      /// Whether this rank owns candidate @p c (its side A node).
       bool
       owns(const unsigned int c) const;
+      /// Whether a candidate has a side B node (two bodies).
+      bool
+      between_bodies() const;
 
       /// Per candidate, g_0 + n . u (replicated).
       void
@@ -84,8 +120,8 @@ namespace impactfe
                    std::vector<double>             &local) const;
       /**
        * target += H x for the local impulses @p x of @p candidates
-       * (n_directions() per candidate): each rank adds its owned
-       * candidates' nodal forces.
+       * (n_directions() per candidate): each rank adds the nodal forces on
+       * the nodes it owns.
        */
       void
       add_impulses(const std::vector<unsigned int> &candidates,
@@ -93,10 +129,32 @@ namespace impactfe
                    DistributedVector               &target) const;
 
     private:
+      /// The friction coefficient, directions and communicator.
+      void
+      start_setup(const DistributedElasticBody<dim> &body,
+                  const double                       friction_coefficient);
+      /// The owned nodes on @p boundary_id of the cells of @p part (all
+      /// cells: numbers::invalid_material_id), gathered on every rank.
+      std::vector<Node>
+      gather_boundary_nodes(const DistributedElasticBody<dim> &body,
+                            const types::boundary_id           boundary_id,
+                            const types::material_id           part,
+                            std::vector<Point<dim>>           &positions) const;
+      /// Sort by side A's position and check that there are candidates.
+      void
+      finish_setup(const std::string &where);
+      /// Sum over the candidate's nodes that this rank owns of
+      /// weight * frame[k] . field at the node.
+      double
+      owned_part(const Candidate         &candidate,
+                 const unsigned int       direction,
+                 const DistributedVector &field) const;
+
       MPI_Comm                    communicator = MPI_COMM_SELF;
       unsigned int                directions   = 1;
       unsigned int                this_rank    = 0;
       double                      mu           = 0.;
+      bool                        pairs        = false;
       std::vector<Candidate>      candidate_list;
       mutable std::vector<double> partial;
     };

@@ -34,7 +34,8 @@ namespace impactfe
       unsigned int active_contacts = 0;
       /// Sum over the contacts of P_N, and |sum of P_T| (as vectors) [N s].
       double normal_impulse = 0., tangential_impulse = 0.;
-      /// The total contact impulse in global coordinates [N s].
+      /// The total contact impulse on side A in global coordinates: on the
+      /// body against an obstacle, on the first body between two [N s].
       std::array<double, 3> impulse{{0., 0., 0.}};
       bool                  fallback = false;
     };
@@ -108,18 +109,22 @@ namespace impactfe
     class DistributedImpactSolver
     {
     public:
-      DistributedImpactSolver(const DistributedElasticBody<dim>     &body,
-                              const DistributedObstacleContact<dim> &contact,
-                              const TimeSteppingParameters          &time,
-                              const ContactSolverParameters         &solver,
-                              const ParallelSolverParameters &linear_solver);
+      DistributedImpactSolver(const DistributedElasticBody<dim> &body,
+                              const DistributedContact<dim>     &contact,
+                              const TimeSteppingParameters      &time,
+                              const ContactSolverParameters     &solver,
+                              const ParallelSolverParameters    &linear_solver);
 
       /// The step matrices and the AMG preconditioner.
       void
       setup();
 
+      /// A uniform velocity on the cells with material id @p part (all
+      /// cells by default), leaving the other DoFs as they are.
       void
-      set_initial_velocity(const Tensor<1, dim> &velocity);
+      set_initial_velocity(
+        const Tensor<1, dim>    &velocity,
+        const types::material_id part = numbers::invalid_material_id);
 
       const DistributedStepReport &
       do_time_step();
@@ -143,12 +148,12 @@ namespace impactfe
       energy() const;
 
     private:
-      const DistributedElasticBody<dim>     &body;
-      const DistributedObstacleContact<dim> &contact;
-      const ContactSolverParameters          solver_parameters;
-      const ParallelSolverParameters         linear_parameters;
-      std::unique_ptr<TimeIntegrator>        scheme;
-      ThetaStepRule                          rule;
+      const DistributedElasticBody<dim> &body;
+      const DistributedContact<dim>     &contact;
+      const ContactSolverParameters      solver_parameters;
+      const ParallelSolverParameters     linear_parameters;
+      std::unique_ptr<TimeIntegrator>    scheme;
+      ThetaStepRule                      rule;
 
       DistributedMatrix                 step_matrix, velocity_matrix;
       double                            displacement_factor = 0.;
@@ -156,9 +161,11 @@ namespace impactfe
       SolverControl                     direct_control;
       std::unique_ptr<TrilinosWrappers::SolverDirect> direct_solver;
       std::unique_ptr<SubstructuredSolver>            substructured_solver;
-      /// Per candidate, the positions of its DoFs in the substructured
-      /// solver's contact Schur complement; and that product's vectors.
-      std::vector<std::array<unsigned int, dim>> contact_slots;
+      /// Per candidate and node, the positions of its DoFs in the
+      /// substructured solver's contact Schur complement (each node's DoFs
+      /// once); and that product's vectors.
+      std::vector<std::array<std::array<unsigned int, dim>, 2>> contact_slots;
+      unsigned int        n_contact_dofs = 0;
       std::vector<double> dense_in, dense_out, contact_dof_values;
       /// v_free and correction (M~^{-1} H P) are not used (nor sized)
       /// with the substructured solver.
@@ -203,6 +210,12 @@ namespace impactfe
       void
       local_components(const std::vector<double> &on_dofs,
                        std::vector<double>       &local) const;
+      /// Candidate @p c's component @p direction of @p on_dofs: the sum
+      /// over its nodes of weight * frame[direction] . value.
+      double
+      frame_component(const unsigned int         c,
+                      const unsigned int         direction,
+                      const std::vector<double> &on_dofs) const;
       void
       dense_contact_product(const std::vector<double> &x,
                             std::vector<double>       &y,
