@@ -8,7 +8,8 @@ The columns both files have are compared row by row, each against a scale
 that says what the number means, so that round-off in a small number is
 not read as a difference:
 
-* momentum_*: the largest |p| over the run (all components together),
+* momentum_* (and each body's, *_momentum_*): the largest |p| over the
+  run (all these columns together),
   with --allowance added to the tolerance: the two runs' own impulse
   balance errors (|p(t) - p(0) - impulses| / max |p|, in their
   summary.json), which the round-off of K u (a body that slides far
@@ -17,11 +18,16 @@ not read as a difference:
   compared: u.K u of a body that slides far is a difference of large
   numbers, whose round-off, eps |u| |K| |u|, reaches 1e-8 of the kinetic
   energy on the sliding blocks);
-* force_*: accumulated over the steps (sum of force times h, the contact
-  impulse), against the largest accumulated |impulse|: a step in which a
-  body stops carries the momentum's round-off divided by h;
+* force_* (and each body's, *_force_*): accumulated over the steps (sum
+  of force times h, the contact impulse), against the largest accumulated
+  |impulse|: a step in which a body stops carries the momentum's
+  round-off divided by h;
 * normal_force: itself, against its largest value;
 * active_contacts: exactly.
+
+--rename OLD=NEW (repeatable) renames the columns of A that start with OLD
+(for example bar_1_=body_1_: the serial bars' names against
+block_sliding_mpi's body_1_ and body_2_).
 
 Prints one line per quantity and exits with 1 if one differs by more than
 the tolerance."""
@@ -49,8 +55,14 @@ def main():
     ap.add_argument("--tolerance", type=float, default=1e-8)
     ap.add_argument("--allowance", type=float, default=0.,
                     help="added to the tolerance of the momentum")
+    ap.add_argument("--rename", action="append", default=[],
+                    help="OLD=NEW: rename A's columns that start with OLD")
     args = ap.parse_args()
     a, b = read(args.a), read(args.b)
+    for rule in args.rename:
+        old, _, new = rule.partition("=")
+        a = [{(new + k[len(old):] if k.startswith(old) else k): v
+              for k, v in r.items()} for r in a]
     if len(a) != len(b):
         print(f"different numbers of rows: {len(a)} and {len(b)}")
         return 1
@@ -61,7 +73,8 @@ def main():
         return 1
     checks = []  # (quantity, largest difference, scale)
 
-    momentum = [c for c in common if c.startswith("momentum_")]
+    momentum = [c for c in common
+                if c.startswith("momentum_") or "_momentum_" in c]
     if momentum:
         scale = max(sum(float(r[c]) ** 2 for c in momentum) ** 0.5 for r in a)
         diff = max(abs(float(r[c]) - float(s[c]))
@@ -72,7 +85,7 @@ def main():
         checks.append(("kinetic energy",
                        max(abs(x - y) for x, y in zip(ea, eb)),
                        max(map(abs, ea)), 0.))
-    forces = [c for c in common if c.startswith("force_")]
+    forces = [c for c in common if c.startswith("force_") or "_force_" in c]
     if forces:
         acc_a = {c: 0. for c in forces}
         acc_b = {c: 0. for c in forces}

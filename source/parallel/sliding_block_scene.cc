@@ -66,12 +66,16 @@ namespace impactfe
       prm.declare_entry(
         "Scene",
         "sliding block",
-        Patterns::Selection("sliding block|impact"),
+        Patterns::Selection("sliding block|impact|two bodies"),
         "sliding block: the box of subsection Geometry (or the mesh of "
         "subsection Mesh) launched along the plane, checked against the "
         "rigid-block model. impact: the body of 'Mesh file' thrown at the "
         "obstacle with 'Initial velocity', checked by its impulse balance "
-        "and the contact verification (the cylinder and the plate).");
+        "and the contact verification (the cylinder and the plate). two "
+        "bodies: that body thrown at the body of subsection 'Mesh of the "
+        "second body', node-to-node contact between them (matching "
+        "interface meshes, subsection 'Second body'), no obstacle (the "
+        "bars in 2D and 3D).");
       prm.enter_subsection("Geometry");
       prm.declare_entry("Thickness",
                         "1",
@@ -86,8 +90,31 @@ namespace impactfe
                         "Scene = impact: the body's uniform initial "
                         "velocity, one component per dimension [m/s].");
       prm.leave_subsection();
+      prm.enter_subsection("Second body");
+      prm.declare_entry("Initial velocity",
+                        "",
+                        Patterns::List(Patterns::Double(), 0, 3),
+                        "Scene = two bodies: the second body's uniform "
+                        "initial velocity, one component per dimension; "
+                        "empty: at rest [m/s].");
+      prm.declare_entry("Contact normal",
+                        "",
+                        Patterns::List(Patterns::Double(), 0, 3),
+                        "Scene = two bodies: the direction from the second "
+                        "body's contact face towards the first body's, one "
+                        "component per dimension (normalised); each contact "
+                        "node of the first body is paired with the second "
+                        "body's node on its line along this direction [-].");
+      prm.declare_entry("Friction coefficient",
+                        "0",
+                        Patterns::Double(),
+                        "Scene = two bodies: Coulomb's coefficient between "
+                        "the bodies [-]. Must be >= 0; 0: no tangential "
+                        "unknowns.");
+      prm.leave_subsection();
       SceneParameters::declare_parameters(prm, "results/block_sliding_mpi");
       MeshParameters::declare_parameters(prm, "Mesh", 2);
+      MeshParameters::declare_parameters(prm, "Mesh of the second body", 0);
       ObstacleParameters::declare_parameters(prm, "0, 0, 0", "0, 1, 0", "0.5");
       MaterialParameters::declare_parameters(prm, 2); // 2D: a superset
       ParallelSolverParameters::declare_parameters(prm);
@@ -97,8 +124,9 @@ namespace impactfe
                   ExcMessage("The parameter file '" + file +
                              "' does not exist."));
       prm.parse_input(file);
-      dimension = prm.get_integer("Dimension");
-      impact    = prm.get("Scene") == "impact";
+      dimension  = prm.get_integer("Dimension");
+      two_bodies = prm.get("Scene") == "two bodies";
+      impact     = prm.get("Scene") == "impact" || two_bodies;
       prm.enter_subsection("Geometry");
       thickness = prm.get_double("Thickness");
       prm.leave_subsection();
@@ -110,12 +138,29 @@ namespace impactfe
       prm.enter_subsection("Initial conditions");
       const std::string velocity = prm.get("Initial velocity");
       prm.leave_subsection();
-      initial_velocity.clear();
-      for (const std::string &v : Utilities::split_string_list(velocity))
-        initial_velocity.push_back(Utilities::string_to_double(v));
+      const auto numbers = [](const std::string &list) {
+        std::vector<double> values;
+        for (const std::string &v : Utilities::split_string_list(list))
+          values.push_back(Utilities::string_to_double(v));
+        return values;
+      };
+      initial_velocity = numbers(velocity);
+      prm.enter_subsection("Second body");
+      const std::string second_velocity_text = prm.get("Initial velocity");
+      const std::string normal_text          = prm.get("Contact normal");
+      second_velocity                        = numbers(second_velocity_text);
+      contact_normal                         = numbers(normal_text);
+      friction_between_bodies = prm.get_double("Friction coefficient");
+      prm.leave_subsection();
+      require_non_negative(friction_between_bodies,
+                           "Second body",
+                           "Friction coefficient");
+      second_mesh.parse_parameters(prm, "Mesh of the second body");
       scene.parse_parameters(prm);
       mesh.parse_parameters(prm, "Mesh");
-      obstacle.parse_parameters(prm, dimension);
+      // two bodies touch each other only: the obstacle is not read
+      if (!two_bodies)
+        obstacle.parse_parameters(prm, dimension);
       material.parse_parameters(prm, dimension);
       linear_solver.parse_parameters(prm);
       box.parse_parameters(prm);
@@ -128,14 +173,47 @@ namespace impactfe
                                  " components with Scene = impact, got '" +
                                  velocity + "'."));
           AssertThrow(mesh.from_file(),
-                      ExcMessage("Scene = impact: set 'Mesh file' in "
-                                 "subsection Mesh (the body to throw)."));
+                      ExcMessage("Scene = " + prm.get("Scene") +
+                                 ": set 'Mesh file' in subsection Mesh (the "
+                                 "body to throw)."));
         }
       else
         AssertThrow(initial_velocity.empty(),
                     ExcMessage("Initial conditions: 'Initial velocity' is "
                                "for Scene = impact; the sliding block uses "
                                "'Sliding speed' and 'Sliding direction'."));
+      if (two_bodies)
+        {
+          AssertThrow(second_mesh.from_file(),
+                      ExcMessage("Scene = two bodies: set 'Mesh file' in "
+                                 "subsection 'Mesh of the second body'."));
+          AssertThrow(second_velocity.empty() ||
+                        second_velocity.size() == dimension,
+                      ExcMessage("Second body: 'Initial velocity' must be "
+                                 "empty (at rest) or have " +
+                                 std::to_string(dimension) +
+                                 " components, got '" + second_velocity_text +
+                                 "'."));
+          double length = 0.;
+          for (const double n : contact_normal)
+            length += n * n;
+          length = std::sqrt(length);
+          AssertThrow(contact_normal.size() == dimension && length > 0.,
+                      ExcMessage("Second body: 'Contact normal' must be a "
+                                 "non-zero vector of " +
+                                 std::to_string(dimension) +
+                                 " components with Scene = two bodies, got "
+                                 "'" +
+                                 normal_text + "'."));
+          for (double &n : contact_normal)
+            n /= length;
+        }
+      else
+        AssertThrow(!second_mesh.from_file() && second_velocity.empty() &&
+                      contact_normal.empty() && friction_between_bodies == 0.,
+                    ExcMessage("The subsections 'Second body' and 'Mesh of "
+                               "the second body' are for Scene = two "
+                               "bodies."));
       AssertThrow(dimension == 3 || std::abs(std::sin(box.phi)) < 1e-12,
                   ExcMessage("Initial conditions: 'Sliding direction' must "
                              "be 0 or pi in 2D (the block slides along x), "
@@ -169,12 +247,22 @@ namespace impactfe
     // The box (or its section) on the plane y = 0, centred in x (and z),
     // colorized: its lower face has boundary id 2. A file (subsection
     // `Mesh`) is read on every rank as the coarse mesh and partitioned.
+    // Two bodies are two files, held side by side in one mesh (material
+    // ids 0 and 1, merge_body_meshes()), so that p4est partitions them
+    // together.
     template <int dim>
     void
     SlidingBlockScene<dim>::make_grid()
     {
       auto &tria = body.triangulation();
-      if (parameters.mesh.from_file())
+      if (parameters.two_bodies)
+        {
+          Triangulation<dim> first, second;
+          parameters.mesh.read(first, parameter_file);
+          parameters.second_mesh.read(second, parameter_file);
+          merge_body_meshes<dim>({&first, &second}, tria);
+        }
+      else if (parameters.mesh.from_file())
         parameters.mesh.read(tria, parameter_file);
       else if (dim == 3)
         GridGenerator::subdivided_hyper_rectangle(
@@ -244,11 +332,27 @@ namespace impactfe
       g[1] = -parameters.material.density * parameters.box.gravity;
       body.set_body_force(g);
       body.setup();
-      obstacle = parameters.obstacle.create<dim>(body_size());
-      contact.setup(body,
-                    parameters.mesh.contact_boundary_id,
-                    *obstacle,
-                    parameters.obstacle.friction_coefficient);
+      if (parameters.two_bodies)
+        {
+          Tensor<1, dim> n;
+          for (unsigned int d = 0; d < dim; ++d)
+            n[d] = parameters.contact_normal[d];
+          contact.setup_node_to_node(body,
+                                     0,
+                                     parameters.mesh.contact_boundary_id,
+                                     1,
+                                     parameters.second_mesh.contact_boundary_id,
+                                     n,
+                                     parameters.friction_between_bodies);
+        }
+      else
+        {
+          obstacle = parameters.obstacle.create<dim>(body_size());
+          contact.setup(body,
+                        parameters.mesh.contact_boundary_id,
+                        *obstacle,
+                        parameters.obstacle.friction_coefficient);
+        }
       solver = std::make_unique<DistributedImpactSolver<dim>>(
         body,
         contact,
@@ -257,7 +361,13 @@ namespace impactfe
         parameters.linear_solver);
       solver->setup();
       work.reinit(body.locally_owned_dofs(), comm);
-      solver->set_initial_velocity(launch_velocity());
+      if (parameters.two_bodies)
+        {
+          solver->set_initial_velocity(launch_velocity(), 0);
+          solver->set_initial_velocity(second_launch_velocity(), 1);
+        }
+      else
+        solver->set_initial_velocity(launch_velocity());
       normal[1] = 1.;
       if (!parameters.impact)
         {
@@ -277,6 +387,14 @@ namespace impactfe
       for (const char *c :
            {"kinetic_energy", "elastic_energy", "active_contacts"})
         columns.push_back(c);
+      // two bodies: force_* is the sum over the bodies (zero, as in the
+      // serial programs), and each body has its own columns
+      if (parameters.two_bodies)
+        for (unsigned int b = 1; b <= 2; ++b)
+          for (const char *quantity : {"_force_", "_momentum_"})
+            for (unsigned int d = 0; d < dim; ++d)
+              columns.push_back("body_" + std::to_string(b) + quantity +
+                                axes[d]);
       on_rank_zero(comm, [&]() {
         create_output_directory(parameters.scene.output.directory);
         history = std::make_unique<HistoryWriter>(
@@ -298,8 +416,12 @@ namespace impactfe
       body.mass_matrix().vmult(work, v);
       const double kinetic_energy = 0.5 * (work * v);
       body.stiffness_matrix().vmult(work, u);
-      const double         elastic_energy = 0.5 * (work * u);
-      const Tensor<1, dim> p              = body.momentum(v); // collective
+      const double                elastic_energy = 0.5 * (work * u);
+      const Tensor<1, dim>        p = body.momentum(v); // collective
+      std::vector<Tensor<1, dim>> per_body;
+      if (parameters.two_bodies)
+        for (unsigned int b = 0; b < 2; ++b)
+          per_body.push_back(body_momentum(v, b));
       if (parameters.impact)
         {
           const double energy =
@@ -323,12 +445,23 @@ namespace impactfe
                                       last_report.tangential_impulse *
                                         per_impulse};
           for (unsigned int d = 0; d < dim; ++d)
-            row.push_back(last_report.impulse[d] * per_impulse);
+            row.push_back(parameters.two_bodies ?
+                            0. :
+                            last_report.impulse[d] * per_impulse);
           for (unsigned int d = 0; d < dim; ++d)
             row.push_back(p[d]);
           row.push_back(kinetic_energy);
           row.push_back(elastic_energy);
           row.push_back(last_report.active_contacts);
+          for (unsigned int b = 0; b < per_body.size(); ++b)
+            {
+              const double side = b == 0 ? 1. : -1.;
+              for (unsigned int d = 0; d < dim; ++d)
+                row.push_back(side * last_report.impulse[d] * per_impulse +
+                              0.); // not -0
+              for (unsigned int d = 0; d < dim; ++d)
+                row.push_back(per_body[b][d]);
+            }
           history->add_row(row);
         }
       if (!parameters.scene.output.vtu_output ||
@@ -375,11 +508,24 @@ namespace impactfe
 
 
 
+    template <int dim>
+    Tensor<1, dim>
+    SlidingBlockScene<dim>::body_momentum(const DistributedVector &velocity,
+                                          const unsigned int       b)
+    {
+      return parameters.two_bodies ? body.momentum(velocity, b) :
+                                     body.momentum(velocity);
+    }
+
+
+
     // @sect3{The run}
     // The loop's wall time is measured between barriers (a step is
-    // collective). Each step's momentum change is compared with the loads'
-    // and the contact impulses (the rigid translations are in the kernel of
-    // K, so the balance is exact up to the solves' tolerance).
+    // collective). Each step's momentum change of each body is compared
+    // with the loads' and the contact impulses (the rigid translations are
+    // in the kernel of K, so the balance is exact up to the solves'
+    // tolerance); between two bodies the impulse on the first is the
+    // opposite of that on the second.
     template <int dim>
     void
     SlidingBlockScene<dim>::run()
@@ -393,18 +539,27 @@ namespace impactfe
       setup_seconds =
         std::chrono::duration<double>(Clock::now() - start).count();
 
-      const double   gamma = solver->integrator().free_rhs_coefficients().force;
-      Tensor<1, dim> load;
-      for (unsigned int d = 0; d < dim; ++d)
+      const double gamma = solver->integrator().free_rhs_coefficients().force;
+      const unsigned int          n_b = n_bodies();
+      std::vector<Tensor<1, dim>> load(n_b), p0(n_b), impulses(n_b);
+      double                      largest_momentum = 0.;
+      for (unsigned int b = 0; b < n_b; ++b)
         {
-          Tensor<1, dim> e;
-          e[d] = 1.;
-          body.fill_uniform(work, e);
-          load[d] = work * body.external_force();
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              Tensor<1, dim> e;
+              e[d] = 1.;
+              work = 0.;
+              body.fill_uniform(work,
+                                e,
+                                parameters.two_bodies ?
+                                  b :
+                                  numbers::invalid_material_id);
+              load[b][d] = work * body.external_force();
+            }
+          p0[b]            = body_momentum(solver->velocity(), b);
+          largest_momentum = std::max(largest_momentum, p0[b].norm());
         }
-      const Tensor<1, dim> p0 = body.momentum(solver->velocity());
-      Tensor<1, dim>       impulses;
-      double               largest_momentum = p0.norm();
       n_steps = parameters.scene.time_stepping.n_steps();
       for (unsigned int step = 1; step <= n_steps; ++step)
         {
@@ -416,15 +571,22 @@ namespace impactfe
             std::chrono::duration<double>(Clock::now() - start).count();
           normal_impulse += last_report.normal_impulse;
           tangential_impulse += last_report.tangential_impulse;
-          for (unsigned int d = 0; d < dim; ++d)
-            impulses[d] += gamma * load[d] + last_report.impulse[d];
-          const Tensor<1, dim> p = body.momentum(solver->velocity());
-          largest_momentum       = std::max(largest_momentum, p.norm());
-          balance_error = std::max(balance_error, (p - p0 - impulses).norm());
+          for (unsigned int b = 0; b < n_b; ++b)
+            {
+              const double side = b == 0 ? 1. : -1.;
+              for (unsigned int d = 0; d < dim; ++d)
+                impulses[b][d] +=
+                  gamma * load[b][d] + side * last_report.impulse[d];
+              const Tensor<1, dim> p = body_momentum(solver->velocity(), b);
+              largest_momentum       = std::max(largest_momentum, p.norm());
+              balance_error =
+                std::max(balance_error, (p - p0[b] - impulses[b]).norm());
+            }
           output_results(step);
           if (!tracker)
             continue;
-          const Tensor<1, dim> mean = p / body.total_mass();
+          const Tensor<1, dim> mean =
+            body.momentum(solver->velocity()) / body.total_mass();
           tracker->record(solver->time(),
                           mean,
                           last_report.active_contacts > 0);
@@ -462,24 +624,45 @@ namespace impactfe
         body.momentum(solver->displacement()) * direction() / mass;
       const auto        &ts = parameters.scene.time_stepping;
       std::ostringstream out;
-      out << (parameters.impact ? "Impact on an obstacle in " :
-                                  "Block sliding on a plane in ")
+      out << (parameters.two_bodies ? "Impact of two bodies in " :
+              parameters.impact     ? "Impact on an obstacle in " :
+                                      "Block sliding on a plane in ")
           << dim << "D on " << n_ranks << " MPI rank"
           << (n_ranks > 1 ? "s" : "") << ", scheme " << to_string(ts.scheme)
           << " (theta = " << ts.theta << "), h = " << ts.time_step << " s, "
           << n_steps << " steps\n"
           << "  Mesh: " << body.triangulation().n_global_active_cells()
           << " Q1 cells, " << body.dof_handler().n_dofs() << " DoFs, "
-          << contact.n_candidates()
-          << " contact candidates; obstacle: " << obstacle->description()
+          << contact.n_candidates() << " contact candidates; "
+          << (obstacle ? "obstacle: " + obstacle->description() :
+                         std::string("node-to-node between the bodies"))
           << ", mu = " << contact.friction_coefficient() << "\n"
           << "  Contact candidates owned per rank: " << owned_range.min
-          << " to " << owned_range.max << "\n"
-          << "  Mass " << format_figure(mass, 1e-9) << " kg; ";
-      if (parameters.impact)
+          << " to " << owned_range.max << "\n";
+      const double speed_scale =
+        std::max(launch_velocity().norm(), second_launch_velocity().norm());
+      if (parameters.two_bodies)
+        for (unsigned int b = 0; b < 2; ++b)
+          {
+            const double         m_b = body.part_mass(b);
+            const Tensor<1, dim> p_b = body_momentum(solver->velocity(), b);
+            const Tensor<1, dim> v_b =
+              b == 0 ? launch_velocity() : second_launch_velocity();
+            out << "  Body " << b + 1 << ": mass " << format_figure(m_b, 1e-9)
+                << " kg, initial velocity (";
+            for (unsigned int d = 0; d < dim; ++d)
+              out << (d > 0 ? ", " : "") << v_b[d];
+            out << ") m/s, mean velocity at the end (";
+            for (unsigned int d = 0; d < dim; ++d)
+              out << (d > 0 ? ", " : "")
+                  << format_figure(p_b[d] / m_b, 1e-9 * speed_scale);
+            out << ") m/s\n";
+          }
+      else if (parameters.impact)
         {
           const Tensor<1, dim> p = body.momentum(solver->velocity());
-          out << "initial velocity (";
+          out << "  Mass " << format_figure(mass, 1e-9)
+              << " kg; initial velocity (";
           for (unsigned int d = 0; d < dim; ++d)
             out << (d > 0 ? ", " : "") << launch_velocity()[d];
           out << ") m/s, mean velocity at the end (";
@@ -488,7 +671,8 @@ namespace impactfe
           out << ") m/s\n";
         }
       else
-        out << "launched at " << parameters.box.speed
+        out << "  Mass " << format_figure(mass, 1e-9) << " kg; launched at "
+            << parameters.box.speed
             << " m/s in the direction phi = " << parameters.box.phi << " rad\n"
             << "  Largest angle between the mean sliding velocity and the "
                "launch direction: "
@@ -583,7 +767,10 @@ namespace impactfe
 
       JsonObject summary;
       summary.add("program", "block_sliding_mpi")
-        .add("scene", parameters.impact ? "impact" : "sliding block")
+        .add("scene",
+             parameters.two_bodies ? "two bodies" :
+             parameters.impact     ? "impact" :
+                                     "sliding block")
         .add("dimension", double(dim))
         .add("ranks", double(n_ranks))
         .add("scheme", to_string(ts.scheme))

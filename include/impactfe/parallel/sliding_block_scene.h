@@ -33,8 +33,16 @@ namespace impactfe
     {
       unsigned int dimension = 3;
       /// The sliding box, checked against the rigid block; or a body from
-      /// `Mesh file` thrown at the obstacle with initial_velocity.
-      bool impact = false;
+      /// `Mesh file` thrown at the obstacle with initial_velocity (impact);
+      /// or that body thrown at the body of `Mesh of the second body`
+      /// (impact and two_bodies: node-to-node contact, no obstacle).
+      bool impact = false, two_bodies = false;
+      /// Scene = two bodies: the second body's mesh and uniform initial
+      /// velocity, the contact normal (from the second body towards the
+      /// first) and the friction coefficient between the bodies.
+      MeshParameters      second_mesh;
+      std::vector<double> second_velocity, contact_normal;
+      double              friction_between_bodies = 0.;
       /// 2D: the out-of-plane thickness [m].
       double                   thickness = 1.;
       std::vector<double>      initial_velocity;
@@ -91,7 +99,7 @@ namespace impactfe
         return s;
       }
 
-      /// The body's uniform velocity at t = 0.
+      /// The body's (the first body's) uniform velocity at t = 0.
       Tensor<1, dim>
       launch_velocity() const
       {
@@ -101,6 +109,27 @@ namespace impactfe
             v[d] = parameters.initial_velocity[d];
         return v;
       }
+
+      /// Scene = two bodies: the second body's velocity at t = 0.
+      Tensor<1, dim>
+      second_launch_velocity() const
+      {
+        Tensor<1, dim> v;
+        for (unsigned int d = 0; d < parameters.second_velocity.size(); ++d)
+          v[d] = parameters.second_velocity[d];
+        return v;
+      }
+
+      /// The bodies of the scene: one, or two (material ids 0 and 1).
+      unsigned int
+      n_bodies() const
+      {
+        return parameters.two_bodies ? 2 : 1;
+      }
+
+      /// The momentum of body @p b (the whole mesh when there is one).
+      Tensor<1, dim>
+      body_momentum(const DistributedVector &velocity, const unsigned int b);
 
       /// The largest extent of the mesh (the obstacle's length scale).
       double
@@ -112,7 +141,7 @@ namespace impactfe
       const unsigned int                            n_ranks;
       ConditionalOStream                            pcout;
       DistributedElasticBody<dim>                   body;
-      DistributedObstacleContact<dim>               contact;
+      DistributedContact<dim>                       contact;
       std::unique_ptr<RigidObstacle<dim>>           obstacle;
       std::unique_ptr<DistributedImpactSolver<dim>> solver;
       std::unique_ptr<HistoryWriter>                history;
