@@ -314,6 +314,37 @@ main()
              with("Initial conditions", "Initial velocity = 0, -1, 0"),
            mpi);
   run_case("mpi_thickness_in_3d", with("Geometry", "Thickness = 0.5"), mpi);
+  // Scene = two bodies: the bars of parameter_files/two_bars_2d_mpi.prm
+  const std::string bars = std::string("set Dimension = 2\nset Scene = two "
+                                       "bodies\n") +
+                           with("Mesh",
+                                "Mesh file = " PARAMETER_FILES_DIR
+                                "/two_bars_2d_bar_1.msh\n  set Contact "
+                                "boundary id = 1") +
+                           "subsection Initial conditions\n  set Initial "
+                           "velocity = 1, 0\nend\n";
+  const std::string second_bar =
+    "subsection Mesh of the second body\n  set Mesh file = " PARAMETER_FILES_DIR
+    "/two_bars_2d_bar_2.msh\nend\n";
+  run_case("mpi_two_bodies_without_second_mesh",
+           bars + "subsection Second body\n  set Contact normal = -1, 0\nend\n",
+           mpi);
+  run_case("mpi_two_bodies_normal_of_three_components_in_2d",
+           bars + second_bar +
+             "subsection Second body\n  set Contact normal = -1, 0, 0\nend\n",
+           mpi);
+  // bar 2 with 3 cells across against bar 1's 4: no partner for the nodes
+  // inside bar 1's end
+  run_case(
+    "mpi_two_bodies_nonmatching_interface",
+    bars +
+      "subsection Mesh of the second body\n  set Mesh file = " TESTS_PARAMETERS_DIR
+      "/bar_2d_20x3.msh\nend\nsubsection Second body\n  set Contact "
+      "normal = -1, 0\nend\n",
+    mpi);
+  run_case("mpi_second_body_without_two_bodies",
+           with("Second body", "Contact normal = -1, 0, 0"),
+           mpi);
   run_case("mpi_bad_solver_tolerance",
            with("Parallel solver", "Tolerance = 2"),
            mpi);
