@@ -14,6 +14,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <sstream>
 
 namespace impactfe
 {
@@ -64,7 +65,7 @@ namespace impactfe
     boundary_vertices(const ElasticBody<dim> &body, const types::boundary_id id)
     {
       std::set<unsigned int> vertices;
-      for (const auto &cell : body.dof_handler().active_cell_iterators())
+      for (const auto &cell : body.triangulation().active_cell_iterators())
         for (const unsigned int f : cell->face_indices())
           if (cell->face(f)->at_boundary() &&
               cell->face(f)->boundary_id() == id)
@@ -77,7 +78,7 @@ namespace impactfe
     Point<dim>
     vertex_position(const ElasticBody<dim> &body, const unsigned int vertex)
     {
-      return body.dof_handler().get_triangulation().get_vertices()[vertex];
+      return body.triangulation().get_vertices()[vertex];
     }
 
     // The checks of every candidate set between two bodies, and the nodes
@@ -271,7 +272,7 @@ namespace impactfe
       Tensor<1, dim> normal;
     };
     std::vector<Segment> segments;
-    for (const auto &cell : B.dof_handler().active_cell_iterators())
+    for (const auto &cell : B.triangulation().active_cell_iterators())
       for (const unsigned int f : cell->face_indices())
         if (cell->face(f)->at_boundary() &&
             cell->face(f)->boundary_id() == boundary_b)
@@ -375,7 +376,7 @@ namespace impactfe
         std::vector<Face>                                    faces;
         std::map<unsigned int, Tensor<1, 3>>                 nodal_normals;
         std::vector<std::pair<BoundingBox<3>, unsigned int>> boxes;
-        for (const auto &cell : B.dof_handler().active_cell_iterators())
+        for (const auto &cell : B.triangulation().active_cell_iterators())
           for (const unsigned int f : cell->face_indices())
             if (cell->face(f)->at_boundary() &&
                 cell->face(f)->boundary_id() == boundary_b)
@@ -611,13 +612,20 @@ namespace impactfe
                 break;
               }
           }
-        AssertThrow(partner != numbers::invalid_unsigned_int,
-                    ExcMessage("Contact: the node of body '" + A.name() +
-                               "' at boundary id " +
-                               std::to_string(boundary_a) +
-                               " has no matching node on body '" + B.name() +
-                               "'. Node-to-node contact needs matching "
-                               "interface meshes."));
+        if (partner == numbers::invalid_unsigned_int)
+          {
+            std::ostringstream where;
+            for (unsigned int d = 0; d < dim; ++d)
+              where << (d > 0 ? ", " : "") << xa[d];
+            AssertThrow(false,
+                        ExcMessage(
+                          "Contact: the node at (" + where.str() +
+                          ") of body '" + A.name() + "' at boundary id " +
+                          std::to_string(boundary_a) +
+                          " has no matching node on body '" + B.name() +
+                          "'. Node-to-node contact needs matching "
+                          "interface meshes."));
+          }
         ContactCandidate candidate;
         candidate.body_a        = body_a;
         candidate.vertex_a      = va;

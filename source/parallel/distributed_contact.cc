@@ -5,9 +5,9 @@
 #include <impactfe/utilities/program.h>
 
 #include <algorithm>
-#include <limits>
+#include <map>
+#include <optional>
 #include <set>
-#include <sstream>
 
 namespace impactfe
 {
@@ -121,7 +121,7 @@ namespace impactfe
                                    const double friction_coefficient)
     {
       start_setup(body, friction_coefficient);
-      pairs = false;
+      two_bodies = false;
       std::vector<Point<dim>> positions;
       const std::vector<Node> nodes = gather_boundary_nodes(
         body, boundary_id, numbers::invalid_material_id, positions);
@@ -140,81 +140,110 @@ namespace impactfe
 
 
 
-    // Side B's partner of a node of A lies on the line through it along n:
-    // the distance across n is below 1e-8 of the interface's size (the
-    // meshes match); the nearest such node along n wins.
+    // The merged mesh keeps each body's vertices in order after its offset
+    // (merge_body_meshes()); the positions are compared to make sure.
     template <int dim>
     void
-    DistributedContact<dim>::setup_node_to_node(
+    DistributedContact<dim>::setup_between_bodies(
       const DistributedElasticBody<dim> &body,
-      const types::material_id           part_a,
-      const types::boundary_id           boundary_a,
-      const types::material_id           part_b,
-      const types::boundary_id           boundary_b,
-      const Tensor<1, dim>              &normal,
-      const double                       friction_coefficient)
+      const ContactSet                  &pairs,
+      const std::vector<unsigned int>   &vertex_offsets)
     {
-      AssertThrow(std::abs(normal.norm() - 1.) < 1e-12,
-                  ExcMessage("Contact: the node-to-node normal must be a "
-                             "unit vector, got length " +
-                             format_number(normal.norm()) + "."));
-      start_setup(body, friction_coefficient);
-      pairs = true;
-      std::vector<Point<dim>> x_a, x_b;
-      const std::vector<Node> side_a =
-        gather_boundary_nodes(body, boundary_a, part_a, x_a);
-      std::vector<Node> side_b =
-        gather_boundary_nodes(body, boundary_b, part_b, x_b);
-      AssertThrow(!side_b.empty(),
-                  ExcMessage("Contact: the second body has no vertex on "
-                             "boundary id " +
-                             std::to_string(boundary_b) + "."));
-      double size = 0.;
-      for (const std::vector<Point<dim>> *list : {&x_a, &x_b})
-        for (const Point<dim> &x : *list)
-          size = std::max(size, x.distance(x_a.empty() ? x_b[0] : x_a[0]));
-      const double tolerance = 1e-8 * std::max(size, 1e-300);
-      const auto   frame     = contact_frame(normal);
-      for (unsigned int i = 0; i < side_a.size(); ++i)
+      const double mu =
+        pairs.n_candidates() > 0 ? pairs.candidate(0).friction_coefficient : 0.;
+      start_setup(body, mu);
+      AssertThrow(pairs.n_directions() == directions,
+                  ExcMessage("Contact: the candidate set has " +
+                             std::to_string(pairs.n_directions()) +
+                             " local directions for mu = " + format_number(mu) +
+                             "."));
+      two_bodies               = true;
+      const auto merged_vertex = [&](const unsigned int b,
+                                     const unsigned int v) {
+        AssertThrow(b < vertex_offsets.size(),
+                    ExcMessage("Contact: a candidate names body " +
+                               std::to_string(b) + " of " +
+                               std::to_string(vertex_offsets.size()) + "."));
+        return vertex_offsets[b] + v;
+      };
+      // vertex -> its position if known (side A's)
+      std::map<unsigned int, std::optional<Point<dim>>> needed;
+      for (const ContactCandidate &c : pairs.candidates())
         {
-          unsigned int partner = numbers::invalid_unsigned_int;
-          double       best    = std::numeric_limits<double>::max();
-          for (unsigned int j = 0; j < side_b.size(); ++j)
+          AssertThrow(!c.against_rigid_obstacle(),
+                      ExcMessage("Contact: setup_between_bodies() takes "
+                                 "candidates between two bodies."));
+          Point<dim> x;
+          for (unsigned int d = 0; d < dim; ++d)
+            x[d] = c.position[d];
+          needed[merged_vertex(c.body_a, c.vertex_a)] = x;
+          for (unsigned int k = 0; k < c.n_vertices_b; ++k)
+            needed.emplace(merged_vertex(c.body_b, c.vertices_b[k]),
+                           std::nullopt);
+        }
+
+      // vertex, DoFs, rank of the needed vertices whose DoFs this rank owns
+      const IndexSet        &owned = body.locally_owned_dofs();
+      std::vector<double>    mine;
+      std::set<unsigned int> seen;
+      for (const auto &cell : body.dof_handler().active_cell_iterators())
+        if (cell->is_locally_owned() || cell->is_ghost())
+          for (const unsigned int v : cell->vertex_indices())
             {
-              const Tensor<1, dim> r     = x_a[i] - x_b[j];
-              const double         along = r * normal;
-              if ((r - along * normal).norm() <= tolerance &&
-                  std::abs(along) < best)
-                {
-                  best    = std::abs(along);
-                  partner = j;
-                }
-            }
-          if (partner == numbers::invalid_unsigned_int)
-            {
-              std::ostringstream where;
-              where << "Contact: the node at (";
+              const unsigned int vertex = cell->vertex_index(v);
+              const auto         found  = needed.find(vertex);
+              if (found == needed.end() ||
+                  !owned.is_element(cell->vertex_dof_index(v, 0)) ||
+                  !seen.insert(vertex).second)
+                continue;
+              // side A's nodes carry their position: check the numbering
+              AssertThrow(!found->second ||
+                            found->second->distance(cell->vertex(v)) <=
+                              1e-12 * (1. + found->second->norm()),
+                          ExcMessage("Contact: the merged mesh does not "
+                                     "keep the bodies' vertex numbers."));
+              mine.push_back(vertex);
               for (unsigned int d = 0; d < dim; ++d)
-                where << (d > 0 ? ", " : "") << x_a[i][d];
-              where << ") of the first body's boundary id " << boundary_a
-                    << " has no partner on the second body's boundary id "
-                    << boundary_b
-                    << " along the normal; node-to-node contact needs "
-                       "matching interface meshes.";
-              AssertThrow(false, ExcMessage(where.str()));
+                mine.push_back(
+                  static_cast<double>(cell->vertex_dof_index(v, d)));
+              mine.push_back(this_rank);
             }
+      std::map<unsigned int, Node> nodes;
+      const unsigned int           record = dim + 2;
+      for (const std::vector<double> &list :
+           Utilities::MPI::all_gather(communicator, mine))
+        for (std::size_t i = 0; i + record <= list.size(); i += record)
+          {
+            Node node;
+            for (unsigned int d = 0; d < dim; ++d)
+              node.dofs[d] =
+                static_cast<types::global_dof_index>(list[i + 1 + d]);
+            node.owner = static_cast<unsigned int>(list[i + 1 + dim]);
+            nodes[static_cast<unsigned int>(list[i])] = node;
+          }
+      AssertThrow(nodes.size() == needed.size(),
+                  ExcMessage(
+                    "Contact: " + std::to_string(needed.size() - nodes.size()) +
+                    " contact vertices have no owned DoFs."));
+
+      for (const ContactCandidate &pair : pairs.candidates())
+        {
           Candidate c;
-          c.position        = x_a[i];
-          c.n_nodes         = 2;
-          c.nodes[0]        = side_a[i];
-          c.nodes[1]        = side_b[partner];
-          c.nodes[1].weight = -1.;
-          c.frame           = frame;
-          c.initial_gap     = (x_a[i] - x_b[partner]) * normal;
+          for (unsigned int d = 0; d < dim; ++d)
+            c.position[d] = pair.position[d];
+          c.frame       = pair.frame;
+          c.initial_gap = pair.initial_gap;
+          c.nodes[0]    = nodes.at(merged_vertex(pair.body_a, pair.vertex_a));
+          c.n_nodes     = 1 + pair.n_vertices_b;
+          for (unsigned int k = 0; k < pair.n_vertices_b; ++k)
+            {
+              c.nodes[1 + k] =
+                nodes.at(merged_vertex(pair.body_b, pair.vertices_b[k]));
+              c.nodes[1 + k].weight = -pair.weights_b[k];
+            }
           candidate_list.push_back(c);
         }
-      finish_setup("the first body has no vertex on boundary id " +
-                   std::to_string(boundary_a));
+      finish_setup("the bodies have no candidates between them");
     }
 
 
@@ -268,7 +297,7 @@ namespace impactfe
     bool
     DistributedContact<dim>::between_bodies() const
     {
-      return pairs;
+      return two_bodies;
     }
 
 

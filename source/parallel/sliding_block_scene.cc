@@ -97,14 +97,23 @@ namespace impactfe
                         "Scene = two bodies: the second body's uniform "
                         "initial velocity, one component per dimension; "
                         "empty: at rest [m/s].");
+      prm.declare_entry(
+        "Contact discretization",
+        "node-to-node",
+        Patterns::Selection("node-to-node|node-to-segment|node-to-face"),
+        "Scene = two bodies: node-to-node (matching interface meshes: each "
+        "contact node of the first body against the second body's node on "
+        "its line along 'Contact normal'), node-to-segment (2D) or "
+        "node-to-face (3D): each contact node of the first body against the "
+        "nearest point of the second body's contact boundary, as the serial "
+        "programs' ContactSet.");
       prm.declare_entry("Contact normal",
                         "",
                         Patterns::List(Patterns::Double(), 0, 3),
-                        "Scene = two bodies: the direction from the second "
-                        "body's contact face towards the first body's, one "
-                        "component per dimension (normalised); each contact "
-                        "node of the first body is paired with the second "
-                        "body's node on its line along this direction [-].");
+                        "Scene = two bodies, node-to-node: the direction "
+                        "from the second body's contact face towards the "
+                        "first body's, one component per dimension "
+                        "(normalised) [-].");
       prm.declare_entry("Friction coefficient",
                         "0",
                         Patterns::Double(),
@@ -148,8 +157,9 @@ namespace impactfe
       prm.enter_subsection("Second body");
       const std::string second_velocity_text = prm.get("Initial velocity");
       const std::string normal_text          = prm.get("Contact normal");
-      second_velocity                        = numbers(second_velocity_text);
-      contact_normal                         = numbers(normal_text);
+      discretization          = prm.get("Contact discretization");
+      second_velocity         = numbers(second_velocity_text);
+      contact_normal          = numbers(normal_text);
       friction_between_bodies = prm.get_double("Friction coefficient");
       prm.leave_subsection();
       require_non_negative(friction_between_bodies,
@@ -194,23 +204,42 @@ namespace impactfe
                                  std::to_string(dimension) +
                                  " components, got '" + second_velocity_text +
                                  "'."));
+          AssertThrow(discretization == "node-to-node" ||
+                        discretization ==
+                          (dimension == 2 ? "node-to-segment" : "node-to-face"),
+                      ExcMessage("Second body: 'Contact discretization' "
+                                 "cannot be " +
+                                 discretization + " in " +
+                                 std::to_string(dimension) +
+                                 "D (node-to-segment is for 2D, "
+                                 "node-to-face for 3D)."));
           double length = 0.;
           for (const double n : contact_normal)
             length += n * n;
           length = std::sqrt(length);
-          AssertThrow(contact_normal.size() == dimension && length > 0.,
-                      ExcMessage("Second body: 'Contact normal' must be a "
-                                 "non-zero vector of " +
-                                 std::to_string(dimension) +
-                                 " components with Scene = two bodies, got "
-                                 "'" +
-                                 normal_text + "'."));
-          for (double &n : contact_normal)
-            n /= length;
+          if (discretization == "node-to-node")
+            {
+              AssertThrow(contact_normal.size() == dimension && length > 0.,
+                          ExcMessage("Second body: 'Contact normal' must be "
+                                     "a non-zero vector of " +
+                                     std::to_string(dimension) +
+                                     " components for node-to-node "
+                                     "contact, got '" +
+                                     normal_text + "'."));
+              for (double &n : contact_normal)
+                n /= length;
+            }
+          else
+            AssertThrow(contact_normal.empty(),
+                        ExcMessage("Second body: 'Contact normal' is for "
+                                   "node-to-node contact; " +
+                                   discretization +
+                                   " takes the second body's normals."));
         }
       else
         AssertThrow(!second_mesh.from_file() && second_velocity.empty() &&
-                      contact_normal.empty() && friction_between_bodies == 0.,
+                      contact_normal.empty() && friction_between_bodies == 0. &&
+                      discretization == "node-to-node",
                     ExcMessage("The subsections 'Second body' and 'Mesh of "
                                "the second body' are for Scene = two "
                                "bodies."));
@@ -249,7 +278,9 @@ namespace impactfe
     // `Mesh`) is read on every rank as the coarse mesh and partitioned.
     // Two bodies are two files, held side by side in one mesh (material
     // ids 0 and 1, merge_body_meshes()), so that p4est partitions them
-    // together.
+    // together; the candidates between them are the serial ContactSet's on
+    // the bodies' own meshes (the same pairs, frames and gaps as the
+    // serial programs).
     template <int dim>
     void
     SlidingBlockScene<dim>::make_grid()
@@ -257,10 +288,44 @@ namespace impactfe
       auto &tria = body.triangulation();
       if (parameters.two_bodies)
         {
-          Triangulation<dim> first, second;
-          parameters.mesh.read(first, parameter_file);
-          parameters.second_mesh.read(second, parameter_file);
-          merge_body_meshes<dim>({&first, &second}, tria);
+          const double     thickness = dim == 2 ? parameters.thickness : 1.;
+          ElasticBody<dim> first("first body",
+                                 parameters.material,
+                                 parameters.scene.discretization,
+                                 thickness);
+          ElasticBody<dim> second("second body",
+                                  parameters.material,
+                                  parameters.scene.discretization,
+                                  thickness);
+          parameters.mesh.read(first.triangulation(), parameter_file);
+          parameters.second_mesh.read(second.triangulation(), parameter_file);
+          merge_body_meshes<dim>({&first.triangulation(),
+                                  &second.triangulation()},
+                                 tria);
+          vertex_offsets = {0, first.triangulation().n_vertices()};
+
+          const double mu = parameters.friction_between_bodies;
+          pairs_between_bodies =
+            std::make_unique<ContactSet>(mu > 0. ? dim : 1);
+          const std::vector<const ElasticBody<dim> *> bodies = {&first,
+                                                                &second};
+          const types::boundary_id id_a = parameters.mesh.contact_boundary_id;
+          const types::boundary_id id_b =
+            parameters.second_mesh.contact_boundary_id;
+          if (parameters.discretization == "node-to-segment")
+            pairs_between_bodies->add_node_to_segment(
+              bodies, 0, id_a, 1, id_b, mu);
+          else if (parameters.discretization == "node-to-face")
+            pairs_between_bodies->add_node_to_face(
+              bodies, 0, id_a, 1, id_b, mu);
+          else
+            {
+              Tensor<1, dim> n;
+              for (unsigned int d = 0; d < dim; ++d)
+                n[d] = parameters.contact_normal[d];
+              pairs_between_bodies->add_node_to_node(
+                bodies, 0, id_a, 1, id_b, n, mu);
+            }
         }
       else if (parameters.mesh.from_file())
         parameters.mesh.read(tria, parameter_file);
@@ -334,16 +399,10 @@ namespace impactfe
       body.setup();
       if (parameters.two_bodies)
         {
-          Tensor<1, dim> n;
-          for (unsigned int d = 0; d < dim; ++d)
-            n[d] = parameters.contact_normal[d];
-          contact.setup_node_to_node(body,
-                                     0,
-                                     parameters.mesh.contact_boundary_id,
-                                     1,
-                                     parameters.second_mesh.contact_boundary_id,
-                                     n,
-                                     parameters.friction_between_bodies);
+          contact.setup_between_bodies(body,
+                                       *pairs_between_bodies,
+                                       vertex_offsets);
+          pairs_between_bodies.reset();
         }
       else
         {
@@ -635,7 +694,7 @@ namespace impactfe
           << " Q1 cells, " << body.dof_handler().n_dofs() << " DoFs, "
           << contact.n_candidates() << " contact candidates; "
           << (obstacle ? "obstacle: " + obstacle->description() :
-                         std::string("node-to-node between the bodies"))
+                         parameters.discretization + " between the bodies")
           << ", mu = " << contact.friction_coefficient() << "\n"
           << "  Contact candidates owned per rank: " << owned_range.min
           << " to " << owned_range.max << "\n";

@@ -342,6 +342,11 @@ main()
       "/bar_2d_20x3.msh\nend\nsubsection Second body\n  set Contact "
       "normal = -1, 0\nend\n",
     mpi);
+  run_case("mpi_two_bodies_node_to_face_in_2d",
+           bars + second_bar +
+             "subsection Second body\n  set Contact discretization = "
+             "node-to-face\nend\n",
+           mpi);
   run_case("mpi_second_body_without_two_bodies",
            with("Second body", "Contact normal = -1, 0, 0"),
            mpi);

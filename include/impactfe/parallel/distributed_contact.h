@@ -1,12 +1,12 @@
 // The contact candidates of a distributed body: its nodes against a rigid
-// obstacle, or node-to-node pairs between two parts of its mesh (two
-// bodies). Each candidate is owned by the rank that owns its first node's
-// DoFs, and the candidate data the contact problem needs (frames, gaps,
-// local velocities) are replicated on every rank (issue 14,
-// doc/parallel.md).
+// obstacle, or pairs between two parts of its mesh (two bodies). Each
+// candidate is owned by the rank that owns its first node's DoFs, and the
+// candidate data the contact problem needs (frames, gaps, local velocities) are
+// replicated on every rank (issue 14, doc/parallel.md).
 #ifndef impactfe_parallel_distributed_contact_h
 #define impactfe_parallel_distributed_contact_h
 
+#include <impactfe/contact/contact_set.h>
 #include <impactfe/contact/rigid_obstacle.h>
 #include <impactfe/parallel/distributed_body.h>
 
@@ -19,8 +19,9 @@ namespace impactfe
   {
     /**
      * Contact candidates with the serial ContactSet's conventions: side A
-     * is a node of the body, side B a rigid obstacle or a node of another
-     * part of the mesh; the frame (contact_frame()) has its normal n
+     * is a node of the body, side B a rigid obstacle or a point of another
+     * part of the mesh (a node, or a point of a segment or face that moves
+     * with its nodes); the frame (contact_frame()) has its normal n
      * pointing from B towards A, and g(u) = g_0 + n . (u_A - u_B),
      * V = frame . (v_A - v_B), the impulse P acts on A and -P on B. Small
      * perturbations: frames, g_0 and the pairs are fixed at the reference
@@ -29,14 +30,18 @@ namespace impactfe
      * runs on different numbers of ranks pose the same problem. A product
      * with H or H^T touches the DoFs this rank owns only, and the replicated
      * values are summed over the ranks: no ghost exchange, also when the
-     * two nodes of a pair have different owners.
+     * nodes of a pair have different owners.
      */
     template <int dim>
     class DistributedContact
     {
     public:
+      /// The most nodes of a candidate: a node and a face's four.
+      static constexpr unsigned int max_nodes = 5;
+
       /// A node of a candidate: its DoFs, the rank that owns them, and its
-      /// weight in H (1 for side A, -1 for side B's node).
+      /// weight in H (1 for side A; minus the interpolation weight of the
+      /// contact point for each of side B's nodes).
       struct Node
       {
         std::array<types::global_dof_index, dim> dofs{};
@@ -49,9 +54,10 @@ namespace impactfe
         Point<dim>                           position;
         std::array<std::array<double, 3>, 3> frame{};
         double                               initial_gap = 0.;
-        /// Side A's node, then (node-to-node) side B's.
-        unsigned int        n_nodes = 1;
-        std::array<Node, 2> nodes{};
+        /// Side A's node, then side B's (one node, a segment's two or a
+        /// face's four).
+        unsigned int                n_nodes = 1;
+        std::array<Node, max_nodes> nodes{};
       };
 
       /**
@@ -66,22 +72,18 @@ namespace impactfe
             const double                       friction_coefficient);
 
       /**
-       * Node-to-node candidates between two parts of the body's mesh (the
-       * cells with material ids @p part_a and @p part_b, two bodies with
-       * matching interface meshes): each node of part A on @p boundary_a is
-       * paired with the node of part B on @p boundary_b on the same line
-       * along @p normal (a unit vector from B towards A), as
-       * ContactSet::add_node_to_node(). The initial gap is the distance
-       * along n. Throws, naming the node, if one has no partner.
+       * Candidates between two bodies held in the body's mesh as two parts
+       * (merge_body_meshes()): @p pairs are the serial ContactSet's
+       * node-to-node, node-to-segment or node-to-face candidates, built on
+       * the bodies' own coarse meshes (so that the pairing, the frames and
+       * the gaps are the serial programs'), whose vertex v of body b is
+       * vertex @p vertex_offsets[b] + v of the merged mesh. Each rank
+       * finds the DoFs of the vertices it owns; all are gathered.
        */
       void
-      setup_node_to_node(const DistributedElasticBody<dim> &body,
-                         const types::material_id           part_a,
-                         const types::boundary_id           boundary_a,
-                         const types::material_id           part_b,
-                         const types::boundary_id           boundary_b,
-                         const Tensor<1, dim>              &normal,
-                         const double friction_coefficient);
+      setup_between_bodies(const DistributedElasticBody<dim> &body,
+                           const ContactSet                  &pairs,
+                           const std::vector<unsigned int>   &vertex_offsets);
 
       unsigned int
       n_candidates() const;
@@ -154,7 +156,7 @@ namespace impactfe
       unsigned int                directions   = 1;
       unsigned int                this_rank    = 0;
       double                      mu           = 0.;
-      bool                        pairs        = false;
+      bool                        two_bodies   = false;
       std::vector<Candidate>      candidate_list;
       mutable std::vector<double> partial;
     };

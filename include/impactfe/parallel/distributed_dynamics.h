@@ -164,7 +164,9 @@ namespace impactfe
       /// Per candidate and node, the positions of its DoFs in the
       /// substructured solver's contact Schur complement (each node's DoFs
       /// once); and that product's vectors.
-      std::vector<std::array<std::array<unsigned int, dim>, 2>> contact_slots;
+      std::vector<std::array<std::array<unsigned int, dim>,
+                             DistributedContact<dim>::max_nodes>>
+                          contact_slots;
       unsigned int        n_contact_dofs = 0;
       std::vector<double> dense_in, dense_out, contact_dof_values;
       /// v_free and correction (M~^{-1} H P) are not used (nor sized)

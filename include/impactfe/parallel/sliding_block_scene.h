@@ -38,10 +38,12 @@ namespace impactfe
       /// (impact and two_bodies: node-to-node contact, no obstacle).
       bool impact = false, two_bodies = false;
       /// Scene = two bodies: the second body's mesh and uniform initial
-      /// velocity, the contact normal (from the second body towards the
-      /// first) and the friction coefficient between the bodies.
+      /// velocity, how the contact between the bodies is discretised, the
+      /// contact normal of node-to-node pairs (from the second body towards
+      /// the first) and the friction coefficient between the bodies.
       MeshParameters      second_mesh;
       std::vector<double> second_velocity, contact_normal;
+      std::string         discretization          = "node-to-node";
       double              friction_between_bodies = 0.;
       /// 2D: the out-of-plane thickness [m].
       double                   thickness = 1.;
@@ -135,13 +137,18 @@ namespace impactfe
       double
       body_size() const;
 
-      const SlidingBlockParameters                  parameters;
-      const std::string                             parameter_file;
-      MPI_Comm                                      comm;
-      const unsigned int                            n_ranks;
-      ConditionalOStream                            pcout;
-      DistributedElasticBody<dim>                   body;
-      DistributedContact<dim>                       contact;
+      const SlidingBlockParameters parameters;
+      const std::string            parameter_file;
+      MPI_Comm                     comm;
+      const unsigned int           n_ranks;
+      ConditionalOStream           pcout;
+      DistributedElasticBody<dim>  body;
+      DistributedContact<dim>      contact;
+      /// Scene = two bodies: the candidates between the bodies on their own
+      /// meshes (the serial ContactSet), and where each body's vertices
+      /// start in the merged mesh.
+      std::unique_ptr<ContactSet>                   pairs_between_bodies;
+      std::vector<unsigned int>                     vertex_offsets;
       std::unique_ptr<RigidObstacle<dim>>           obstacle;
       std::unique_ptr<DistributedImpactSolver<dim>> solver;
       std::unique_ptr<HistoryWriter>                history;
