@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Compare two history.csv files of the same scene (for example a serial
-program's and block_sliding_mpi's, or runs on 1 and 2 MPI ranks).
+program's and contact_mpi's, or runs on 1 and 2 MPI ranks).
 
     compare_histories.py A/history.csv B/history.csv [--tolerance 1e-8]
 
@@ -27,7 +27,7 @@ not read as a difference:
 
 --rename OLD=NEW (repeatable) renames the columns of A that start with OLD
 (for example bar_1_=body_1_: the serial bars' names against
-block_sliding_mpi's body_1_ and body_2_).
+contact_mpi's body_1_ and body_2_).
 
 Prints one line per quantity and exits with 1 if one differs by more than
 the tolerance."""

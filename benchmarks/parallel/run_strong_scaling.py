@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Strong scaling of block_sliding_mpi: one and two MPI ranks on the same
+"""Strong scaling of contact_mpi: one and two MPI ranks on the same
 block (3D: n x n/2 x n cells, the exact cone; 2D: n x n/2 cells, plane
 strain) on a rigid plane, every bottom node sliding, a few time steps
 each, for several n, with the direct (MUMPS), the AMG-CG and/or the
@@ -17,7 +17,7 @@ Writes doc/parallel_scaling.csv, doc/parallel_scaling.png (seconds per step
 against DoFs, and the speed-up; --name changes the file names),
 results/parallel_scaling/summary.json,
 prints a table and ends with one RESULT line. The times are wall seconds
-of the time loop (block_sliding_mpi's RESULT line), so the machine must
+of the time loop (contact_mpi's RESULT line), so the machine must
 be otherwise idle; the machine and the commit are printed with the
 table."""
 import argparse
@@ -128,11 +128,11 @@ def run(build, work, n, ranks, steps, solver, dim):
         f.write((PRM if dim == 3 else PRM_2D).format(
             n=n, m=m, height=0.1 * m / n, **common))
     proc = subprocess.run(mpiexec(ranks) + [os.path.join(build, "bin",
-                                                         "block_sliding_mpi"),
+                                                         "contact_mpi"),
                                             prm],
                           capture_output=True, text=True)
     if proc.returncode != 0:
-        sys.exit(f"block_sliding_mpi failed (n = {n}, {ranks} ranks):\n"
+        sys.exit(f"contact_mpi failed (n = {n}, {ranks} ranks):\n"
                  + proc.stdout[-2000:] + proc.stderr[-2000:])
     line = [l for l in proc.stdout.splitlines() if l.startswith("RESULT ")][-1]
     values = dict(kv.split("=", 1) for kv in line.split()[1:])
@@ -173,7 +173,7 @@ def main():
     if os.path.exists("/proc/cpuinfo"):
         m = re.search(r"model name\s*:\s*(.*)", open("/proc/cpuinfo").read())
         cpu = m.group(1) if m else ""
-    print(f"block_sliding_mpi strong scaling, commit {commit}, {cpu}, "
+    print(f"contact_mpi strong scaling, commit {commit}, {cpu}, "
           f"{os.cpu_count()} cores, {platform.node()}")
     print(f"{'solver':>13} {'n':>4} {'DoFs':>8} {'contacts':>8} {'ranks':>5} {'set-up s':>8} {'s/step':>9} "
           f"{'W x/step':>8} {'CG/solve':>8} {'solves':>6} {'speed-up':>8}")
@@ -210,9 +210,9 @@ def main():
         ax1.set_xlabel("DoFs")
         ax1.set_ylabel("wall seconds per step")
         ax1.legend()
-        ax1.set_title("block_sliding_mpi, exact cone, (n+1)^2 contacts"
+        ax1.set_title("contact_mpi, exact cone, (n+1)^2 contacts"
                       if a.dim == 3 else
-                      "block_sliding_mpi, 2D, n+1 contacts")
+                      "contact_mpi, 2D, n+1 contacts")
         ax2.set_xlabel("DoFs")
         ax2.set_ylabel("speed-up over 1 rank")
         ax2.axhline(1.6, color="grey", ls=":", label="issue 14's 1.6")

@@ -12,7 +12,7 @@ usage: make_disc_msh.py > disc_4x3.msh
        make_disc_msh.py N_CORE N_RINGS CENTRE_HEIGHT > file.msh
 (the second form: the paper's cylinder, 12 9 11.5, is
 parameter_files/cylinder_12x9.msh, the mesh of cylinder_impact.prm with its
-initial gap of 1.5, for block_sliding_mpi's cylinder_impact_mpi.prm)
+initial gap of 1.5, for contact_mpi's cylinder_impact_mpi.prm)
 """
 import math
 import sys

@@ -13,7 +13,7 @@ plate's contact boundary id); the rest of the boundary is untagged (id 0).
 
 usage: make_plate_msh.py NX NY W H R Y0 > file.msh
 (parameter_files/oblique_plate_10x8.msh is `10 8 0.08 0.04 0.101 0`, the
-mesh of oblique_plate.prm, for block_sliding_mpi's oblique_plate_mpi.prm)
+mesh of oblique_plate.prm, for contact_mpi's oblique_plate_mpi.prm)
 """
 import math
 import sys

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""ctest driver: run a serial program and block_sliding_mpi on two ranks on
+"""ctest driver: run a serial program and contact_mpi on two ranks on
 the same scene, then compare their history.csv with
 tools/compare_histories.py (to 1e-8 of each quantity's scale; the
 momentum's bound adds the two runs' own impulse balance errors). Both runs
 must also pass their own checks (exit code 0). The "serial" program may be
-block_sliding_mpi itself, run on one rank without mpiexec; --rename is
+contact_mpi itself, run on one rank without mpiexec; --rename is
 passed on to compare_histories.py (the serial bars' column names)."""
 import argparse
 import json

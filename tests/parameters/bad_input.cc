@@ -280,7 +280,7 @@ main()
   run_case("two_bars_3d_nonmatching_node_to_node",
            with("Geometry", "Number of cells across bar 2 = 3"),
            TWO_BARS_3D_EXECUTABLE);
-  // block_sliding_mpi on two ranks: every rank meets the error, rank 0
+  // contact_mpi on two ranks: every rank meets the error, rank 0
   // prints it, all exit with 1 (no rank is left waiting).
   const std::string mpi = MPIEXEC_TWO_RANKS " " BLOCK_SLIDING_MPI_EXECUTABLE;
   run_case("mpi_more_ranks_than_cells",

@@ -6,7 +6,7 @@ gives: 0 at x = X0, 1 at x = X0 + L, 2 and 3 at y = 0 and H, 4 and 5 at
 z = 0 and H. Faces with id 0 are not written (0 is the default id).
 
 An independent construction of the bars that the serial programs
-two_bars_2d and two_bars_3d build, for block_sliding_mpi's Scene = two
+two_bars_2d and two_bars_3d build, for contact_mpi's Scene = two
 bodies (same vertex positions, own numbering).
 
 usage: make_bar_msh.py DIM NX NY X0 L H > file.msh

@@ -52,7 +52,7 @@ namespace impactfe
 
   /**
    * The entries of the sliding-block scenes (block_sliding_3d and
-   * block_sliding_mpi): subsection `Geometry` (a box of length x height x
+   * contact_mpi): subsection `Geometry` (a box of length x height x
    * width, in nx x ny x nz Q1 cells), `Initial conditions` (the speed v0
    * and the direction phi of the launch along the plane), `Loads` (g) and
    * the stability bounds of `Verification`.

@@ -6,7 +6,7 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <impactfe/dynamics/contact_monitor.h>
-#include <impactfe/parallel/sliding_block_scene.h>
+#include <impactfe/parallel/distributed_scene.h>
 #include <impactfe/utilities/program.h>
 
 #include <chrono>
@@ -55,7 +55,7 @@ namespace impactfe
 
     // @sect3{Parameters}
     void
-    SlidingBlockParameters::read(const std::string &file)
+    DistributedSceneParameters::read(const std::string &file)
     {
       ParameterHandler prm;
       prm.declare_entry("Dimension",
@@ -121,7 +121,7 @@ namespace impactfe
                         "the bodies [-]. Must be >= 0; 0: no tangential "
                         "unknowns.");
       prm.leave_subsection();
-      SceneParameters::declare_parameters(prm, "results/block_sliding_mpi");
+      SceneParameters::declare_parameters(prm, "results/contact_mpi");
       MeshParameters::declare_parameters(prm, "Mesh", 2);
       MeshParameters::declare_parameters(prm, "Mesh of the second body", 0);
       ObstacleParameters::declare_parameters(prm, "0, 0, 0", "0, 1, 0", "0.5");
@@ -250,15 +250,15 @@ namespace impactfe
                              format_number(box.phi) + "."));
       AssertThrow(scene.time_stepping.free_flight_step_factor == 1,
                   ExcMessage("Time stepping: 'Free-flight step factor' is "
-                             "not available in block_sliding_mpi yet."));
+                             "not available in contact_mpi yet."));
     }
 
 
 
     template <int dim>
-    SlidingBlockScene<dim>::SlidingBlockScene(
-      const SlidingBlockParameters &parameters,
-      const std::string            &file)
+    DistributedScene<dim>::DistributedScene(
+      const DistributedSceneParameters &parameters,
+      const std::string                &file)
       : parameters(parameters)
       , parameter_file(file)
       , comm(MPI_COMM_WORLD)
@@ -283,7 +283,7 @@ namespace impactfe
     // serial programs).
     template <int dim>
     void
-    SlidingBlockScene<dim>::make_grid()
+    DistributedScene<dim>::make_grid()
     {
       auto &tria = body.triangulation();
       if (parameters.two_bodies)
@@ -362,7 +362,7 @@ namespace impactfe
     // length, or the extent of the mesh read from a file, over all ranks.
     template <int dim>
     double
-    SlidingBlockScene<dim>::body_size() const
+    DistributedScene<dim>::body_size() const
     {
       if (!parameters.impact)
         return parameters.box.length;
@@ -390,7 +390,7 @@ namespace impactfe
     // @sect3{Set-up}
     template <int dim>
     void
-    SlidingBlockScene<dim>::setup_system()
+    DistributedScene<dim>::setup_system()
     {
       make_grid();
       Tensor<1, dim> g;
@@ -468,7 +468,7 @@ namespace impactfe
     // their .pvtu/.pvd records every `Output interval` steps.
     template <int dim>
     void
-    SlidingBlockScene<dim>::output_results(const unsigned int step)
+    DistributedScene<dim>::output_results(const unsigned int step)
     {
       const DistributedVector &u = solver->displacement();
       const DistributedVector &v = solver->velocity();
@@ -569,8 +569,8 @@ namespace impactfe
 
     template <int dim>
     Tensor<1, dim>
-    SlidingBlockScene<dim>::body_momentum(const DistributedVector &velocity,
-                                          const unsigned int       b)
+    DistributedScene<dim>::body_momentum(const DistributedVector &velocity,
+                                         const unsigned int       b)
     {
       return parameters.two_bodies ? body.momentum(velocity, b) :
                                      body.momentum(velocity);
@@ -587,7 +587,7 @@ namespace impactfe
     // opposite of that on the second.
     template <int dim>
     void
-    SlidingBlockScene<dim>::run()
+    DistributedScene<dim>::run()
     {
       using Clock = std::chrono::steady_clock;
       MPI_Barrier(comm);
@@ -668,7 +668,7 @@ namespace impactfe
     // @sect3{The report}
     template <int dim>
     void
-    SlidingBlockScene<dim>::report_results()
+    DistributedScene<dim>::report_results()
     {
       const DistributedRunStatistics &stats = solver->statistics();
       unsigned int                    owned = 0;
@@ -825,7 +825,7 @@ namespace impactfe
       pcout << out.str();
 
       JsonObject summary;
-      summary.add("program", "block_sliding_mpi")
+      summary.add("program", "contact_mpi")
         .add("scene",
              parameters.two_bodies ? "two bodies" :
              parameters.impact     ? "impact" :
@@ -860,18 +860,17 @@ namespace impactfe
         summary.write(parameters.scene.output.directory + "/summary.json");
       });
       if (parameters.scene.output.print_performance)
-        pcout << "RESULT program=block_sliding_mpi dim=" << dim
+        pcout << "RESULT program=contact_mpi dim=" << dim
               << " ranks=" << n_ranks << " dofs=" << body.dof_handler().n_dofs()
               << " contacts=" << contact.n_candidates() << " steps=" << n_steps
               << " seconds_per_step=" << loop_seconds / n_steps
               << " fallbacks=" << stats.fallbacks
               << " largest_violation=" << largest_violation << std::endl;
-      AssertThrow(ok,
-                  ExcMessage("block_sliding_mpi: a check failed (see above)."));
+      AssertThrow(ok, ExcMessage("contact_mpi: a check failed (see above)."));
     }
 
 
-    template class SlidingBlockScene<2>;
-    template class SlidingBlockScene<3>;
+    template class DistributedScene<2>;
+    template class DistributedScene<3>;
   } // namespace distributed
 } // namespace impactfe

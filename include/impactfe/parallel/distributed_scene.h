@@ -1,9 +1,10 @@
-// The scenes of programs/block_sliding_mpi, on a distributed mesh (issue
-// 14, doc/parallel.md): an elastic block (2D or 3D) sliding on a rigid
-// plane under gravity with Coulomb friction, or a body read from a mesh
-// file thrown at a rigid obstacle (the cylinder and the plate).
-#ifndef impactfe_parallel_sliding_block_scene_h
-#define impactfe_parallel_sliding_block_scene_h
+// The scenes of programs/contact_mpi, on a distributed mesh (issue 14,
+// doc/parallel.md): an elastic block (2D or 3D) sliding on a rigid plane
+// under gravity with Coulomb friction, a body read from a mesh file thrown
+// at a rigid obstacle (the cylinder and the plate), or at a second body
+// (the two bars).
+#ifndef impactfe_parallel_distributed_scene_h
+#define impactfe_parallel_distributed_scene_h
 
 #include <deal.II/base/conditional_ostream.h>
 
@@ -24,12 +25,12 @@ namespace impactfe
   namespace distributed
   {
     /**
-     * The parameters of block_sliding_mpi: every entry of block_sliding_3d
+     * The parameters of contact_mpi: every entry of block_sliding_3d
      * (the scene's, the obstacle's, the material's and the common ones), so
      * that its files run here too, plus `Dimension`, `Scene`, `Initial
      * conditions/Initial velocity` and `Parallel solver`.
      */
-    struct SlidingBlockParameters
+    struct DistributedSceneParameters
     {
       unsigned int dimension = 3;
       /// The sliding box, checked against the rigid block; or a body from
@@ -65,7 +66,7 @@ namespace impactfe
 
 
     /**
-     * The scene of block_sliding_mpi in the shape of a deal.II tutorial
+     * The scene of contact_mpi in the shape of a deal.II tutorial
      * program: make_grid(), setup_system(), the time loop of
      * DistributedImpactSolver, output_results() (history.csv on rank 0 with
      * block_sliding_3d's columns, partitioned VTU and their .pvtu/.pvd
@@ -73,11 +74,11 @@ namespace impactfe
      * line). Every member function is collective.
      */
     template <int dim>
-    class SlidingBlockScene
+    class DistributedScene
     {
     public:
-      SlidingBlockScene(const SlidingBlockParameters &parameters,
-                        const std::string            &file);
+      DistributedScene(const DistributedSceneParameters &parameters,
+                       const std::string                &file);
       void
       run();
 
@@ -137,13 +138,13 @@ namespace impactfe
       double
       body_size() const;
 
-      const SlidingBlockParameters parameters;
-      const std::string            parameter_file;
-      MPI_Comm                     comm;
-      const unsigned int           n_ranks;
-      ConditionalOStream           pcout;
-      DistributedElasticBody<dim>  body;
-      DistributedContact<dim>      contact;
+      const DistributedSceneParameters parameters;
+      const std::string                parameter_file;
+      MPI_Comm                         comm;
+      const unsigned int               n_ranks;
+      ConditionalOStream               pcout;
+      DistributedElasticBody<dim>      body;
+      DistributedContact<dim>          contact;
       /// Scene = two bodies: the candidates between the bodies on their own
       /// meshes (the serial ContactSet), and where each body's vertices
       /// start in the merged mesh.

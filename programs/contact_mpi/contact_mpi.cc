@@ -1,0 +1,72 @@
+/* ---------------------------------------------------------------------
+ *
+ * contact_mpi: contact dynamics on a distributed mesh (p4est, Trilinos
+ * matrices and vectors; the solves with M~ substructured, by MUMPS or by
+ * CG with ML's AMG; the contact problem replicated on every rank and
+ * solved by the active set method). Three scenes: the elastic block of
+ * block_sliding_3d (and its 2D section) sliding on a rigid plane under
+ * gravity with Coulomb friction; a body read from a mesh file thrown at a
+ * rigid obstacle; and that body thrown at a second one. Called
+ * block_sliding_mpi until it ran more than the sliding block.
+ *
+ * ---------------------------------------------------------------------
+ */
+
+// @sect3{Introduction}
+//
+// The sliding block's parameter file is block_sliding_3d's: the same file
+// runs with `block_sliding_3d` on one process and with `mpirun -np N
+// contact_mpi` on N, and the two write the same columns of history.csv
+// (time, forces, momentum, energies, active contacts), which must agree to
+// the solves' tolerance (tests/parallel/). These entries are this
+// program's own: the top-level `Dimension` (2: the block's section in the
+// x-y plane, sliding along x; 3: the box), the subsection `Parallel
+// solver`, `Scene = impact` with `Initial conditions/Initial velocity`:
+// the body of `Mesh file` thrown at the obstacle, as cylinder_impact and
+// oblique_plate do with the same file (cylinder_impact_mpi.prm,
+// oblique_plate_mpi.prm; `Geometry/Thickness` in 2D), and `Scene = two
+// bodies` with the subsections `Mesh of the second body` and `Second
+// body`: the two bars of two_bars_2d and two_bars_3d
+// (two_bars_2d_mpi.prm, two_bars_3d_mpi.prm). What the distributed step
+// does and does not do yet is in doc/parallel.md.
+#include <deal.II/base/mpi.h>
+
+#include <impactfe/parallel/distributed_scene.h>
+#include <impactfe/utilities/program.h>
+
+#include <string>
+
+
+
+// @sect3{The main function}
+// Every error met here is met by every rank (the parameters, the set-up and
+// the solves are collective), so rank 0 alone prints it and all exit with
+// 1: no rank is left waiting.
+int
+main(int argc, char *argv[])
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const bool                               root =
+    dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  try
+    {
+      AssertThrow(argc <= 2,
+                  dealii::ExcMessage("Usage: contact_mpi [parameter "
+                                     "file]"));
+      const std::string                                 file = argc > 1 ?
+                                                                 std::string(argv[1]) :
+                                                                 std::string(IMPACTFE_SOURCE_DIR) +
+                                   "/parameter_files/block_sliding_mpi.prm";
+      impactfe::distributed::DistributedSceneParameters parameters;
+      parameters.read(file);
+      if (parameters.dimension == 2)
+        impactfe::distributed::DistributedScene<2>(parameters, file).run();
+      else
+        impactfe::distributed::DistributedScene<3>(parameters, file).run();
+    }
+  catch (...)
+    {
+      return root ? impactfe::report_current_exception() : 1;
+    }
+  return 0;
+}
