@@ -94,51 +94,38 @@ namespace impactfe
       , contact(contact)
       , solver_parameters(solver)
       , linear_parameters(linear_solver)
-      , scheme(create_time_integrator(time))
     {
       AssertThrow(time.scheme != Scheme::newmark,
                   ExcMessage("Time stepping: 'Scheme = newmark' is not "
                              "available in the distributed programs; choose "
                              "theta, theta-euler or modified-theta."));
-      rule = scheme->theta_step_rule();
+      fine.scheme = create_time_integrator(time);
+      fine.rule   = fine.scheme->theta_step_rule();
+      // the free-flight level: the same scheme with k h
+      if (time.free_flight_step_factor > 1)
+        {
+          TimeSteppingParameters coarse_time = time;
+          coarse_time.time_step *= time.free_flight_step_factor;
+          coarse             = std::make_unique<StepOperators>();
+          coarse->scheme     = create_time_integrator(coarse_time);
+          coarse->rule       = coarse->scheme->theta_step_rule();
+          free_flight_factor = time.free_flight_step_factor;
+        }
     }
 
 
 
     // @sect3{Set-up}
-    // M~ = M + c_C C + c_K K and the matrix of F~'s velocity term, M + a_C
-    // C + a_K K, on the body's sparsity pattern; MUMPS's factors of M~, or
-    // ML's AMG on M~ with the rigid translations as its near null space.
     template <int dim>
     void
     DistributedImpactSolver<dim>::setup()
     {
-      const FreeRhsCoefficients f = scheme->free_rhs_coefficients();
-      step_matrix.copy_from(body.mass_matrix());
-      step_matrix.add(scheme->stiffness_coefficient(), body.stiffness_matrix());
-      velocity_matrix.copy_from(body.mass_matrix());
-      if (f.velocity_stiffness != 0.)
-        velocity_matrix.add(f.velocity_stiffness, body.stiffness_matrix());
-      if (body.has_damping())
-        {
-          step_matrix.add(scheme->damping_coefficient(), body.damping_matrix());
-          velocity_matrix.add(f.velocity_damping, body.damping_matrix());
-        }
-      displacement_factor = f.displacement_stiffness;
-
-      if (linear_parameters.solver == ParallelSolverParameters::Solver::direct)
-        {
-          direct_solver = std::make_unique<TrilinosWrappers::SolverDirect>(
-            direct_control,
-            TrilinosWrappers::SolverDirect::AdditionalData(false,
-                                                           "Amesos_Mumps"));
-          direct_solver->initialize(step_matrix);
-        }
-      else if (linear_parameters.solver ==
-               ParallelSolverParameters::Solver::substructured)
-        setup_substructured_solver();
-      else
-        setup_amg();
+      if (linear_parameters.solver ==
+          ParallelSolverParameters::Solver::substructured)
+        setup_contact_slots();
+      setup_operators(fine);
+      if (coarse)
+        setup_operators(*coarse);
 
       const IndexSet &owned = body.locally_owned_dofs();
       const MPI_Comm  comm  = body.communicator();
@@ -147,7 +134,7 @@ namespace impactfe
         x->reinit(owned, comm);
       // the substructured solver's step needs neither (start_solve() and
       // finish_solve())
-      if (!substructured_solver)
+      if (!fine.substructured_solver)
         for (DistributedVector *x : {&v_free, &correction})
           x->reinit(owned, comm);
       const unsigned int n  = contact.n_candidates();
@@ -161,9 +148,52 @@ namespace impactfe
 
 
 
+    // M~ = M + c_C C + c_K K and the matrix of F~'s velocity term, M + a_C
+    // C + a_K K, on the body's sparsity pattern, for the level's scheme;
+    // MUMPS's factors of M~, ML's AMG on M~ with the rigid translations as
+    // its near null space, or the substructured solver.
     template <int dim>
     void
-    DistributedImpactSolver<dim>::setup_amg()
+    DistributedImpactSolver<dim>::setup_operators(StepOperators &level)
+    {
+      const TimeIntegrator     &scheme = *level.scheme;
+      const FreeRhsCoefficients f      = scheme.free_rhs_coefficients();
+      level.step_matrix.copy_from(body.mass_matrix());
+      level.step_matrix.add(scheme.stiffness_coefficient(),
+                            body.stiffness_matrix());
+      level.velocity_matrix.copy_from(body.mass_matrix());
+      if (f.velocity_stiffness != 0.)
+        level.velocity_matrix.add(f.velocity_stiffness,
+                                  body.stiffness_matrix());
+      if (body.has_damping())
+        {
+          level.step_matrix.add(scheme.damping_coefficient(),
+                                body.damping_matrix());
+          level.velocity_matrix.add(f.velocity_damping, body.damping_matrix());
+        }
+      level.displacement_factor = f.displacement_stiffness;
+
+      if (linear_parameters.solver == ParallelSolverParameters::Solver::direct)
+        {
+          level.direct_solver =
+            std::make_unique<TrilinosWrappers::SolverDirect>(
+              level.direct_control,
+              TrilinosWrappers::SolverDirect::AdditionalData(false,
+                                                             "Amesos_Mumps"));
+          level.direct_solver->initialize(level.step_matrix);
+        }
+      else if (linear_parameters.solver ==
+               ParallelSolverParameters::Solver::substructured)
+        setup_substructured_solver(level);
+      else
+        setup_amg(level);
+    }
+
+
+
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::setup_amg(StepOperators &level)
     {
       TrilinosWrappers::PreconditionAMG::AdditionalData data;
       std::vector<std::vector<bool>>                    modes;
@@ -175,33 +205,20 @@ namespace impactfe
       data.higher_order_elements = false;
       data.smoother_sweeps       = 2;
       data.aggregation_threshold = 0.02;
-      amg.initialize(step_matrix, data);
+      level.amg.initialize(level.step_matrix, data);
     }
 
 
 
-    // Each rank's part of M~ from its own cells; C: every DoF of every
-    // candidate, so that H x of any set of candidates lies in C.
+    // C: every DoF of every candidate, so that H x of any set of candidates
+    // lies in C; each node once (a node of side B may serve several
+    // candidates), in the order the dense complement keeps.
     template <int dim>
     void
-    DistributedImpactSolver<dim>::setup_substructured_solver()
+    DistributedImpactSolver<dim>::setup_contact_slots()
     {
-      SparsityPattern                      pattern;
-      SparseMatrix<double>                 subdomain_matrix;
-      std::vector<types::global_dof_index> local_to_global;
-      std::vector<bool>                    on_interface;
-      body.assemble_subdomain_matrix(1.,
-                                     scheme->stiffness_coefficient(),
-                                     body.has_damping() ?
-                                       scheme->damping_coefficient() :
-                                       0.,
-                                     pattern,
-                                     subdomain_matrix,
-                                     local_to_global,
-                                     on_interface);
-      // each node once (a node of side B may serve several candidates)
-      std::vector<types::global_dof_index>            contact_dofs;
       std::map<types::global_dof_index, unsigned int> slot_of_node;
+      contact_dofs.clear();
       contact_slots.resize(contact.n_candidates());
       for (unsigned int c = 0; c < contact.n_candidates(); ++c)
         for (unsigned int i = 0; i < contact.candidate(c).n_nodes; ++i)
@@ -216,18 +233,40 @@ namespace impactfe
             for (unsigned int d = 0; d < dim; ++d)
               contact_slots[c][i][d] = slot.first->second + d;
           }
-      substructured_solver = std::make_unique<SubstructuredSolver>();
-      substructured_solver->initialize(body.communicator(),
-                                       subdomain_matrix,
-                                       local_to_global,
-                                       on_interface,
-                                       contact_dofs,
-                                       body.locally_owned_dofs(),
-                                       "the step matrix");
-      // (the dense complement keeps C in the given order)
       n_contact_dofs = contact_dofs.size();
       dense_in.assign(n_contact_dofs, 0.);
       dense_out.assign(n_contact_dofs, 0.);
+    }
+
+
+
+    // Each rank's part of the level's M~ from its own cells.
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::setup_substructured_solver(
+      StepOperators &level)
+    {
+      SparsityPattern                      pattern;
+      SparseMatrix<double>                 subdomain_matrix;
+      std::vector<types::global_dof_index> local_to_global;
+      std::vector<bool>                    on_interface;
+      body.assemble_subdomain_matrix(1.,
+                                     level.scheme->stiffness_coefficient(),
+                                     body.has_damping() ?
+                                       level.scheme->damping_coefficient() :
+                                       0.,
+                                     pattern,
+                                     subdomain_matrix,
+                                     local_to_global,
+                                     on_interface);
+      level.substructured_solver = std::make_unique<SubstructuredSolver>();
+      level.substructured_solver->initialize(body.communicator(),
+                                             subdomain_matrix,
+                                             local_to_global,
+                                             on_interface,
+                                             contact_dofs,
+                                             body.locally_owned_dofs(),
+                                             "the step matrix");
     }
 
 
@@ -247,7 +286,8 @@ namespace impactfe
     // that does not converge stops the run with the time named.
     template <int dim>
     void
-    DistributedImpactSolver<dim>::solve_step_matrix(const DistributedVector &b,
+    DistributedImpactSolver<dim>::solve_step_matrix(const StepOperators &level,
+                                                    const DistributedVector &b,
                                                     DistributedVector       &x)
     {
       ++stats.solves;
@@ -257,15 +297,15 @@ namespace impactfe
                                  std::chrono::steady_clock::now() - start)
                                  .count();
       };
-      if (direct_solver)
+      if (level.direct_solver)
         {
-          direct_solver->solve(x, b);
+          level.direct_solver->solve(x, b);
           charge();
           return;
         }
-      if (substructured_solver)
+      if (level.substructured_solver)
         {
-          substructured_solver->solve(b, x);
+          level.substructured_solver->solve(b, x);
           charge();
           return;
         }
@@ -280,7 +320,7 @@ namespace impactfe
       SolverCG<DistributedVector> cg(control);
       try
         {
-          cg.solve(step_matrix, x, b, amg);
+          cg.solve(level.step_matrix, x, b, level.amg);
         }
       catch (const SolverControl::NoConvergence &e)
         {
@@ -306,7 +346,7 @@ namespace impactfe
     {
       impulse_force = 0.;
       contact.add_impulses(lcp_candidates, x, impulse_force);
-      solve_step_matrix(impulse_force, correction);
+      solve_step_matrix(fine, impulse_force, correction);
       contact.local_values(correction, lcp_candidates, y);
       ++stats.products;
     }
@@ -323,7 +363,7 @@ namespace impactfe
       const unsigned int nd = contact.n_directions();
       impulses_on_contact_dofs(x, dense_in);
       const DenseSchurComplement &schur =
-        substructured_solver->contact_schur_complement();
+        fine.substructured_solver->contact_schur_complement();
       const unsigned int n_ranks =
         Utilities::MPI::n_mpi_processes(body.communicator());
       if (n_ranks > 1)
@@ -468,14 +508,14 @@ namespace impactfe
                   for (unsigned int e = 0; e < dim; ++e)
                     lcp_penalty[a * nd + k] +=
                       cand.frame[k][d] * cand.frame[k][e] *
-                      step_matrix.el(cand.nodes[i].dofs[d],
-                                     cand.nodes[i].dofs[e]);
+                      fine.step_matrix.el(cand.nodes[i].dofs[d],
+                                          cand.nodes[i].dofs[e]);
         }
       Utilities::MPI::sum(lcp_penalty, body.communicator(), lcp_penalty);
 
       // With the substructured solver, W and the preconditioner H^T S_C H
       // are dense products, as in the serial programs.
-      const bool                 dense = substructured_solver != nullptr;
+      const bool                 dense = fine.substructured_solver != nullptr;
       const lcp::DelassusProduct product =
         [this, dense](const std::vector<double> &x, std::vector<double> &y) {
           if (dense)
@@ -492,14 +532,14 @@ namespace impactfe
             }
           impulse_force = 0.;
           contact.add_impulses(lcp_candidates, x, impulse_force);
-          step_matrix.vmult(work, impulse_force);
+          fine.step_matrix.vmult(work, impulse_force);
           contact.local_values(work, lcp_candidates, y);
         };
       // GMRES cannot go below the products' own error, which the CG
       // tolerance sets (times the condition of M~, modest at small steps)
       lcp::ActiveSetOptions options;
       options.max_iterations = solver_parameters.active_set_iterations;
-      if (!direct_solver)
+      if (!fine.direct_solver)
         options.linear_tolerance =
           std::max(options.linear_tolerance, 1e2 * linear_parameters.tolerance);
       if (nd == 3 && solver_parameters.friction_cone == lcp::ConeModel::facets)
@@ -538,7 +578,7 @@ namespace impactfe
       stats.record(result.verification);
       lcp_P = active_set_solver.impulses();
       // with every contact open the solver makes no last product
-      if (!substructured_solver &&
+      if (!fine.substructured_solver &&
           std::all_of(lcp_P.begin(), lcp_P.end(), [](const double p) {
             return p == 0.;
           }))
@@ -574,7 +614,7 @@ namespace impactfe
         {
           unit[j] = 1.;
           // with the substructured solver a column is a dense product
-          if (substructured_solver)
+          if (fine.substructured_solver)
             dense_contact_product(unit, column, false);
           else
             delassus_product(unit, column);
@@ -626,47 +666,48 @@ namespace impactfe
         last_states[lcp_candidates[a]] = states[a];
       // correction = M~^{-1} H P (the substructured path's time step
       // finishes its solve with H P instead)
-      if (!substructured_solver)
+      if (!fine.substructured_solver)
         delassus_product(lcp_P, column);
     }
 
 
 
     // @sect3{The time step}
+    // The free velocity: M~ v_free = F~, and its local components. The
+    // substructured solver starts the solve with F~ and gives the free
+    // velocity on the contact DoFs; it finishes it with F~ + H P once P is
+    // known (one solve pair per step). Then b_N of the scheme:
+    // g(u + a h v) / d + c V_N(v).
     template <int dim>
-    const DistributedStepReport &
-    DistributedImpactSolver<dim>::do_time_step()
+    void
+    DistributedImpactSolver<dim>::start_step(const StepOperators &level)
     {
-      const double       h  = scheme->time_step();
-      const unsigned int n  = contact.n_candidates();
-      const unsigned int nd = contact.n_directions();
-      report                = DistributedStepReport();
-      report.time           = current_time + h;
-
-      // 1. The free velocity: M~ v_free = F~.
-      velocity_matrix.vmult(rhs, v);
-      if (displacement_factor != 0.)
+      level.velocity_matrix.vmult(rhs, v);
+      if (level.displacement_factor != 0.)
         {
           body.stiffness_matrix().vmult(work, u);
-          rhs.add(displacement_factor, work);
+          rhs.add(level.displacement_factor, work);
         }
-      rhs.add(scheme->free_rhs_coefficients().force, body.external_force());
-      // The substructured solver starts the solve with F~ and gives the
-      // free velocity on the contact DoFs; it finishes it with F~ + H P
-      // once P is known (one solve pair per step).
-      if (substructured_solver)
+      rhs.add(level.scheme->free_rhs_coefficients().force,
+              body.external_force());
+      if (level.substructured_solver)
         {
           const auto start = std::chrono::steady_clock::now();
-          substructured_solver->start_solve(rhs, contact_dof_values);
+          level.substructured_solver->start_solve(rhs, contact_dof_values);
           stats.solve_seconds += std::chrono::duration<double>(
                                    std::chrono::steady_clock::now() - start)
                                    .count();
           ++stats.solves;
+          local_components(contact_dof_values, local_free_velocity);
         }
       else
-        solve_step_matrix(rhs, v_free);
+        {
+          solve_step_matrix(level, rhs, v_free);
+          contact.local_velocities(v_free, local_free_velocity);
+        }
 
-      // 2. b_N of the scheme: g(u + a h v) / d + c V_N(v).
+      const ThetaStepRule &rule = level.rule;
+      const double         h    = level.scheme->time_step();
       if (rule.gap_prediction != 0.)
         {
           work = u;
@@ -677,15 +718,89 @@ namespace impactfe
         contact.gaps(u, gap_terms);
       if (rule.gap_velocity != 0.)
         contact.normal_velocities(v, normal_velocity);
-      for (unsigned int c = 0; c < n; ++c)
+      for (unsigned int c = 0; c < contact.n_candidates(); ++c)
         gap_terms[c] =
           gap_terms[c] / rule.gap_divisor +
           (rule.gap_velocity != 0. ? rule.gap_velocity * normal_velocity[c] :
                                      0.);
-      if (substructured_solver)
-        local_components(contact_dof_values, local_free_velocity);
+    }
+
+
+
+    // u from the scheme's rule, with v^i in v_old and v^{i+1} in v.
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::advance_displacement(
+      const StepOperators &level)
+    {
+      const double h = level.scheme->time_step();
+      u_old          = u;
+      if (level.rule.new_velocity_weight == 1.)
+        u.add(h, v);
       else
-        contact.local_velocities(v_free, local_free_velocity);
+        u.add(h * level.rule.new_velocity_weight,
+              v,
+              h * (1. - level.rule.new_velocity_weight),
+              v_old);
+      current_time += h;
+    }
+
+
+
+    template <int dim>
+    bool
+    DistributedImpactSolver<dim>::try_free_flight_step()
+    {
+      const unsigned int nd = contact.n_directions();
+      start_step(*coarse);
+      for (unsigned int c = 0; c < contact.n_candidates(); ++c)
+        if (local_free_velocity[c * nd] + gap_terms[c] < 0.)
+          return false;
+
+      report                  = DistributedStepReport();
+      report.time             = current_time + coarse->scheme->time_step();
+      report.n_substeps       = free_flight_factor;
+      report.load_coefficient = coarse->scheme->free_rhs_coefficients().force;
+      v_old                   = v;
+      if (coarse->substructured_solver)
+        {
+          contact_dof_values.assign(n_contact_dofs, 0.);
+          const auto start = std::chrono::steady_clock::now();
+          coarse->substructured_solver->finish_solve(contact_dof_values, v);
+          stats.solve_seconds += std::chrono::duration<double>(
+                                   std::chrono::steady_clock::now() - start)
+                                   .count();
+        }
+      else
+        v = v_free;
+      advance_displacement(*coarse);
+      std::fill(active.begin(), active.end(), false);
+      std::fill(last_states.begin(), last_states.end(), ContactState::open);
+      std::fill(local_impulses.begin(), local_impulses.end(), 0.);
+      last_impulses = local_impulses;
+      ++stats.free_flight_steps;
+      return true;
+    }
+
+
+
+    template <int dim>
+    const DistributedStepReport &
+    DistributedImpactSolver<dim>::do_time_step(const unsigned int max_substeps)
+    {
+      if (coarse && !last_step_had_impulses &&
+          max_substeps >= free_flight_factor && try_free_flight_step())
+        return report;
+
+      const double       h    = fine.scheme->time_step();
+      const unsigned int n    = contact.n_candidates();
+      const unsigned int nd   = contact.n_directions();
+      report                  = DistributedStepReport();
+      report.time             = current_time + h;
+      report.load_coefficient = fine.scheme->free_rhs_coefficients().force;
+
+      // 1. The free velocity, M~ v_free = F~, and 2. b_N of the scheme.
+      start_step(fine);
 
       // 3. The candidates that can touch, and the contact problem; a
       // candidate left out that the impulses push in joins, and the
@@ -700,7 +815,7 @@ namespace impactfe
                                           std::abs(gap_terms[c])});
         }
       std::fill(local_impulses.begin(), local_impulses.end(), 0.);
-      if (!substructured_solver)
+      if (!fine.substructured_solver)
         correction = 0.;
       std::vector<double> &all_correction = gap_work;
       for (;;)
@@ -711,18 +826,18 @@ namespace impactfe
               lcp_candidates.push_back(c);
           if (lcp_candidates.empty())
             {
-              if (!substructured_solver)
+              if (!fine.substructured_solver)
                 correction = 0.;
               break;
             }
           solve_contact_problem();
-          if (substructured_solver)
+          if (fine.substructured_solver)
             {
               // M~^{-1} H P on the contact DoFs is S_C^{-1} (H P)
               impulses_on_contact_dofs(lcp_P, contact_dof_values);
               dense_out.resize(contact_dof_values.size());
-              substructured_solver->contact_schur_complement().vmult_inverse(
-                contact_dof_values.data(), dense_out.data());
+              fine.substructured_solver->contact_schur_complement()
+                .vmult_inverse(contact_dof_values.data(), dense_out.data());
               local_components(dense_out, all_correction);
             }
           else
@@ -745,16 +860,16 @@ namespace impactfe
         for (unsigned int k = 0; k < nd; ++k)
           local_impulses[lcp_candidates[a] * nd + k] = lcp_P[a * nd + k];
 
-      // 4. v = v_free + M~^{-1} H P, then u from the scheme's rule.
+      // 4. v = v_free + M~^{-1} H P, then u from the scheme's fine.rule.
       v_old = v;
-      if (substructured_solver)
+      if (fine.substructured_solver)
         {
           if (lcp_candidates.empty())
             contact_dof_values.assign(n_contact_dofs, 0.);
           else
             impulses_on_contact_dofs(lcp_P, contact_dof_values);
           const auto start = std::chrono::steady_clock::now();
-          substructured_solver->finish_solve(contact_dof_values, v);
+          fine.substructured_solver->finish_solve(contact_dof_values, v);
           stats.solve_seconds += std::chrono::duration<double>(
                                    std::chrono::steady_clock::now() - start)
                                    .count();
@@ -764,15 +879,7 @@ namespace impactfe
           v = v_free;
           v += correction;
         }
-      u_old = u;
-      if (rule.new_velocity_weight == 1.)
-        u.add(h, v);
-      else
-        u.add(h * rule.new_velocity_weight,
-              v,
-              h * (1. - rule.new_velocity_weight),
-              v_old);
-      current_time = report.time;
+      advance_displacement(fine);
 
       Tensor<1, dim> tangential;
       for (unsigned int c = 0; c < n; ++c)
@@ -794,6 +901,10 @@ namespace impactfe
         }
       report.tangential_impulse = tangential.norm();
       last_impulses             = local_impulses;
+      last_step_had_impulses =
+        std::any_of(local_impulses.begin(),
+                    local_impulses.end(),
+                    [](const double p) { return p != 0.; });
       return report;
     }
 
@@ -848,7 +959,7 @@ namespace impactfe
     const TimeIntegrator &
     DistributedImpactSolver<dim>::integrator() const
     {
-      return *scheme;
+      return *fine.scheme;
     }
 
 

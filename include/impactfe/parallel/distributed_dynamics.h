@@ -29,9 +29,14 @@ namespace impactfe
     /// What one step did.
     struct DistributedStepReport
     {
-      double       time            = 0.;
-      unsigned int lcp_size        = 0;
-      unsigned int active_contacts = 0;
+      double time = 0.;
+      /// The step's length, in steps h (k for a free-flight step), and
+      /// the coefficient of the loads' impulse over it (the scheme's F~
+      /// force coefficient).
+      unsigned int n_substeps       = 1;
+      double       load_coefficient = 0.;
+      unsigned int lcp_size         = 0;
+      unsigned int active_contacts  = 0;
       /// Sum over the contacts of P_N, and |sum of P_T| (as vectors) [N s].
       double normal_impulse = 0., tangential_impulse = 0.;
       /// The total contact impulse on side A in global coordinates: on the
@@ -45,7 +50,7 @@ namespace impactfe
     {
       unsigned int contact_problems = 0, active_set_iterations = 0,
                    products = 0, cg_iterations = 0, solves = 0, fallbacks = 0,
-                   lcp_resolves = 0, largest_lcp = 0;
+                   free_flight_steps = 0, lcp_resolves = 0, largest_lcp = 0;
       /// The worst verification violations of the accepted answers
       /// (relative, verify_contact_velocities()).
       double largest_signorini = 0., largest_cone = 0., largest_sliding = 0.;
@@ -103,7 +108,9 @@ namespace impactfe
      * Lemke's method solves the problem (reported as a fallback), if its
      * LCP is within `Largest Lemke fallback` (ContactSolverParameters::
      * lemke_fallback_allowed()). `Method = lemke` always takes that
-     * route (for small scenes and tests).
+     * route (for small scenes and tests). With `Free-flight step factor`
+     * k > 1, a step after one without impulses is tried with k h and its
+     * own operators (try_free_flight_step()).
      */
     template <int dim>
     class DistributedImpactSolver
@@ -126,8 +133,13 @@ namespace impactfe
         const Tensor<1, dim>    &velocity,
         const types::material_id part = numbers::invalid_material_id);
 
+      /**
+       * One step: h, or k h (`Free-flight step factor`) after a step
+       * without impulses if no contact can act in it and at most
+       * @p max_substeps steps h remain.
+       */
       const DistributedStepReport &
-      do_time_step();
+      do_time_step(const unsigned int max_substeps = 1);
 
       double
       time() const;
@@ -152,15 +164,28 @@ namespace impactfe
       const DistributedContact<dim>     &contact;
       const ContactSolverParameters      solver_parameters;
       const ParallelSolverParameters     linear_parameters;
-      std::unique_ptr<TimeIntegrator>    scheme;
-      ThetaStepRule                      rule;
 
-      DistributedMatrix                 step_matrix, velocity_matrix;
-      double                            displacement_factor = 0.;
-      TrilinosWrappers::PreconditionAMG amg;
-      SolverControl                     direct_control;
-      std::unique_ptr<TrilinosWrappers::SolverDirect> direct_solver;
-      std::unique_ptr<SubstructuredSolver>            substructured_solver;
+      /// A scheme with its step size, and what its steps solve with: M~,
+      /// the velocity term of F~, and the solver of `Parallel solver`.
+      struct StepOperators
+      {
+        std::unique_ptr<TimeIntegrator>   scheme;
+        ThetaStepRule                     rule;
+        DistributedMatrix                 step_matrix, velocity_matrix;
+        double                            displacement_factor = 0.;
+        TrilinosWrappers::PreconditionAMG amg;
+        SolverControl                     direct_control;
+        std::unique_ptr<TrilinosWrappers::SolverDirect> direct_solver;
+        std::unique_ptr<SubstructuredSolver>            substructured_solver;
+      };
+      /// The step h; and with `Free-flight step factor` k > 1 the same
+      /// scheme with k h, tried after a step without impulses.
+      StepOperators                  fine;
+      std::unique_ptr<StepOperators> coarse;
+      unsigned int                   free_flight_factor     = 1;
+      bool                           last_step_had_impulses = true;
+      /// The contact DoFs of the substructured solver (each node's once).
+      std::vector<types::global_dof_index> contact_dofs;
       /// Per candidate and node, the positions of its DoFs in the
       /// substructured solver's contact Schur complement (each node's DoFs
       /// once); and that product's vectors.
@@ -187,15 +212,40 @@ namespace impactfe
       std::vector<ContactState> lcp_state_guess;
       lcp::ActiveSetSolver      active_set_solver;
 
+      /// The matrices and the solver of @p level.
+      void
+      setup_operators(StepOperators &level);
       /// ML's AMG on M~ with the rigid translations as near null space.
       void
-      setup_amg();
-      /// The substructured solver of M~ and the contact DoFs' slots.
+      setup_amg(StepOperators &level);
+      /// The contact DoFs and each candidate's slots among them.
       void
-      setup_substructured_solver();
-      /// x = M~^{-1} b (CG: counts the iterations).
+      setup_contact_slots();
+      /// The substructured solver of the level's M~.
       void
-      solve_step_matrix(const DistributedVector &b, DistributedVector &x);
+      setup_substructured_solver(StepOperators &level);
+      /// x = M~^{-1} b with @p level's M~ (CG: counts the iterations).
+      void
+      solve_step_matrix(const StepOperators     &level,
+                        const DistributedVector &b,
+                        DistributedVector       &x);
+      /**
+       * After a step without impulses, try one of k h: if no candidate's
+       * free velocity closes its gap under the Signorini condition of k h
+       * (the test that puts candidates into the contact problem), no
+       * contact acts in it and it is kept; otherwise nothing has changed,
+       * and the step is made with h. As the serial
+       * MultibodySystem::do_time_step().
+       */
+      bool
+      try_free_flight_step();
+      /// The free velocity of @p level's step (its local components, and
+      /// v_free unless substructured) and the gap terms of its scheme.
+      void
+      start_step(const StepOperators &level);
+      /// u and the time after @p level's step (v_old = v^i, v = v^{i+1}).
+      void
+      advance_displacement(const StepOperators &level);
       /// y = W x on lcp_candidates; correction = M~^{-1} H x.
       void
       delassus_product(const std::vector<double> &x, std::vector<double> &y);

@@ -168,7 +168,9 @@ namespace impactfe
              largest_stored_energy = 0., largest_penetration = 0.;
       std::vector<double> gaps;
       double              setup_seconds = 0., loop_seconds = 0.;
-      unsigned int        n_steps = 0;
+      /// Steps h in the run, steps taken (a free-flight step is k steps
+      /// h), and the step of the last VTU output.
+      unsigned int n_steps = 0, n_steps_taken = 0, last_vtu_step = 0;
     };
   } // namespace distributed
 } // namespace impactfe
