@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace impactfe
 {
@@ -61,10 +62,26 @@ namespace impactfe
 
     template <int dim>
     void
-    DistributedElasticBody<dim>::set_body_force(
-      const Tensor<1, dim> &force_density)
+    DistributedElasticBody<dim>::set_gravity(const Tensor<1, dim> &acceleration)
     {
-      body_force_density = force_density;
+      gravity = acceleration;
+    }
+
+
+
+    template <int dim>
+    void
+    DistributedElasticBody<dim>::set_part_material(
+      const types::material_id  part,
+      const MaterialParameters &material)
+    {
+      AssertThrow(material.rayleigh_mass == material_parameters.rayleigh_mass &&
+                    material.rayleigh_stiffness ==
+                      material_parameters.rayleigh_stiffness,
+                  ExcMessage("The material of part " + std::to_string(part) +
+                             " must have the body's Rayleigh coefficients "
+                             "(mass and stiffness)."));
+      part_materials[part] = material;
     }
 
 
@@ -230,7 +247,10 @@ namespace impactfe
     bool
     DistributedElasticBody<dim>::has_damping() const
     {
-      return material_parameters.has_damping();
+      bool damped = material_parameters.has_damping();
+      for (const auto &part : part_materials)
+        damped = damped || part.second.has_damping();
+      return damped;
     }
 
 
@@ -253,14 +273,30 @@ namespace impactfe
                                const std::vector<types::global_dof_index> &,
                                bool)> &add) const
     {
-      const auto model = create_constitutive_model<dim>(material_parameters);
-      AssertThrow(model->is_linear(),
-                  ExcMessage("The material law '" + model->name() +
-                             "' is nonlinear; the distributed body needs a "
-                             "linear one."));
-      const SymmetricTensor<4, dim> elasticity = model->elasticity_tensor();
-      const SymmetricTensor<4, dim> viscosity  = model->viscosity_tensor();
-      const bool                    viscous    = viscosity.norm() > 0.;
+      // the tensors of the body's law and of each part's own
+      struct Law
+      {
+        SymmetricTensor<4, dim> elasticity, viscosity;
+        bool                    viscous = false;
+        double                  density = 0.;
+      };
+      const auto law_of = [](const MaterialParameters &material) {
+        const auto model = create_constitutive_model<dim>(material);
+        AssertThrow(model->is_linear(),
+                    ExcMessage("The material law '" + model->name() +
+                               "' is nonlinear; the distributed body needs a "
+                               "linear one."));
+        Law law;
+        law.elasticity = model->elasticity_tensor();
+        law.viscosity  = model->viscosity_tensor();
+        law.viscous    = law.viscosity.norm() > 0.;
+        law.density    = material.density;
+        return law;
+      };
+      const Law                         body_law = law_of(material_parameters);
+      std::map<types::material_id, Law> part_laws;
+      for (const auto &part : part_materials)
+        part_laws[part.first] = law_of(part.second);
 
       const QGauss<dim> quadrature(2);
       FEValues<dim>     fe_values(
@@ -272,17 +308,20 @@ namespace impactfe
       for (const auto &cell : dofs.active_cell_iterators())
         if (cell->is_locally_owned())
           {
+            const auto found = part_laws.find(cell->material_id());
+            const Law &law =
+              found == part_laws.end() ? body_law : found->second;
             fe_values.reinit(cell);
             integrate_cell_operators(fe_values,
-                                     elasticity,
-                                     viscosity,
-                                     viscous,
-                                     material_parameters.density,
-                                     body_force_density,
+                                     law.elasticity,
+                                     law.viscosity,
+                                     law.viscous,
+                                     law.density,
+                                     law.density * gravity,
                                      out_of_plane,
                                      cell_operators);
             cell->get_dof_indices(local_dofs);
-            add(cell_operators, local_dofs, viscous);
+            add(cell_operators, local_dofs, law.viscous);
           }
     }
 

@@ -120,7 +120,18 @@ namespace impactfe
                         "Scene = two bodies: Coulomb's coefficient between "
                         "the bodies [-]. Must be >= 0; 0: no tangential "
                         "unknowns.");
+      prm.declare_entry("Own material",
+                        "false",
+                        Patterns::Bool(),
+                        "Scene = two bodies: true: the second body is made "
+                        "of the material of subsection 'Material of the "
+                        "second body' (linear laws; the Rayleigh "
+                        "coefficients must be those of 'Material'); false: "
+                        "of the first body's.");
       prm.leave_subsection();
+      MaterialParameters::declare_parameters(prm,
+                                             2,
+                                             "Material of the second body");
       SceneParameters::declare_parameters(prm, "results/contact_mpi");
       MeshParameters::declare_parameters(prm, "Mesh", 2);
       MeshParameters::declare_parameters(prm, "Mesh of the second body", 0);
@@ -157,11 +168,16 @@ namespace impactfe
       prm.enter_subsection("Second body");
       const std::string second_velocity_text = prm.get("Initial velocity");
       const std::string normal_text          = prm.get("Contact normal");
-      discretization          = prm.get("Contact discretization");
-      second_velocity         = numbers(second_velocity_text);
-      contact_normal          = numbers(normal_text);
-      friction_between_bodies = prm.get_double("Friction coefficient");
+      discretization               = prm.get("Contact discretization");
+      second_velocity              = numbers(second_velocity_text);
+      contact_normal               = numbers(normal_text);
+      friction_between_bodies      = prm.get_double("Friction coefficient");
+      second_body_has_own_material = prm.get_bool("Own material");
       prm.leave_subsection();
+      if (second_body_has_own_material)
+        second_material.parse_parameters(prm,
+                                         dimension,
+                                         "Material of the second body");
       require_non_negative(friction_between_bodies,
                            "Second body",
                            "Friction coefficient");
@@ -239,10 +255,22 @@ namespace impactfe
       else
         AssertThrow(!second_mesh.from_file() && second_velocity.empty() &&
                       contact_normal.empty() && friction_between_bodies == 0. &&
-                      discretization == "node-to-node",
+                      discretization == "node-to-node" &&
+                      !second_body_has_own_material,
                     ExcMessage("The subsections 'Second body' and 'Mesh of "
                                "the second body' are for Scene = two "
                                "bodies."));
+      AssertThrow(
+        !second_body_has_own_material ||
+          (second_material.rayleigh_mass == material.rayleigh_mass &&
+           second_material.rayleigh_stiffness == material.rayleigh_stiffness),
+        ExcMessage("Material of the second body: the Rayleigh "
+                   "mass and stiffness coefficients must be those "
+                   "of subsection Material (" +
+                   format_number(material.rayleigh_mass) + ", " +
+                   format_number(material.rayleigh_stiffness) + "), got " +
+                   format_number(second_material.rayleigh_mass) + ", " +
+                   format_number(second_material.rayleigh_stiffness) + "."));
       AssertThrow(dimension == 3 || std::abs(std::sin(box.phi)) < 1e-12,
                   ExcMessage("Initial conditions: 'Sliding direction' must "
                              "be 0 or pi in 2D (the block slides along x), "
@@ -391,8 +419,10 @@ namespace impactfe
     {
       make_grid();
       Tensor<1, dim> g;
-      g[1] = -parameters.material.density * parameters.box.gravity;
-      body.set_body_force(g);
+      g[1] = -parameters.box.gravity;
+      body.set_gravity(g);
+      if (parameters.two_bodies && parameters.second_body_has_own_material)
+        body.set_part_material(1, parameters.second_material);
       body.setup();
       if (parameters.two_bodies)
         {

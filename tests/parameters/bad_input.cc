@@ -347,6 +347,12 @@ main()
              "subsection Second body\n  set Contact discretization = "
              "node-to-face\nend\n",
            mpi);
+  run_case("mpi_second_material_with_other_rayleigh_damping",
+           bars + second_bar +
+             "subsection Second body\n  set Contact normal = -1, 0\n  set "
+             "Own material = true\nend\nsubsection Material of the second "
+             "body\n  set Rayleigh mass coefficient = 10\nend\n",
+           mpi);
   run_case("mpi_second_body_without_two_bodies",
            with("Second body", "Contact normal = -1, 0, 0"),
            mpi);

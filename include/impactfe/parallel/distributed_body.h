@@ -60,9 +60,21 @@ namespace impactfe
       const parallel::distributed::Triangulation<dim> &
       triangulation() const;
 
-      /// The body force density [N/m^3], set before setup().
+      /// The acceleration of gravity [m/s^2], set before setup(): the body
+      /// force density is rho g with each cell's density.
       void
-      set_body_force(const Tensor<1, dim> &force_density);
+      set_gravity(const Tensor<1, dim> &acceleration);
+
+      /**
+       * The material of the cells with material id @p part (a second body
+       * held in the same mesh, merge_body_meshes()); the other cells keep
+       * the body's. Set before setup(). Its Rayleigh coefficients must be
+       * the body's (C's Rayleigh terms are combinations of the whole M and
+       * K).
+       */
+      void
+      set_part_material(const types::material_id  part,
+                        const MaterialParameters &material);
 
       /// Distribute the DoFs, build the sparsity and assemble M, K, C, f.
       void
@@ -157,9 +169,10 @@ namespace impactfe
       FESystem<dim>                             fe;
       DoFHandler<dim>                           dofs;
       IndexSet                                  owned, relevant;
-      Tensor<1, dim>                            body_force_density;
-      DistributedMatrix                         mass, stiffness, damping;
-      DistributedVector                         body_force;
+      Tensor<1, dim>                            gravity;
+      std::map<types::material_id, MaterialParameters> part_materials;
+      DistributedMatrix                                mass, stiffness, damping;
+      DistributedVector                                body_force;
       /// M e_d for each direction d (the momentum weights).
       std::array<DistributedVector, dim> mass_unit_fields;
       /// The same per part (momentum(velocity, part)), and its mass.

@@ -46,6 +46,9 @@ namespace impactfe
       std::vector<double> second_velocity, contact_normal;
       std::string         discretization          = "node-to-node";
       double              friction_between_bodies = 0.;
+      /// Whether the second body has its own material, and that material.
+      bool               second_body_has_own_material = false;
+      MaterialParameters second_material;
       /// 2D: the out-of-plane thickness [m].
       double                   thickness = 1.;
       std::vector<double>      initial_velocity;
