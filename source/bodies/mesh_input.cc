@@ -1,6 +1,7 @@
 #include <deal.II/base/exceptions.h>
 
 #include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_out.h>
 #include <deal.II/grid/tria_description.h>
 
 #include <impactfe/bodies/mesh_input.h>
@@ -187,6 +188,34 @@ namespace impactfe
 
 
 
+  template <int dim>
+  void
+  write_mesh_file(const Triangulation<dim> &triangulation,
+                  const std::string        &file_name)
+  {
+    std::ofstream out(file_name);
+    AssertThrow(out,
+                ExcMessage("Output: cannot write the mesh file '" + file_name +
+                           "'."));
+    // every digit: the positions of the serial run, not 6 digits of them
+    out.precision(17);
+    GridOut grid_out;
+    grid_out.set_flags(GridOutFlags::Msh(/*write_faces=*/true,
+                                         /*write_lines=*/false));
+    grid_out.write_msh(triangulation, out);
+    AssertThrow(out,
+                ExcMessage("Output: writing the mesh file '" + file_name +
+                           "' failed."));
+  }
+
+
+
+  template void
+  write_mesh_file<1>(const Triangulation<1> &, const std::string &);
+  template void
+  write_mesh_file<2>(const Triangulation<2> &, const std::string &);
+  template void
+  write_mesh_file<3>(const Triangulation<3> &, const std::string &);
   template void
   merge_body_meshes<2>(const std::vector<const Triangulation<2> *> &,
                        Triangulation<2> &);

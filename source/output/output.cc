@@ -38,6 +38,14 @@ namespace impactfe
                       Patterns::Integer(1),
                       "Write VTU files every this many time steps [steps]. "
                       "history.csv always has every step.");
+    prm.declare_entry("Write meshes",
+                      "false",
+                      Patterns::Bool(),
+                      "Write each body's mesh as <body name>.msh (Gmsh, "
+                      "with its boundary ids) at the set-up, so that "
+                      "contact_mpi can run the same scene on several MPI "
+                      "ranks ('Mesh file', Scene = impact or two "
+                      "bodies).");
     prm.declare_entry("Plot",
                       "true",
                       Patterns::Bool(),
@@ -69,6 +77,7 @@ namespace impactfe
     vtu_output        = prm.get_bool("VTU output");
     output_interval   = prm.get_integer("Output interval");
     plot              = prm.get_bool("Plot");
+    write_meshes      = prm.get_bool("Write meshes");
     print_performance = prm.get_bool("Print performance data");
     shape_times =
       parse_time_list(prm.get("Shape snapshot times"), "Shape snapshot times");

@@ -2,6 +2,7 @@
 
 #include <deal.II/grid/grid_tools.h>
 
+#include <impactfe/bodies/mesh_input.h>
 #include <impactfe/scenes/contact_scene.h>
 #include <impactfe/utilities/program.h>
 
@@ -184,6 +185,10 @@ namespace impactfe
     std::error_code not_removed; // then writing it fails with a message
     std::filesystem::remove(parameters.output.directory + "/summary.json",
                             not_removed);
+    if (parameters.output.write_meshes)
+      for (const auto &b : body_list)
+        write_mesh_file(b->triangulation(),
+                        parameters.output.directory + "/" + b->name() + ".msh");
     multibody_system->set_dump_directory(parameters.output.directory);
     // Where the time goes (a few clock reads per step, so only when asked).
     multibody_system->enable_cost_breakdown(

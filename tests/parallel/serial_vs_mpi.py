@@ -35,12 +35,19 @@ def main():
     ap.add_argument("--compare", required=True)
     ap.add_argument("--work", required=True)
     ap.add_argument("--rename", action="append", default=[])
+    ap.add_argument("--copy-parallel-prm", action="store_true",
+                    help="run a copy of --parallel-prm in the work directory "
+                         "(its mesh files are the serial run's output)")
     a = ap.parse_args()
     shutil.rmtree(a.work, ignore_errors=True)
     for sub in ("serial", "mpi"):
         os.makedirs(os.path.join(a.work, sub))
     run([a.serial, a.serial_prm], os.path.join(a.work, "serial"), "log")
-    run(shlex.split(a.mpiexec) + [a.parallel, a.parallel_prm],
+    parallel_prm = a.parallel_prm
+    if a.copy_parallel_prm:
+        parallel_prm = os.path.join(a.work, "mpi", "parallel.prm")
+        shutil.copyfile(a.parallel_prm, parallel_prm)
+    run(shlex.split(a.mpiexec) + [a.parallel, parallel_prm],
         os.path.join(a.work, "mpi"), "log")
     # each run's own impulse balance error bounds its momentum's round-off
     serial = json.load(open(os.path.join(a.work, "serial/results/summary.json")))

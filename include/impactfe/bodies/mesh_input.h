@@ -66,6 +66,20 @@ namespace impactfe
   void
   merge_body_meshes(const std::vector<const Triangulation<dim> *> &bodies,
                     Triangulation<dim>                            &result);
+
+
+
+  /**
+   * Write the active cells of @p triangulation as a Gmsh file that
+   * MeshParameters::read() reads back as the same coarse mesh: the
+   * vertices, the cells with their material ids, and the boundary faces
+   * with non-zero boundary ids (a refined mesh is written flat). Throws
+   * with the file name if it cannot be written.
+   */
+  template <int dim>
+  void
+  write_mesh_file(const Triangulation<dim> &triangulation,
+                  const std::string        &file_name);
 } // namespace impactfe
 
 #endif

@@ -25,6 +25,8 @@ namespace impactfe
     unsigned int output_interval   = 1;
     bool         plot              = true;
     bool         print_performance = true;
+    /// Write each body's mesh (Gmsh) at the set-up.
+    bool write_meshes = false;
     /// Times of the deformed shapes written to shapes.csv (2D).
     std::vector<double> shape_times;
 
