@@ -16,16 +16,13 @@ import shutil
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from serial_vs_mpi import run as run_logged  # noqa: E402
+
 
 def run(command, cwd):
     os.makedirs(cwd)
-    with open(os.path.join(cwd, "log"), "w") as out:
-        code = subprocess.call(command, cwd=cwd, stdout=out,
-                               stderr=subprocess.STDOUT)
-    if code != 0:
-        print(f"{' '.join(command)} exited with {code}; its output:")
-        print(open(os.path.join(cwd, "log")).read())
-        sys.exit(1)
+    run_logged(command, cwd, "log")
     return os.path.join(cwd, "results", "history.csv")
 
 
