@@ -40,7 +40,6 @@ namespace impactfe
     DistributedContact<dim>::gather_boundary_nodes(
       const DistributedElasticBody<dim> &body,
       const types::boundary_id           boundary_id,
-      const types::material_id           part,
       std::vector<Point<dim>>           &positions) const
     {
       const IndexSet                   &owned = body.locally_owned_dofs();
@@ -49,9 +48,7 @@ namespace impactfe
       // ghost cells too: a node this rank owns may lie on a boundary face
       // of a neighbour's cell only (meshes read from files)
       for (const auto &cell : body.dof_handler().active_cell_iterators())
-        if ((cell->is_locally_owned() || cell->is_ghost()) &&
-            (part == numbers::invalid_material_id ||
-             cell->material_id() == part))
+        if (cell->is_locally_owned() || cell->is_ghost())
           for (const auto &face : cell->face_iterators())
             if (face->at_boundary() && face->boundary_id() == boundary_id)
               for (const unsigned int v : face->vertex_indices())
@@ -123,8 +120,8 @@ namespace impactfe
       start_setup(body, friction_coefficient);
       two_bodies = false;
       std::vector<Point<dim>> positions;
-      const std::vector<Node> nodes = gather_boundary_nodes(
-        body, boundary_id, numbers::invalid_material_id, positions);
+      const std::vector<Node> nodes =
+        gather_boundary_nodes(body, boundary_id, positions);
       for (unsigned int i = 0; i < nodes.size(); ++i)
         {
           Candidate c;

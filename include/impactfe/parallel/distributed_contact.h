@@ -135,12 +135,10 @@ namespace impactfe
       void
       start_setup(const DistributedElasticBody<dim> &body,
                   const double                       friction_coefficient);
-      /// The owned nodes on @p boundary_id of the cells of @p part (all
-      /// cells: numbers::invalid_material_id), gathered on every rank.
+      /// The owned nodes on @p boundary_id, gathered on every rank.
       std::vector<Node>
       gather_boundary_nodes(const DistributedElasticBody<dim> &body,
                             const types::boundary_id           boundary_id,
-                            const types::material_id           part,
                             std::vector<Point<dim>>           &positions) const;
       /// Sort by side A's position and check that there are candidates.
       void
