@@ -271,6 +271,11 @@ namespace impactfe
                    format_number(material.rayleigh_stiffness) + "), got " +
                    format_number(second_material.rayleigh_mass) + ", " +
                    format_number(second_material.rayleigh_stiffness) + "."));
+      AssertThrow(!scene.output.write_meshes,
+                  ExcMessage("Output: 'Write meshes' is for the serial "
+                             "programs, whose meshes contact_mpi reads; "
+                             "contact_mpi's own meshes come from files or "
+                             "the built-in box."));
       AssertThrow(dimension == 3 || std::abs(std::sin(box.phi)) < 1e-12,
                   ExcMessage("Initial conditions: 'Sliding direction' must "
                              "be 0 or pi in 2D (the block slides along x), "

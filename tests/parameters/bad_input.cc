@@ -356,6 +356,7 @@ main()
   run_case("mpi_second_body_without_two_bodies",
            with("Second body", "Contact normal = -1, 0, 0"),
            mpi);
+  run_case("mpi_write_meshes", with("Output", "Write meshes = true"), mpi);
   run_case("mpi_bad_solver_tolerance",
            with("Parallel solver", "Tolerance = 2"),
            mpi);
