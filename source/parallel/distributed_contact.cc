@@ -118,7 +118,6 @@ namespace impactfe
                                    const double friction_coefficient)
     {
       start_setup(body, friction_coefficient);
-      two_bodies = false;
       std::vector<Point<dim>> positions;
       const std::vector<Node> nodes =
         gather_boundary_nodes(body, boundary_id, positions);
@@ -154,7 +153,6 @@ namespace impactfe
                              std::to_string(pairs.n_directions()) +
                              " local directions for mu = " + format_number(mu) +
                              "."));
-      two_bodies               = true;
       const auto merged_vertex = [&](const unsigned int b,
                                      const unsigned int v) {
         AssertThrow(b < vertex_offsets.size(),
@@ -286,15 +284,6 @@ namespace impactfe
     DistributedContact<dim>::owns(const unsigned int c) const
     {
       return candidate_list[c].nodes[0].owner == this_rank;
-    }
-
-
-
-    template <int dim>
-    bool
-    DistributedContact<dim>::between_bodies() const
-    {
-      return two_bodies;
     }
 
 

@@ -96,9 +96,6 @@ namespace impactfe
       /// Whether this rank owns candidate @p c (its side A node).
       bool
       owns(const unsigned int c) const;
-      /// Whether a candidate has a side B node (two bodies).
-      bool
-      between_bodies() const;
 
       /// Per candidate, g_0 + n . u (replicated).
       void
@@ -154,7 +151,6 @@ namespace impactfe
       unsigned int                directions   = 1;
       unsigned int                this_rank    = 0;
       double                      mu           = 0.;
-      bool                        two_bodies   = false;
       std::vector<Candidate>      candidate_list;
       mutable std::vector<double> partial;
     };
