@@ -266,7 +266,10 @@ namespace impactfe
                                              on_interface,
                                              contact_dofs,
                                              body.locally_owned_dofs(),
-                                             "the step matrix");
+                                             "the step matrix",
+                                             // the free-flight level makes
+                                             // no contact product
+                                             &level == &fine);
     }
 
 

@@ -90,6 +90,7 @@ namespace impactfe
       const std::vector<types::global_dof_index> &contact_dofs,
       const IndexSet                             &owned,
       const std::string                          &name,
+      const bool                                  with_contact_schur_complement,
       const std::size_t                           memory_limit)
     {
       communicator               = comm;
@@ -152,12 +153,15 @@ namespace impactfe
         shared.insert(shared.end(), part.begin(), part.end());
       std::sort(shared.begin(), shared.end());
       shared.erase(std::unique(shared.begin(), shared.end()), shared.end());
+      // Gamma's dense matrix is the largest of the set-up (B's alone
+      // without S_C)
       std::vector<types::global_dof_index> gamma;
       for (const auto g : shared)
-        if (!is_contact(g))
+        if (!with_contact_schur_complement || !is_contact(g))
           gamma.push_back(g);
       const std::size_t n_b_outside_c = gamma.size();
-      gamma.insert(gamma.end(), contact_dofs.begin(), contact_dofs.end());
+      if (with_contact_schur_complement)
+        gamma.insert(gamma.end(), contact_dofs.begin(), contact_dofs.end());
       const std::size_t n_gamma = gamma.size();
       DenseSchurComplement::check_dense_size(n_gamma, name);
       AssertThrow(n_gamma * n_gamma * sizeof(double) <= memory_limit,
@@ -165,54 +169,57 @@ namespace impactfe
                     "Substructured solve of " + name +
                     ": the interface problem has " + std::to_string(n_gamma) +
                     " DoFs (" + std::to_string(shared.size()) +
-                    " shared by ranks, " + std::to_string(contact_dofs.size()) +
+                    " shared by ranks, " +
+                    std::to_string(
+                      with_contact_schur_complement ? contact_dofs.size() : 0) +
                     " contact DoFs), and its dense matrix would need " +
                     format_number(n_gamma * n_gamma * 8. / (1 << 30)) +
                     " GiB on every rank. Use fewer ranks, or 'Parallel "
                     "solver/Solver = direct' or 'amg cg'."));
-      // The position in Gamma of each of the factor's trailing rows (C is
-      // not sorted: by a sorted copy).
-      std::vector<unsigned int> gamma_position(n_trailing);
-      {
-        std::vector<std::pair<types::global_dof_index, unsigned int>> order;
-        for (unsigned int i = 0; i < n_gamma; ++i)
-          order.emplace_back(gamma[i], i);
-        std::sort(order.begin(), order.end());
-        for (unsigned int j = 0; j < n_trailing; ++j)
-          {
-            const types::global_dof_index g  = local_to_global[trailing[j]];
-            const auto                    it = std::lower_bound(order.begin(),
-                                             order.end(),
-                                             std::make_pair(g, 0u));
-            AssertThrow(it != order.end() && it->first == g,
-                        ExcMessage("Substructured solve of " + name +
-                                   ": a DoF of the interface is missing."));
-            gamma_position[j] = it->second;
-          }
-      }
 
       // 3. S_C: the trailing block of the factor of S on Gamma, the sum of
       // the ranks' L_t L_t^T; S itself is not kept.
-      {
-        std::vector<double> gamma_factor =
-          summed_cholesky_factor(trailing_factor.data(),
-                                 n_trailing,
-                                 n_trailing,
-                                 gamma_position,
-                                 n_gamma,
-                                 communicator,
-                                 "Substructured solve of " + name +
-                                   ": the Schur complement on the interface");
-        const std::size_t   n_c = contact_dofs.size();
-        std::vector<double> contact_factor(n_c * n_c, 0.);
-        for (std::size_t j = 0; j < n_c; ++j)
-          for (std::size_t i = j; i < n_c; ++i)
-            contact_factor[j * n_c + i] =
-              gamma_factor[(n_b_outside_c + j) * n_gamma + n_b_outside_c + i];
-        contact_schur.compute_from_factor(contact_dofs,
-                                          std::move(contact_factor),
-                                          name);
-      }
+      has_contact_schur = with_contact_schur_complement;
+      if (has_contact_schur)
+        {
+          // the position in Gamma of each of the factor's trailing rows
+          // (C is not sorted: by a sorted copy)
+          std::vector<unsigned int> gamma_position(n_trailing);
+          std::vector<std::pair<types::global_dof_index, unsigned int>> order;
+          for (unsigned int i = 0; i < n_gamma; ++i)
+            order.emplace_back(gamma[i], i);
+          std::sort(order.begin(), order.end());
+          for (unsigned int j = 0; j < n_trailing; ++j)
+            {
+              const types::global_dof_index g  = local_to_global[trailing[j]];
+              const auto                    it = std::lower_bound(order.begin(),
+                                               order.end(),
+                                               std::make_pair(g, 0u));
+              AssertThrow(it != order.end() && it->first == g,
+                          ExcMessage("Substructured solve of " + name +
+                                     ": a DoF of the interface is missing."));
+              gamma_position[j] = it->second;
+            }
+          std::vector<double> gamma_factor =
+            summed_cholesky_factor(trailing_factor.data(),
+                                   n_trailing,
+                                   n_trailing,
+                                   gamma_position,
+                                   n_gamma,
+                                   communicator,
+                                   "Substructured solve of " + name +
+                                     ": the Schur complement on the "
+                                     "interface");
+          const std::size_t   n_c = contact_dofs.size();
+          std::vector<double> contact_factor(n_c * n_c, 0.);
+          for (std::size_t j = 0; j < n_c; ++j)
+            for (std::size_t i = j; i < n_c; ++i)
+              contact_factor[j * n_c + i] =
+                gamma_factor[(n_b_outside_c + j) * n_gamma + n_b_outside_c + i];
+          contact_schur.compute_from_factor(contact_dofs,
+                                            std::move(contact_factor),
+                                            name);
+        }
 
       // 4. S_B, the Schur complement on B, from the trailing B_i blocks.
       interface_dofs = shared;
@@ -431,6 +438,9 @@ namespace impactfe
     const DenseSchurComplement &
     SubstructuredSolver::contact_schur_complement() const
     {
+      AssertThrow(has_contact_schur,
+                  ExcMessage("Substructured solve: the contact Schur "
+                             "complement was not built (initialize())."));
       return contact_schur;
     }
 

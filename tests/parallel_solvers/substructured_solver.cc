@@ -221,6 +221,45 @@ main(int argc, char **argv)
   check(two_halves.linfty_norm() <= 1e-12 * x.linfty_norm(),
         "start_solve() and finish_solve() give A^{-1} (b + c)");
 
+  // 5. Without S_C (the free-flight level's solver): the same two halves,
+  // and a clear refusal of the contact Schur complement.
+  SubstructuredSolver without_schur;
+  without_schur.initialize(comm,
+                           subdomain,
+                           local_to_global,
+                           on_interface,
+                           contact_dofs,
+                           owned,
+                           "A",
+                           false);
+  for (const auto i : owned)
+    b(i) = std::sin(0.37 * i + 1.);
+  b.compress(VectorOperation::insert);
+  std::vector<double> x_contact_without;
+  without_schur.start_solve(b, x_contact_without);
+  solver.start_solve(b, x_contact);
+  double start_difference = 0.;
+  for (unsigned int i = 0; i < n_c; ++i)
+    start_difference =
+      std::max(start_difference, std::abs(x_contact_without[i] - x_contact[i]));
+  DistributedVector without(owned, comm);
+  without_schur.finish_solve(c, without);
+  solver.finish_solve(c, two_halves);
+  without -= two_halves;
+  check(start_difference <= 1e-13 * contact_scale &&
+          without.linfty_norm() <= 1e-13 * two_halves.linfty_norm(),
+        "without S_C: the same start_solve() and finish_solve()");
+  bool refused = false;
+  try
+    {
+      without_schur.contact_schur_complement();
+    }
+  catch (const ExceptionBase &)
+    {
+      refused = true;
+    }
+  check(refused, "without S_C: contact_schur_complement() throws");
+
   if (root)
     deallog << "failed checks: " << impactfe_tests::n_failed_checks
             << std::endl;

@@ -60,7 +60,11 @@ namespace impactfe
        * DistributedElasticBody::assemble_subdomain_matrix() gives them;
        * @p contact_dofs: the global DoFs C (the same list on every rank);
        * @p owned: the DoFs of the distributed vectors this rank owns.
-       * @p name names the matrix in messages.
+       * @p name names the matrix in messages. Without
+       * @p with_contact_schur_complement, S_C is not built (the dense
+       * problem on B u C and its inverse on C, set-up time and memory):
+       * start_solve() and finish_solve() do not need it, only
+       * contact_schur_complement() does.
        */
       void
       initialize(const MPI_Comm                              communicator,
@@ -70,6 +74,7 @@ namespace impactfe
                  const std::vector<types::global_dof_index> &contact_dofs,
                  const IndexSet                             &owned,
                  const std::string                          &name,
+                 const bool        with_contact_schur_complement = true,
                  const std::size_t memory_limit = std::size_t(4) << 30);
 
       /// x = A^{-1} b.
@@ -99,7 +104,8 @@ namespace impactfe
       void
       finish_solve(const std::vector<double> &c, DistributedVector &x) const;
 
-      /// S_C and S_C^{-1} on the contact DoFs (the same on every rank).
+      /// S_C and S_C^{-1} on the contact DoFs (the same on every rank);
+      /// throws if initialize() was told not to build them.
       const DenseSchurComplement &
       contact_schur_complement() const;
 
@@ -143,6 +149,7 @@ namespace impactfe
       /// The positions in B of the DoFs this rank owns, and their offsets.
       std::vector<std::pair<unsigned int, unsigned int>> owned_interface;
       DenseSchurComplement                               contact_schur;
+      bool has_contact_schur = false;
       /// The contact DoFs (their index in the order of initialize()) that
       /// only this rank has, with their factor position, and those in B,
       /// with their position there.
