@@ -96,69 +96,83 @@ namespace impactfe
 
 
 
-  namespace
+  // @sect3{Mass redistribution}
+  // The element mass of a cell with massless vertices, as documented at
+  // ElasticBody::redistribute_mass(). The mass matrix couples equal
+  // components only, so each component is treated alike.
+  template <int dim>
+  void
+  redistribute_cell_mass(const FiniteElement<dim> &fe,
+                         const std::vector<bool>  &massless,
+                         const Point<dim>         &center,
+                         const std::string        &body_name,
+                         FullMatrix<double>       &cell_mass)
   {
-    // The element mass of a cell with massless vertices, as documented at
-    // ElasticBody::redistribute_mass(). The mass matrix couples equal
-    // components only, so each component is treated alike.
-    template <int dim>
-    void
-    redistribute_cell_mass(const FiniteElement<dim> &fe,
-                           const std::vector<bool>  &massless,
-                           FullMatrix<double>       &cell_mass)
-    {
-      const unsigned int n      = fe.n_dofs_per_cell();
-      auto               vertex = [&](const unsigned int i) {
-        return fe.system_to_component_index(i).second;
-      };
-      auto component = [&](const unsigned int i) {
-        return fe.system_to_component_index(i).first;
-      };
-      auto joined = [](const unsigned int v, const unsigned int w) {
-        for (unsigned int l = 0; l < GeometryInfo<dim>::lines_per_cell; ++l)
-          {
-            const unsigned int a =
-                                 GeometryInfo<dim>::line_to_cell_vertices(l, 0),
-                               b =
-                                 GeometryInfo<dim>::line_to_cell_vertices(l, 1);
-            if ((a == v && b == w) || (a == w && b == v))
-              return true;
-          }
-        return false;
-      };
+    const auto n_massless = std::count(massless.begin(), massless.end(), true);
+    if (n_massless == 0)
+      return;
+    if (n_massless == static_cast<long>(massless.size()))
+      {
+        std::ostringstream where;
+        where << center;
+        AssertThrow(false,
+                    ExcMessage("Body '" + body_name +
+                               "': mass redistribution would leave the cell "
+                               "at (" +
+                               where.str() +
+                               ") without mass: all its vertices are contact "
+                               "nodes. Refine the mesh or set 'Mass "
+                               "redistribution' to false."));
+      }
+    const unsigned int n      = fe.n_dofs_per_cell();
+    auto               vertex = [&](const unsigned int i) {
+      return fe.system_to_component_index(i).second;
+    };
+    auto component = [&](const unsigned int i) {
+      return fe.system_to_component_index(i).first;
+    };
+    auto joined = [](const unsigned int v, const unsigned int w) {
+      for (unsigned int l = 0; l < GeometryInfo<dim>::lines_per_cell; ++l)
+        {
+          const unsigned int a = GeometryInfo<dim>::line_to_cell_vertices(l, 0),
+                             b = GeometryInfo<dim>::line_to_cell_vertices(l, 1);
+          if ((a == v && b == w) || (a == w && b == v))
+            return true;
+        }
+      return false;
+    };
 
-      FullMatrix<double> result(n, n);
-      for (unsigned int i = 0; i < n; ++i)
-        if (!massless[vertex(i)])
-          for (unsigned int j = 0; j < n; ++j)
-            {
-              if (massless[vertex(j)])
-                result(i, i) += cell_mass(i, j);
-              else
-                result(i, j) += cell_mass(i, j);
-            }
-      for (unsigned int i = 0; i < n; ++i)
-        if (massless[vertex(i)])
+    FullMatrix<double> result(n, n);
+    for (unsigned int i = 0; i < n; ++i)
+      if (!massless[vertex(i)])
+        for (unsigned int j = 0; j < n; ++j)
           {
-            double row_sum = 0.;
-            for (unsigned int j = 0; j < n; ++j)
-              row_sum += cell_mass(i, j);
-            std::vector<unsigned int> receivers;
-            for (unsigned int j = 0; j < n; ++j)
-              if (component(j) == component(i) && !massless[vertex(j)] &&
-                  joined(vertex(i), vertex(j)))
-                receivers.push_back(j);
-            if (receivers.empty())
-              for (unsigned int j = 0; j < n; ++j)
-                if (component(j) == component(i) && !massless[vertex(j)])
-                  receivers.push_back(j);
-            Assert(!receivers.empty(), ExcInternalError());
-            for (const unsigned int j : receivers)
-              result(j, j) += row_sum / receivers.size();
+            if (massless[vertex(j)])
+              result(i, i) += cell_mass(i, j);
+            else
+              result(i, j) += cell_mass(i, j);
           }
-      cell_mass = result;
-    }
-  } // namespace
+    for (unsigned int i = 0; i < n; ++i)
+      if (massless[vertex(i)])
+        {
+          double row_sum = 0.;
+          for (unsigned int j = 0; j < n; ++j)
+            row_sum += cell_mass(i, j);
+          std::vector<unsigned int> receivers;
+          for (unsigned int j = 0; j < n; ++j)
+            if (component(j) == component(i) && !massless[vertex(j)] &&
+                joined(vertex(i), vertex(j)))
+              receivers.push_back(j);
+          if (receivers.empty())
+            for (unsigned int j = 0; j < n; ++j)
+              if (component(j) == component(i) && !massless[vertex(j)])
+                receivers.push_back(j);
+          Assert(!receivers.empty(), ExcInternalError());
+          for (const unsigned int j : receivers)
+            result(j, j) += row_sum / receivers.size();
+        }
+    cell_mass = result;
+  }
 
 
 
@@ -371,28 +385,10 @@ namespace impactfe
         if (!massless_vertex.empty())
           {
             std::vector<bool> massless(cell->n_vertices());
-            unsigned int      n_massless = 0;
             for (const unsigned int v : cell->vertex_indices())
-              {
-                massless[v] = massless_vertex[cell->vertex_index(v)];
-                n_massless += massless[v] ? 1 : 0;
-              }
-            if (n_massless == cell->n_vertices())
-              {
-                std::ostringstream where;
-                where << cell->center();
-                AssertThrow(false,
-                            ExcMessage(
-                              "Body '" + body_name +
-                              "': mass redistribution would leave the cell "
-                              "at (" +
-                              where.str() +
-                              ") without mass: all its vertices are contact "
-                              "nodes. Refine the mesh or set 'Mass "
-                              "redistribution' to false."));
-              }
-            if (n_massless > 0)
-              redistribute_cell_mass(fe, massless, cell_mass);
+              massless[v] = massless_vertex[cell->vertex_index(v)];
+            redistribute_cell_mass(
+              fe, massless, cell->center(), body_name, cell_mass);
           }
         if (discretization_parameters.lumped_mass)
           {
@@ -625,6 +621,24 @@ namespace impactfe
                               const Tensor<1, 3> &,
                               const double,
                               CellOperators &);
+  template void
+  redistribute_cell_mass<1>(const FiniteElement<1> &,
+                            const std::vector<bool> &,
+                            const Point<1> &,
+                            const std::string &,
+                            FullMatrix<double> &);
+  template void
+  redistribute_cell_mass<2>(const FiniteElement<2> &,
+                            const std::vector<bool> &,
+                            const Point<2> &,
+                            const std::string &,
+                            FullMatrix<double> &);
+  template void
+  redistribute_cell_mass<3>(const FiniteElement<3> &,
+                            const std::vector<bool> &,
+                            const Point<3> &,
+                            const std::string &,
+                            FullMatrix<double> &);
   template class ElasticBody<1>;
   template class ElasticBody<2>;
   template class ElasticBody<3>;

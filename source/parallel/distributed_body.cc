@@ -93,9 +93,6 @@ namespace impactfe
     void
     DistributedElasticBody<dim>::setup()
     {
-      AssertThrow(!discretization_parameters.mass_redistribution,
-                  ExcMessage("Discretization: 'Mass redistribution = true' is "
-                             "not available in the distributed programs yet."));
       AssertThrow(mesh.n_global_active_cells() > 0,
                   ExcMessage("The distributed body has no cells."));
       dofs.distribute_dofs(fe);
@@ -127,7 +124,46 @@ namespace impactfe
       stiffness.reinit(pattern);
       damping.reinit(pattern);
       body_force.reinit(owned, mpi_communicator);
+      assemble();
+    }
 
+
+
+    template <int dim>
+    void
+    DistributedElasticBody<dim>::redistribute_mass(
+      const std::vector<types::global_dof_index> &massless_dofs)
+    {
+      AssertThrow(dofs.n_dofs() > 0,
+                  ExcMessage("DistributedElasticBody: redistribute_mass() "
+                             "before setup()."));
+      massless = massless_dofs;
+      std::sort(massless.begin(), massless.end());
+      massless.erase(std::unique(massless.begin(), massless.end()),
+                     massless.end());
+      part_mass_unit_fields.clear();
+      assemble();
+    }
+
+
+
+    template <int dim>
+    const std::vector<types::global_dof_index> &
+    DistributedElasticBody<dim>::massless_dofs() const
+    {
+      return massless;
+    }
+
+
+
+    template <int dim>
+    void
+    DistributedElasticBody<dim>::assemble()
+    {
+      mass                       = 0.;
+      stiffness                  = 0.;
+      damping                    = 0.;
+      body_force                 = 0.;
       const bool          lumped = discretization_parameters.lumped_mass;
       std::vector<double> row_sums;
       for_each_owned_cell([&](const CellOperators                        &cell,
@@ -150,6 +186,15 @@ namespace impactfe
       stiffness.compress(VectorOperation::add);
       damping.compress(VectorOperation::add);
       body_force.compress(VectorOperation::add);
+      // A constant body force rho g is M g; with massless nodes it follows
+      // the mass (ElasticBody::assemble()), so that a free body still
+      // falls as a whole.
+      if (!massless.empty())
+        {
+          DistributedVector acceleration(owned, mpi_communicator);
+          fill_uniform(acceleration, gravity);
+          mass.vmult(body_force, acceleration);
+        }
       // C = the law's viscous matrix + Rayleigh a M + b K (as ElasticBody).
       if (material_parameters.rayleigh_stiffness != 0.)
         damping.add(material_parameters.rayleigh_stiffness, stiffness);
@@ -305,6 +350,7 @@ namespace impactfe
       CellOperators      cell_operators;
       cell_operators.reinit(n);
       std::vector<types::global_dof_index> local_dofs(n);
+      std::vector<bool> is_massless(GeometryInfo<dim>::vertices_per_cell);
       for (const auto &cell : dofs.active_cell_iterators())
         if (cell->is_locally_owned())
           {
@@ -321,6 +367,20 @@ namespace impactfe
                                      out_of_plane,
                                      cell_operators);
             cell->get_dof_indices(local_dofs);
+            if (!massless.empty())
+              {
+                for (const unsigned int v : cell->vertex_indices())
+                  is_massless[v] =
+                    std::binary_search(massless.begin(),
+                                       massless.end(),
+                                       cell->vertex_dof_index(v, 0));
+                redistribute_cell_mass(fe,
+                                       is_massless,
+                                       cell->center(),
+                                       "body " + std::to_string(
+                                                   cell->material_id() + 1),
+                                       cell_operators.mass);
+              }
             add(cell_operators, local_dofs, law.viscous);
           }
     }

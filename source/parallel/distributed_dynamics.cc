@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <numeric>
 
 namespace impactfe
 {
@@ -120,6 +121,19 @@ namespace impactfe
     void
     DistributedImpactSolver<dim>::setup()
     {
+      // mass redistribution (the step matrices are those of the mass)
+      const auto &massless = body.massless_dofs();
+      fine.scheme->set_massless_contact_nodes(!massless.empty());
+      if (coarse)
+        coarse->scheme->set_massless_contact_nodes(!massless.empty());
+      owned_massless_offsets.clear();
+      for (const types::global_dof_index i : massless)
+        if (body.locally_owned_dofs().is_element(i))
+          owned_massless_offsets.push_back(
+            body.locally_owned_dofs().index_within_set(i));
+      all_candidates.resize(contact.n_candidates());
+      std::iota(all_candidates.begin(), all_candidates.end(), 0u);
+
       if (linear_parameters.solver ==
           ParallelSolverParameters::Solver::substructured)
         setup_contact_slots();
@@ -693,6 +707,15 @@ namespace impactfe
         }
       rhs.add(level.scheme->free_rhs_coefficients().force,
               body.external_force());
+      // massless nodes are balanced at t^{i+1}: a part of the last impulse
+      // H P^i acts in this step (zero after a step without impulses)
+      if (const double carry = level.scheme->massless_impulse_carry();
+          carry != 0. && last_step_had_impulses)
+        {
+          work = 0.;
+          contact.add_impulses(all_candidates, last_impulses, work);
+          rhs.add(carry, work);
+        }
       if (level.substructured_solver)
         {
           const auto start = std::chrono::steady_clock::now();
@@ -707,6 +730,17 @@ namespace impactfe
         {
           solve_step_matrix(level, rhs, v_free);
           contact.local_velocities(v_free, local_free_velocity);
+        }
+      // massless nodes slide with their mean velocity over the step:
+      // Coulomb on V_T^{i+1} + c V_T^i
+      const unsigned int nd = contact.n_directions();
+      if (const double c = level.scheme->slip_velocity_carry();
+          c != 0. && nd > 1)
+        {
+          contact.local_velocities(v, start_velocity);
+          for (unsigned int j = 0; j < local_free_velocity.size(); ++j)
+            if (j % nd != 0)
+              local_free_velocity[j] += c * start_velocity[j];
         }
 
       const ThetaStepRule &rule = level.rule;
@@ -745,6 +779,15 @@ namespace impactfe
               v,
               h * (1. - level.rule.new_velocity_weight),
               v_old);
+      // a massless node has no inertia: the velocity that moves it
+      if (!owned_massless_offsets.empty())
+        {
+          double       *v_local   = v.begin();
+          const double *u_local   = u.begin();
+          const double *old_local = u_old.begin();
+          for (const unsigned int k : owned_massless_offsets)
+            v_local[k] = (u_local[k] - old_local[k]) / h;
+        }
       current_time += h;
     }
 
@@ -903,7 +946,15 @@ namespace impactfe
               }
         }
       report.tangential_impulse = tangential.norm();
-      last_impulses             = local_impulses;
+      if (const double carry = fine.scheme->massless_impulse_carry();
+          carry != 0.)
+        for (unsigned int c = 0; c < n; ++c)
+          for (unsigned int k = 0; k < nd; ++k)
+            for (unsigned int d = 0; d < dim; ++d)
+              report.carried_impulse[d] += carry *
+                                           contact.candidate(c).frame[k][d] *
+                                           last_impulses[c * nd + k];
+      last_impulses = local_impulses;
       last_step_had_impulses =
         std::any_of(local_impulses.begin(),
                     local_impulses.end(),

@@ -444,6 +444,18 @@ namespace impactfe
                         *obstacle,
                         parameters.obstacle.friction_coefficient);
         }
+      // Mass redistribution: every candidate's nodes, on both sides, lose
+      // their mass (as ContactScene::redistribute_mass())
+      if (parameters.scene.discretization.mass_redistribution)
+        {
+          std::vector<types::global_dof_index> massless;
+          for (unsigned int c = 0; c < contact.n_candidates(); ++c)
+            for (unsigned int i = 0; i < contact.candidate(c).n_nodes; ++i)
+              massless.insert(massless.end(),
+                              contact.candidate(c).nodes[i].dofs.begin(),
+                              contact.candidate(c).nodes[i].dofs.end());
+          body.redistribute_mass(massless);
+        }
       solver = std::make_unique<DistributedImpactSolver<dim>>(
         body,
         contact,
@@ -673,7 +685,8 @@ namespace impactfe
               const double side = b == 0 ? 1. : -1.;
               for (unsigned int d = 0; d < dim; ++d)
                 impulses[b][d] += last_report.load_coefficient * load[b][d] +
-                                  side * last_report.impulse[d];
+                                  side * (last_report.impulse[d] +
+                                          last_report.carried_impulse[d]);
               const Tensor<1, dim> p = body_momentum(solver->velocity(), b);
               largest_momentum       = std::max(largest_momentum, p.norm());
               balance_error =

@@ -4,13 +4,18 @@
 #ifndef impactfe_bodies_cell_operators_h
 #define impactfe_bodies_cell_operators_h
 
+#include <deal.II/base/point.h>
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
+#include <deal.II/fe/fe.h>
 #include <deal.II/fe/fe_values.h>
 
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
+
+#include <string>
+#include <vector>
 
 namespace impactfe
 {
@@ -48,6 +53,23 @@ namespace impactfe
   void
   lumped_cell_mass(const FullMatrix<double> &cell_mass,
                    std::vector<double>      &row_sums);
+
+  /**
+   * Mass redistribution on one cell (ElasticBody::redistribute_mass(),
+   * Khenous, Laborde, Renard, Eur. J. Mech. A 27, 2008): the element mass
+   * of the vertices @p massless (by the cell's vertex numbers) goes to the
+   * cell's other vertices joined to them by an edge (to all of its other
+   * vertices if none is), and the coupling of the other vertices to them
+   * to their own diagonal. Unchanged if no vertex is massless. Throws,
+   * naming @p body_name and the cell's @p center, if every vertex is.
+   */
+  template <int dim>
+  void
+  redistribute_cell_mass(const FiniteElement<dim> &fe,
+                         const std::vector<bool>  &massless,
+                         const Point<dim>         &center,
+                         const std::string        &body_name,
+                         FullMatrix<double>       &cell_mass);
 } // namespace impactfe
 
 #endif

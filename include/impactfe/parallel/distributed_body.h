@@ -41,8 +41,8 @@ namespace impactfe
      * Q1 vector-valued body on a parallel::distributed::Triangulation. Each
      * rank assembles its locally owned cells with the element operators of
      * the serial ElasticBody (integrate_cell_operators()), so the two give
-     * the same M, K, C and body force. Mass redistribution is not
-     * available here (setup() says so).
+     * the same M, K, C and body force, with mass redistribution
+     * (redistribute_mass()) as well.
      */
     template <int dim>
     class DistributedElasticBody
@@ -79,6 +79,22 @@ namespace impactfe
       /// Distribute the DoFs, build the sparsity and assemble M, K, C, f.
       void
       setup();
+
+      /**
+       * Mass redistribution (ElasticBody::redistribute_mass(), the cells'
+       * rule redistribute_cell_mass()): the nodes whose DoFs are in @p
+       * massless_dofs (the same list on every rank, each node's DoFs, e.g.
+       * the contact candidates') carry no mass. Re-assembles M, K, C and
+       * f after setup(); the body force then follows the mass, f = M g,
+       * as in the serial body. Throws if a cell would keep no mass.
+       */
+      void
+      redistribute_mass(
+        const std::vector<types::global_dof_index> &massless_dofs);
+
+      /// The DoFs of redistribute_mass(), sorted (empty without it).
+      const std::vector<types::global_dof_index> &
+      massless_dofs() const;
 
       MPI_Comm
       communicator() const;
@@ -153,8 +169,14 @@ namespace impactfe
       part_mass(const types::material_id part);
 
     private:
-      /// Calls @p add with the element operators, the DoFs of each locally
-      /// owned cell and whether the law is viscous.
+      /// M, K, C and f from the cells (zeroed first), and the momentum
+      /// weights.
+      void
+      assemble();
+
+      /// Calls @p add with the element operators (the mass redistributed
+      /// at massless nodes), the DoFs of each locally owned cell and
+      /// whether the law is viscous.
       void
       for_each_owned_cell(
         const std::function<void(const CellOperators &,
@@ -171,6 +193,7 @@ namespace impactfe
       IndexSet                                  owned, relevant;
       Tensor<1, dim>                            gravity;
       std::map<types::material_id, MaterialParameters> part_materials;
+      std::vector<types::global_dof_index>             massless;
       DistributedMatrix                                mass, stiffness, damping;
       DistributedVector                                body_force;
       /// M e_d for each direction d (the momentum weights).

@@ -42,6 +42,11 @@ namespace impactfe
       /// The total contact impulse on side A in global coordinates: on the
       /// body against an obstacle, on the first body between two [N s].
       std::array<double, 3> impulse{{0., 0., 0.}};
+      /// With massless contact nodes (mass redistribution), the part of
+      /// the last step's impulse that acts in this one:
+      /// TimeIntegrator::massless_impulse_carry() times it. The step
+      /// changes side A's momentum by impulse + carried_impulse (+ loads).
+      std::array<double, 3> carried_impulse{{0., 0., 0.}};
       bool                  fallback = false;
     };
 
@@ -110,7 +115,11 @@ namespace impactfe
      * lemke_fallback_allowed()). `Method = lemke` always takes that
      * route (for small scenes and tests). With `Free-flight step factor`
      * k > 1, a step after one without impulses is tried with k h and its
-     * own operators (try_free_flight_step()).
+     * own operators (try_free_flight_step()). With massless contact nodes
+     * (DistributedElasticBody::redistribute_mass()) the step is the serial
+     * one's (TimeIntegrator::set_massless_contact_nodes()): the last
+     * impulse's carry in F~, the slip velocity's carry, and a massless
+     * node's velocity (u^{i+1} - u^i) / h.
      */
     template <int dim>
     class DistributedImpactSolver
@@ -186,6 +195,11 @@ namespace impactfe
       bool                           last_step_had_impulses = true;
       /// The contact DoFs of the substructured solver (each node's once).
       std::vector<types::global_dof_index> contact_dofs;
+      /// Mass redistribution: the offsets in this rank's part of the
+      /// vectors of the massless DoFs it owns; every candidate (for the
+      /// last impulse's carry, H P^i).
+      std::vector<unsigned int> owned_massless_offsets;
+      std::vector<unsigned int> all_candidates;
       /// Per candidate and node, the positions of its DoFs in the
       /// substructured solver's contact Schur complement (each node's DoFs
       /// once); and that product's vectors.
@@ -205,7 +219,7 @@ namespace impactfe
       std::vector<bool>         active, in_lcp;
       std::vector<unsigned int> lcp_candidates;
       std::vector<double>       gap_terms, gap_work, normal_velocity,
-        local_free_velocity, local_impulses, last_impulses;
+        local_free_velocity, local_impulses, last_impulses, start_velocity;
       std::vector<ContactState> last_states;
       std::vector<double> lcp_q, lcp_b, lcp_mu, lcp_penalty, lcp_guess, lcp_P,
         lcp_correction;
