@@ -95,21 +95,24 @@ namespace impactfe
       , contact(contact)
       , solver_parameters(solver)
       , linear_parameters(linear_solver)
+      , newmark(time.scheme == Scheme::newmark)
     {
-      AssertThrow(time.scheme != Scheme::newmark,
-                  ExcMessage("Time stepping: 'Scheme = newmark' is not "
-                             "available in the distributed programs; choose "
-                             "theta, theta-euler or modified-theta."));
+      const auto set_rule = [this](StepOperators &level) {
+        if (newmark)
+          level.newmark_rule = level.scheme->newmark_step_rule();
+        else
+          level.rule = level.scheme->theta_step_rule();
+      };
       fine.scheme = create_time_integrator(time);
-      fine.rule   = fine.scheme->theta_step_rule();
+      set_rule(fine);
       // the free-flight level: the same scheme with k h
       if (time.free_flight_step_factor > 1)
         {
           TimeSteppingParameters coarse_time = time;
           coarse_time.time_step *= time.free_flight_step_factor;
-          coarse             = std::make_unique<StepOperators>();
-          coarse->scheme     = create_time_integrator(coarse_time);
-          coarse->rule       = coarse->scheme->theta_step_rule();
+          coarse         = std::make_unique<StepOperators>();
+          coarse->scheme = create_time_integrator(coarse_time);
+          set_rule(*coarse);
           free_flight_factor = time.free_flight_step_factor;
         }
     }
@@ -150,6 +153,10 @@ namespace impactfe
       // finish_solve())
       if (!fine.substructured_solver)
         for (DistributedVector *x : {&v_free, &correction})
+          x->reinit(owned, comm);
+      if (newmark)
+        for (DistributedVector *x :
+             {&acceleration, &predicted_displacement, &predicted_velocity})
           x->reinit(owned, comm);
       const unsigned int n  = contact.n_candidates();
       const unsigned int nd = contact.n_directions();
@@ -295,6 +302,49 @@ namespace impactfe
       const types::material_id part)
     {
       body.fill_uniform(v, velocity, part);
+    }
+
+
+
+    // Newmark starts from a^0 with M a^0 = F - K u^0 - C v^0 (no contact
+    // force at t = 0), as the serial MultibodySystem; M is well
+    // conditioned, so CG with Jacobi reaches round-off in a few dozen
+    // iterations.
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::compute_initial_acceleration()
+    {
+      rhs = body.external_force();
+      body.stiffness_matrix().vmult(work, u);
+      rhs -= work;
+      if (body.has_damping())
+        {
+          body.damping_matrix().vmult(work, v);
+          rhs -= work;
+        }
+      acceleration       = 0.;
+      const double normb = rhs.l2_norm();
+      if (normb > 0.)
+        {
+          SolverControl control(1000, 1e-14 * normb, false, false);
+          SolverCG<DistributedVector>          cg(control);
+          TrilinosWrappers::PreconditionJacobi jacobi;
+          jacobi.initialize(body.mass_matrix());
+          try
+            {
+              cg.solve(body.mass_matrix(), acceleration, rhs, jacobi);
+            }
+          catch (const SolverControl::NoConvergence &e)
+            {
+              AssertThrow(false,
+                          ExcMessage("Newmark's initial acceleration: the CG "
+                                     "solve with the mass matrix did not "
+                                     "reach the relative residual 1e-14 in " +
+                                     std::to_string(e.last_step) +
+                                     " iterations."));
+            }
+        }
+      acceleration_ready = true;
     }
 
 
@@ -699,10 +749,26 @@ namespace impactfe
     void
     DistributedImpactSolver<dim>::start_step(const StepOperators &level)
     {
-      level.velocity_matrix.vmult(rhs, v);
+      // F~'s arguments: u and v, or Newmark's prediction from them
+      const DistributedVector *velocity = &v, *displacement = &u;
+      if (newmark)
+        {
+          const NewmarkStepRule &rule = level.newmark_rule;
+          predicted_displacement      = u;
+          predicted_displacement.add(rule.time_step,
+                                     v,
+                                     rule.predicted_displacement_acceleration,
+                                     acceleration);
+          predicted_velocity = v;
+          predicted_velocity.add(rule.predicted_velocity_acceleration,
+                                 acceleration);
+          velocity     = &predicted_velocity;
+          displacement = &predicted_displacement;
+        }
+      level.velocity_matrix.vmult(rhs, *velocity);
       if (level.displacement_factor != 0.)
         {
-          body.stiffness_matrix().vmult(work, u);
+          body.stiffness_matrix().vmult(work, *displacement);
           rhs.add(level.displacement_factor, work);
         }
       rhs.add(level.scheme->free_rhs_coefficients().force,
@@ -743,6 +809,16 @@ namespace impactfe
               local_free_velocity[j] += c * start_velocity[j];
         }
 
+      if (newmark)
+        {
+          // b_N = c g(u~) - V_N(v~)
+          contact.gaps(predicted_displacement, gap_terms);
+          contact.normal_velocities(predicted_velocity, normal_velocity);
+          for (unsigned int c = 0; c < contact.n_candidates(); ++c)
+            gap_terms[c] =
+              level.newmark_rule.gap_factor * gap_terms[c] - normal_velocity[c];
+          return;
+        }
       const ThetaStepRule &rule = level.rule;
       const double         h    = level.scheme->time_step();
       if (rule.gap_prediction != 0.)
@@ -772,7 +848,16 @@ namespace impactfe
     {
       const double h = level.scheme->time_step();
       u_old          = u;
-      if (level.rule.new_velocity_weight == 1.)
+      if (newmark)
+        {
+          // a^{i+1} = (v^{i+1} - v~) / e, u^{i+1} = u~ + f a^{i+1}
+          acceleration = v;
+          acceleration -= predicted_velocity;
+          acceleration *= 1. / level.newmark_rule.acceleration_divisor;
+          u = predicted_displacement;
+          u.add(level.newmark_rule.displacement_acceleration, acceleration);
+        }
+      else if (level.rule.new_velocity_weight == 1.)
         u.add(h, v);
       else
         u.add(h * level.rule.new_velocity_weight,
@@ -806,7 +891,7 @@ namespace impactfe
       report                  = DistributedStepReport();
       report.time             = current_time + coarse->scheme->time_step();
       report.n_substeps       = free_flight_factor;
-      report.load_coefficient = coarse->scheme->free_rhs_coefficients().force;
+      report.load_coefficient = coarse->scheme->time_step();
       v_old                   = v;
       if (coarse->substructured_solver)
         {
@@ -834,6 +919,8 @@ namespace impactfe
     const DistributedStepReport &
     DistributedImpactSolver<dim>::do_time_step(const unsigned int max_substeps)
     {
+      if (newmark && !acceleration_ready)
+        compute_initial_acceleration();
       if (coarse && !last_step_had_impulses &&
           max_substeps >= free_flight_factor && try_free_flight_step())
         return report;
@@ -843,7 +930,7 @@ namespace impactfe
       const unsigned int nd   = contact.n_directions();
       report                  = DistributedStepReport();
       report.time             = current_time + h;
-      report.load_coefficient = fine.scheme->free_rhs_coefficients().force;
+      report.load_coefficient = h;
 
       // 1. The free velocity, M~ v_free = F~, and 2. b_N of the scheme.
       start_step(fine);
@@ -946,12 +1033,11 @@ namespace impactfe
               }
         }
       report.tangential_impulse = tangential.norm();
-      if (const double carry = fine.scheme->massless_impulse_carry();
-          carry != 0.)
+      if (const double w = fine.scheme->contact_force_weight(); w != 1.)
         for (unsigned int c = 0; c < n; ++c)
           for (unsigned int k = 0; k < nd; ++k)
             for (unsigned int d = 0; d < dim; ++d)
-              report.carried_impulse[d] += carry *
+              report.carried_impulse[d] += (1. - w) / w *
                                            contact.candidate(c).frame[k][d] *
                                            last_impulses[c * nd + k];
       last_impulses = local_impulses;

@@ -667,6 +667,11 @@ namespace impactfe
           largest_momentum = std::max(largest_momentum, p0[b].norm());
         }
       n_steps = parameters.scene.time_stepping.n_steps();
+      // the impulses are summed as h F per step, F the step's contact force,
+      // as in the serial ContactMonitor: P / w with w the contact force
+      // weight (w < 1 for Newmark and massless contact nodes, whose
+      // impulse acts over this step and, (1 - w)/w of it, over the next)
+      const double w = solver->integrator().contact_force_weight();
       // a free-flight step makes k steps h at once, never past the end
       for (unsigned int step = 0; step < n_steps;)
         {
@@ -678,8 +683,8 @@ namespace impactfe
           MPI_Barrier(comm);
           loop_seconds +=
             std::chrono::duration<double>(Clock::now() - start).count();
-          normal_impulse += last_report.normal_impulse;
-          tangential_impulse += last_report.tangential_impulse;
+          normal_impulse += last_report.normal_impulse / w;
+          tangential_impulse += last_report.tangential_impulse / w;
           for (unsigned int b = 0; b < n_b; ++b)
             {
               const double side = b == 0 ? 1. : -1.;

@@ -230,6 +230,15 @@ namespace impactfe
     return {};
   }
 
+  NewmarkStepRule
+  TimeIntegrator::newmark_step_rule() const
+  {
+    AssertThrow(false,
+                ExcMessage("The scheme '" + to_string(scheme()) +
+                           "' has no Newmark step rule."));
+    return {};
+  }
+
   void
   TimeIntegrator::gap_term(const ContactSet      &contacts,
                            const MechanicalState &s,
@@ -422,30 +431,45 @@ namespace impactfe
         return {&predicted_velocity, &predicted_displacement};
       }
 
+      NewmarkStepRule
+      newmark_step_rule() const override
+      {
+        const double beta  = parameters.newmark_beta,
+                     gamma = parameters.newmark_gamma;
+        NewmarkStepRule rule;
+        rule.time_step                           = h;
+        rule.predicted_displacement_acceleration = h * h * (0.5 - beta);
+        rule.predicted_velocity_acceleration     = h * (1. - gamma);
+        rule.gap_factor                          = gamma / (h * beta);
+        rule.acceleration_divisor                = h * gamma;
+        rule.displacement_acceleration           = h * h * beta;
+        return rule;
+      }
+
       void
       gap_term(const ContactSet      &contacts,
                const MechanicalState &s,
                std::vector<double>   &b) const override
       {
+        const NewmarkStepRule rule = newmark_step_rule();
         predict(s);
         contacts.gaps(predicted_displacement, b);
         contacts.normal_velocities(predicted_velocity, normal_velocity);
-        const double factor =
-          parameters.newmark_gamma / (h * parameters.newmark_beta);
         for (unsigned int c = 0; c < b.size(); ++c)
-          b[c] = factor * b[c] - normal_velocity[c];
+          b[c] = rule.gap_factor * b[c] - normal_velocity[c];
       }
 
       void
       complete_step(const MechanicalState &old_state,
                     MechanicalState       &new_state) const override
       {
+        const NewmarkStepRule rule = newmark_step_rule();
         predict(old_state);
         new_state.acceleration = new_state.velocity;
         new_state.acceleration -= predicted_velocity;
-        new_state.acceleration *= 1. / (h * parameters.newmark_gamma);
+        new_state.acceleration *= 1. / rule.acceleration_divisor;
         new_state.displacement = predicted_displacement;
-        new_state.displacement.add(h * h * parameters.newmark_beta,
+        new_state.displacement.add(rule.displacement_acceleration,
                                    new_state.acceleration);
       }
 
@@ -475,13 +499,14 @@ namespace impactfe
       void
       predict(const MechanicalState &s) const
       {
-        predicted_displacement = s.displacement;
+        const NewmarkStepRule rule = newmark_step_rule();
+        predicted_displacement     = s.displacement;
         predicted_displacement.add(h,
                                    s.velocity,
-                                   h * h * (0.5 - parameters.newmark_beta),
+                                   rule.predicted_displacement_acceleration,
                                    s.acceleration);
         predicted_velocity = s.velocity;
-        predicted_velocity.add(h * (1. - parameters.newmark_gamma),
+        predicted_velocity.add(rule.predicted_velocity_acceleration,
                                s.acceleration);
       }
     };

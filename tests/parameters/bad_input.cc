@@ -288,7 +288,11 @@ main()
                 "Number of cells along x = 1\n  set Number of cells along z "
                 "= 1"),
            mpi);
-  run_case("mpi_newmark", with("Time stepping", "Scheme = newmark"), mpi);
+  run_case("mpi_newmark_mass_redistribution",
+           with("Time stepping", "Scheme = newmark") +
+             "subsection Discretization\n  set Mass redistribution = true\n"
+             "end\n",
+           mpi);
   run_case("mpi_empty_contact_boundary",
            with("Mesh", "Contact boundary id = 7"),
            mpi);

@@ -31,8 +31,8 @@ namespace impactfe
     {
       double time = 0.;
       /// The step's length, in steps h (k for a free-flight step), and
-      /// the coefficient of the loads' impulse over it (the scheme's F~
-      /// force coefficient).
+      /// the coefficient of the loads' impulse over it (its length in
+      /// seconds: the loads are constant).
       unsigned int n_substeps       = 1;
       double       load_coefficient = 0.;
       unsigned int lcp_size         = 0;
@@ -42,10 +42,11 @@ namespace impactfe
       /// The total contact impulse on side A in global coordinates: on the
       /// body against an obstacle, on the first body between two [N s].
       std::array<double, 3> impulse{{0., 0., 0.}};
-      /// With massless contact nodes (mass redistribution), the part of
-      /// the last step's impulse that acts in this one:
-      /// TimeIntegrator::massless_impulse_carry() times it. The step
-      /// changes side A's momentum by impulse + carried_impulse (+ loads).
+      /// The part of the last step's impulse that acts in this one,
+      /// (1 - w)/w times it with w = TimeIntegrator::contact_force_weight():
+      /// with massless contact nodes (mass redistribution) and with
+      /// Newmark. The step changes side A's momentum by impulse +
+      /// carried_impulse (+ the loads').
       std::array<double, 3> carried_impulse{{0., 0., 0.}};
       bool                  fallback = false;
     };
@@ -99,7 +100,8 @@ namespace impactfe
      * The step of schemes.md at the velocity level,
      *   M~ v^{i+1} = F~ + H P,  w_N = V_N^{i+1} + b_N >= 0 _|_ P_N >= 0,
      * and Coulomb's law, with M~, F~ and b_N from the serial TimeIntegrator
-     * (Newmark is refused: it has no theta-step rule). W = H^T M~^{-1} H is
+     * (its ThetaStepRule, or Newmark's NewmarkStepRule, whose a^0 solves
+     * M a^0 = F - K u^0 - C v^0 by CG at the first step). W = H^T M~^{-1} H is
      * never formed: each product is one solve with M~, by MUMPS's
      * distributed factorisation of M~ (made once) or by CG with ML's AMG
      * (set up once), `Parallel solver/Solver`; or, with the substructured
@@ -178,8 +180,10 @@ namespace impactfe
       /// the velocity term of F~, and the solver of `Parallel solver`.
       struct StepOperators
       {
-        std::unique_ptr<TimeIntegrator>   scheme;
+        std::unique_ptr<TimeIntegrator> scheme;
+        /// The scheme's numbers: a theta-scheme's, or Newmark's.
         ThetaStepRule                     rule;
+        NewmarkStepRule                   newmark_rule;
         DistributedMatrix                 step_matrix, velocity_matrix;
         double                            displacement_factor = 0.;
         TrilinosWrappers::PreconditionAMG amg;
@@ -193,6 +197,12 @@ namespace impactfe
       std::unique_ptr<StepOperators> coarse;
       unsigned int                   free_flight_factor     = 1;
       bool                           last_step_had_impulses = true;
+      /// Newmark: the acceleration (a^0 made at the first step) and the
+      /// step's prediction u~, v~.
+      const bool        newmark;
+      bool              acceleration_ready = false;
+      DistributedVector acceleration, predicted_displacement,
+        predicted_velocity;
       /// The contact DoFs of the substructured solver (each node's once).
       std::vector<types::global_dof_index> contact_dofs;
       /// Mass redistribution: the offsets in this rank's part of the
@@ -238,6 +248,9 @@ namespace impactfe
       /// The substructured solver of the level's M~.
       void
       setup_substructured_solver(StepOperators &level);
+      /// Newmark: M a^0 = F - K u - C v (CG with Jacobi on M).
+      void
+      compute_initial_acceleration();
       /// x = M~^{-1} b with @p level's M~ (CG: counts the iterations).
       void
       solve_step_matrix(const StepOperators     &level,

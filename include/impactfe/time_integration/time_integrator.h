@@ -96,6 +96,30 @@ namespace impactfe
 
 
 
+  /**
+   * Newmark's step as numbers, as ThetaStepRule for the theta-schemes (one
+   * place for the formulas, used by NewmarkMethod and the distributed
+   * time loop):
+   *   u~ = u^i + h v^i + p a^i,  v~ = v^i + q a^i  (the prediction),
+   *   b_N = c g(u~) - V_N(v~),
+   *   a^{i+1} = (v^{i+1} - v~) / e,  u^{i+1} = u~ + f a^{i+1},
+   * with p = predicted_displacement_acceleration = h^2 (1/2 - beta),
+   * q = predicted_velocity_acceleration = h (1 - gamma), c = gap_factor =
+   * gamma / (h beta), e = acceleration_divisor = h gamma and f =
+   * displacement_acceleration = h^2 beta.
+   */
+  struct NewmarkStepRule
+  {
+    double time_step                           = 0.;
+    double predicted_displacement_acceleration = 0.;
+    double predicted_velocity_acceleration     = 0.;
+    double gap_factor                          = 1.;
+    double acceleration_divisor                = 1.;
+    double displacement_acceleration           = 0.;
+  };
+
+
+
   /** Displacement, velocity and (Newmark only) acceleration at one time. */
   struct MechanicalState
   {
@@ -177,6 +201,11 @@ namespace impactfe
      */
     virtual ThetaStepRule
     theta_step_rule() const;
+
+    /** Newmark's prediction, gap term and update (NewmarkStepRule); the
+     * theta-schemes have none and throw. */
+    virtual NewmarkStepRule
+    newmark_step_rule() const;
 
     /** b_N per contact candidate for the step from @p state (by default
      * from theta_step_rule()). */
