@@ -27,6 +27,7 @@ namespace impactfe
       this_rank    = Utilities::MPI::this_mpi_process(communicator);
       mu           = friction_coefficient;
       directions   = mu > 0. ? dim : 1;
+      bodies       = 1;
       candidate_list.clear();
     }
 
@@ -98,14 +99,16 @@ namespace impactfe
       AssertThrow(!candidate_list.empty(),
                   ExcMessage("Contact: " + where +
                              ", so the contact boundary is empty."));
-      std::sort(candidate_list.begin(),
-                candidate_list.end(),
-                [](const Candidate &a, const Candidate &b) {
-                  for (unsigned int d = 0; d < dim; ++d)
-                    if (a.position[d] != b.position[d])
-                      return a.position[d] < b.position[d];
-                  return false;
-                });
+      // stable: a node may be side A of two candidates (an obstacle and
+      // another body), kept in the given order
+      std::stable_sort(candidate_list.begin(),
+                       candidate_list.end(),
+                       [](const Candidate &a, const Candidate &b) {
+                         for (unsigned int d = 0; d < dim; ++d)
+                           if (a.position[d] != b.position[d])
+                             return a.position[d] < b.position[d];
+                         return false;
+                       });
     }
 
 
@@ -124,10 +127,11 @@ namespace impactfe
       for (unsigned int i = 0; i < nodes.size(); ++i)
         {
           Candidate c;
-          c.position    = positions[i];
-          c.nodes[0]    = nodes[i];
-          c.frame       = contact_frame(obstacle.normal(c.position));
-          c.initial_gap = obstacle.signed_distance(c.position);
+          c.position             = positions[i];
+          c.nodes[0]             = nodes[i];
+          c.frame                = contact_frame(obstacle.normal(c.position));
+          c.initial_gap          = obstacle.signed_distance(c.position);
+          c.friction_coefficient = friction_coefficient;
           candidate_list.push_back(c);
         }
       finish_setup("the body has no vertex on boundary id " +
@@ -140,19 +144,22 @@ namespace impactfe
     // (merge_body_meshes()); the positions are compared to make sure.
     template <int dim>
     void
-    DistributedContact<dim>::setup_between_bodies(
+    DistributedContact<dim>::setup_from_contact_set(
       const DistributedElasticBody<dim> &body,
       const ContactSet                  &pairs,
       const std::vector<unsigned int>   &vertex_offsets)
     {
-      const double mu =
-        pairs.n_candidates() > 0 ? pairs.candidate(0).friction_coefficient : 0.;
-      start_setup(body, mu);
+      double largest_mu = 0.;
+      for (const ContactCandidate &c : pairs.candidates())
+        largest_mu = std::max(largest_mu, c.friction_coefficient);
+      start_setup(body, largest_mu);
+      // the set's directions (dim if any candidate has friction)
       AssertThrow(pairs.n_directions() == directions,
                   ExcMessage("Contact: the candidate set has " +
                              std::to_string(pairs.n_directions()) +
-                             " local directions for mu = " + format_number(mu) +
-                             "."));
+                             " local directions for a largest mu = " +
+                             format_number(largest_mu) + "."));
+      bodies                   = vertex_offsets.size();
       const auto merged_vertex = [&](const unsigned int b,
                                      const unsigned int v) {
         AssertThrow(b < vertex_offsets.size(),
@@ -165,9 +172,6 @@ namespace impactfe
       std::map<unsigned int, std::optional<Point<dim>>> needed;
       for (const ContactCandidate &c : pairs.candidates())
         {
-          AssertThrow(!c.against_rigid_obstacle(),
-                      ExcMessage("Contact: setup_between_bodies() takes "
-                                 "candidates between two bodies."));
           Point<dim> x;
           for (unsigned int d = 0; d < dim; ++d)
             x[d] = c.position[d];
@@ -226,10 +230,13 @@ namespace impactfe
           Candidate c;
           for (unsigned int d = 0; d < dim; ++d)
             c.position[d] = pair.position[d];
-          c.frame       = pair.frame;
-          c.initial_gap = pair.initial_gap;
-          c.nodes[0]    = nodes.at(merged_vertex(pair.body_a, pair.vertex_a));
-          c.n_nodes     = 1 + pair.n_vertices_b;
+          c.frame                = pair.frame;
+          c.initial_gap          = pair.initial_gap;
+          c.friction_coefficient = pair.friction_coefficient;
+          c.body_a               = pair.body_a;
+          c.body_b               = pair.body_b;
+          c.nodes[0] = nodes.at(merged_vertex(pair.body_a, pair.vertex_a));
+          c.n_nodes  = 1 + pair.n_vertices_b;
           for (unsigned int k = 0; k < pair.n_vertices_b; ++k)
             {
               c.nodes[1 + k] =
@@ -238,7 +245,7 @@ namespace impactfe
             }
           candidate_list.push_back(c);
         }
-      finish_setup("the bodies have no candidates between them");
+      finish_setup("the candidate set is empty");
     }
 
 
@@ -266,6 +273,15 @@ namespace impactfe
     DistributedContact<dim>::friction_coefficient() const
     {
       return mu;
+    }
+
+
+
+    template <int dim>
+    unsigned int
+    DistributedContact<dim>::n_bodies() const
+    {
+      return bodies;
     }
 
 

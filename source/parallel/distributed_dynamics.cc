@@ -536,13 +536,14 @@ namespace impactfe
       const unsigned int n  = lcp_candidates.size();
       lcp_q.resize(n * nd);
       lcp_b.resize(n);
-      lcp_mu.assign(n, contact.friction_coefficient());
+      lcp_mu.resize(n);
       lcp_guess.resize(n * nd);
       lcp_state_guess.resize(n);
       for (unsigned int a = 0; a < n; ++a)
         {
           const unsigned int c = lcp_candidates[a];
           lcp_b[a]             = gap_terms[c];
+          lcp_mu[a]            = contact.candidate(c).friction_coefficient;
           lcp_state_guess[a]   = last_states[c];
           for (unsigned int k = 0; k < nd; ++k)
             {
@@ -891,6 +892,8 @@ namespace impactfe
       report                  = DistributedStepReport();
       report.time             = current_time + coarse->scheme->time_step();
       report.n_substeps       = free_flight_factor;
+      report.body_impulse     = body_impulses(local_impulses, 0.);
+      report.carried_impulse  = report.body_impulse;
       report.load_coefficient = coarse->scheme->time_step();
       v_old                   = v;
       if (coarse->substructured_solver)
@@ -1024,28 +1027,49 @@ namespace impactfe
           report.active_contacts += active[c] ? 1 : 0;
           report.normal_impulse += p_n;
           const auto &frame = contact.candidate(c).frame;
-          for (unsigned int k = 0; k < nd; ++k)
+          for (unsigned int k = 1; k < nd; ++k)
             for (unsigned int d = 0; d < dim; ++d)
-              {
-                const double p = frame[k][d] * local_impulses[c * nd + k];
-                report.impulse[d] += p;
-                tangential[d] += k > 0 ? p : 0.;
-              }
+              tangential[d] += frame[k][d] * local_impulses[c * nd + k];
         }
       report.tangential_impulse = tangential.norm();
-      if (const double w = fine.scheme->contact_force_weight(); w != 1.)
-        for (unsigned int c = 0; c < n; ++c)
-          for (unsigned int k = 0; k < nd; ++k)
-            for (unsigned int d = 0; d < dim; ++d)
-              report.carried_impulse[d] += (1. - w) / w *
-                                           contact.candidate(c).frame[k][d] *
-                                           last_impulses[c * nd + k];
-      last_impulses = local_impulses;
+      report.body_impulse       = body_impulses(local_impulses, 1.);
+      const double w            = fine.scheme->contact_force_weight();
+      report.carried_impulse    = body_impulses(last_impulses, (1. - w) / w);
+      last_impulses             = local_impulses;
       last_step_had_impulses =
         std::any_of(local_impulses.begin(),
                     local_impulses.end(),
                     [](const double p) { return p != 0.; });
       return report;
+    }
+
+
+
+    template <int dim>
+    std::vector<std::array<double, 3>>
+    DistributedImpactSolver<dim>::body_impulses(
+      const std::vector<double> &local,
+      const double               factor) const
+    {
+      const unsigned int                 nd = contact.n_directions();
+      std::vector<std::array<double, 3>> result(contact.n_bodies(),
+                                                {{0., 0., 0.}});
+      if (factor == 0.)
+        return result;
+      for (unsigned int c = 0; c < contact.n_candidates(); ++c)
+        {
+          const auto &candidate = contact.candidate(c);
+          for (unsigned int k = 0; k < nd; ++k)
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                const double p =
+                  factor * candidate.frame[k][d] * local[c * nd + k];
+                result[candidate.body_a][d] += p;
+                if (candidate.body_b != numbers::invalid_unsigned_int)
+                  result[candidate.body_b][d] -= p;
+              }
+        }
+      return result;
     }
 
 

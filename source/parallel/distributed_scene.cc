@@ -73,9 +73,10 @@ namespace impactfe
         "obstacle with 'Initial velocity', checked by its impulse balance "
         "and the contact verification (the cylinder and the plate). two "
         "bodies: that body thrown at the body of subsection 'Mesh of the "
-        "second body', node-to-node contact between them (matching "
-        "interface meshes, subsection 'Second body'), no obstacle (the "
-        "bars in 2D and 3D).");
+        "second body' (subsection 'Second body': the contact between "
+        "them), and either or both against the obstacle if subsection "
+        "'Obstacle contact' names their boundaries (the bars in 2D and 3D; "
+        "a block on another on a plane).");
       prm.enter_subsection("Geometry");
       prm.declare_entry("Thickness",
                         "1",
@@ -129,6 +130,17 @@ namespace impactfe
                         "coefficients must be those of 'Material'); false: "
                         "of the first body's.");
       prm.leave_subsection();
+      prm.enter_subsection("Obstacle contact");
+      for (const std::string body : {"first", "second"})
+        prm.declare_entry("Boundary id of the " + body + " body",
+                          "-1",
+                          Patterns::Integer(-1, 255),
+                          "Scene = two bodies: the boundary id of the " + body +
+                            " body's nodes that can touch the obstacle of "
+                            "subsection Obstacle (node-to-obstacle, with its "
+                            "friction coefficient); -1: the " +
+                            body + " body does not touch it [-].");
+      prm.leave_subsection();
       MaterialParameters::declare_parameters(prm,
                                              2,
                                              "Material of the second body");
@@ -174,6 +186,13 @@ namespace impactfe
       friction_between_bodies      = prm.get_double("Friction coefficient");
       second_body_has_own_material = prm.get_bool("Own material");
       prm.leave_subsection();
+      prm.enter_subsection("Obstacle contact");
+      obstacle_boundary_ids = {
+        {prm.get_integer("Boundary id of the first body"),
+         prm.get_integer("Boundary id of the second body")}};
+      prm.leave_subsection();
+      const bool touches_obstacle =
+        obstacle_boundary_ids[0] >= 0 || obstacle_boundary_ids[1] >= 0;
       if (second_body_has_own_material)
         second_material.parse_parameters(prm,
                                          dimension,
@@ -184,8 +203,8 @@ namespace impactfe
       second_mesh.parse_parameters(prm, "Mesh of the second body");
       scene.parse_parameters(prm);
       mesh.parse_parameters(prm, "Mesh");
-      // two bodies touch each other only: the obstacle is not read
-      if (!two_bodies)
+      // two bodies read the obstacle only if they touch it
+      if (!two_bodies || touches_obstacle)
         obstacle.parse_parameters(prm, dimension);
       material.parse_parameters(prm, dimension);
       linear_solver.parse_parameters(prm);
@@ -256,10 +275,10 @@ namespace impactfe
         AssertThrow(!second_mesh.from_file() && second_velocity.empty() &&
                       contact_normal.empty() && friction_between_bodies == 0. &&
                       discretization == "node-to-node" &&
-                      !second_body_has_own_material,
-                    ExcMessage("The subsections 'Second body' and 'Mesh of "
-                               "the second body' are for Scene = two "
-                               "bodies."));
+                      !second_body_has_own_material && !touches_obstacle,
+                    ExcMessage("The subsections 'Second body', 'Mesh of "
+                               "the second body' and 'Obstacle contact' are "
+                               "for Scene = two bodies."));
       AssertThrow(
         !second_body_has_own_material ||
           (second_material.rayleigh_mass == material.rayleigh_mass &&
@@ -334,28 +353,39 @@ namespace impactfe
                                  tria);
           vertex_offsets = {0, first.triangulation().n_vertices()};
 
-          const double mu = parameters.friction_between_bodies;
-          pairs_between_bodies =
-            std::make_unique<ContactSet>(mu > 0. ? dim : 1);
+          // the obstacle, if a body touches it (its size: the bodies')
+          const auto  &ids = parameters.obstacle_boundary_ids;
+          const double mu  = parameters.friction_between_bodies;
+          const double mu_obstacle =
+            ids[0] >= 0 || ids[1] >= 0 ?
+              parameters.obstacle.friction_coefficient :
+              0.;
+          if (ids[0] >= 0 || ids[1] >= 0)
+            obstacle = parameters.obstacle.create<dim>(body_size());
+          serial_candidates =
+            std::make_unique<ContactSet>(mu > 0. || mu_obstacle > 0. ? dim : 1);
           const std::vector<const ElasticBody<dim> *> bodies = {&first,
                                                                 &second};
           const types::boundary_id id_a = parameters.mesh.contact_boundary_id;
           const types::boundary_id id_b =
             parameters.second_mesh.contact_boundary_id;
           if (parameters.discretization == "node-to-segment")
-            pairs_between_bodies->add_node_to_segment(
+            serial_candidates->add_node_to_segment(
               bodies, 0, id_a, 1, id_b, mu);
           else if (parameters.discretization == "node-to-face")
-            pairs_between_bodies->add_node_to_face(
-              bodies, 0, id_a, 1, id_b, mu);
+            serial_candidates->add_node_to_face(bodies, 0, id_a, 1, id_b, mu);
           else
             {
               Tensor<1, dim> n;
               for (unsigned int d = 0; d < dim; ++d)
                 n[d] = parameters.contact_normal[d];
-              pairs_between_bodies->add_node_to_node(
+              serial_candidates->add_node_to_node(
                 bodies, 0, id_a, 1, id_b, n, mu);
             }
+          for (unsigned int b = 0; b < 2; ++b)
+            if (ids[b] >= 0)
+              serial_candidates->add_node_to_obstacle(
+                bodies, b, ids[b], *obstacle, mu_obstacle);
         }
       else if (parameters.mesh.from_file())
         parameters.mesh.read(tria, parameter_file);
@@ -431,10 +461,10 @@ namespace impactfe
       body.setup();
       if (parameters.two_bodies)
         {
-          contact.setup_between_bodies(body,
-                                       *pairs_between_bodies,
-                                       vertex_offsets);
-          pairs_between_bodies.reset();
+          contact.setup_from_contact_set(body,
+                                         *serial_candidates,
+                                         vertex_offsets);
+          serial_candidates.reset();
         }
       else
         {
@@ -543,14 +573,24 @@ namespace impactfe
       if (history)
         {
           const double per_impulse = solver->integrator().force_per_impulse();
-          std::vector<double> row  = {solver->time(),
-                                      last_report.normal_impulse * per_impulse,
-                                      last_report.tangential_impulse *
-                                        per_impulse};
+          // the contact force on body b (none before the first step)
+          const auto force = [&](const unsigned int b, const unsigned int d) {
+            return b < last_report.body_impulse.size() ?
+                     last_report.body_impulse[b][d] * per_impulse :
+                     0.;
+          };
+          std::vector<double> row = {solver->time(),
+                                     last_report.normal_impulse * per_impulse,
+                                     last_report.tangential_impulse *
+                                       per_impulse};
+          // the total: the obstacle's reaction (zero between bodies alone)
           for (unsigned int d = 0; d < dim; ++d)
-            row.push_back(parameters.two_bodies ?
-                            0. :
-                            last_report.impulse[d] * per_impulse);
+            {
+              double total = 0.;
+              for (unsigned int b = 0; b < contact.n_bodies(); ++b)
+                total += force(b, d);
+              row.push_back(total + 0.); // not -0
+            }
           for (unsigned int d = 0; d < dim; ++d)
             row.push_back(p[d]);
           row.push_back(kinetic_energy);
@@ -558,10 +598,8 @@ namespace impactfe
           row.push_back(last_report.active_contacts);
           for (unsigned int b = 0; b < per_body.size(); ++b)
             {
-              const double side = b == 0 ? 1. : -1.;
               for (unsigned int d = 0; d < dim; ++d)
-                row.push_back(side * last_report.impulse[d] * per_impulse +
-                              0.); // not -0
+                row.push_back(force(b, d) + 0.); // not -0
               for (unsigned int d = 0; d < dim; ++d)
                 row.push_back(per_body[b][d]);
             }
@@ -687,11 +725,10 @@ namespace impactfe
           tangential_impulse += last_report.tangential_impulse / w;
           for (unsigned int b = 0; b < n_b; ++b)
             {
-              const double side = b == 0 ? 1. : -1.;
               for (unsigned int d = 0; d < dim; ++d)
                 impulses[b][d] += last_report.load_coefficient * load[b][d] +
-                                  side * (last_report.impulse[d] +
-                                          last_report.carried_impulse[d]);
+                                  last_report.body_impulse[b][d] +
+                                  last_report.carried_impulse[b][d];
               const Tensor<1, dim> p = body_momentum(solver->velocity(), b);
               largest_momentum       = std::max(largest_momentum, p.norm());
               balance_error =
@@ -755,9 +792,16 @@ namespace impactfe
           << "  Mesh: " << body.triangulation().n_global_active_cells()
           << " Q1 cells, " << body.dof_handler().n_dofs() << " DoFs, "
           << contact.n_candidates() << " contact candidates; "
-          << (obstacle ? "obstacle: " + obstacle->description() :
-                         parameters.discretization + " between the bodies")
-          << ", mu = " << contact.friction_coefficient() << "\n"
+          << (parameters.two_bodies ?
+                parameters.discretization + " between the bodies, mu = " +
+                  format_number(parameters.friction_between_bodies) +
+                  (obstacle ? "; " : "") :
+                std::string())
+          << (obstacle ?
+                "obstacle: " + obstacle->description() + ", mu = " +
+                  format_number(parameters.obstacle.friction_coefficient) :
+                std::string())
+          << "\n"
           << "  Contact candidates owned per rank: " << owned_range.min
           << " to " << owned_range.max << "\n";
       const double speed_scale =

@@ -357,6 +357,14 @@ main()
              "Own material = true\nend\nsubsection Material of the second "
              "body\n  set Rayleigh mass coefficient = 10\nend\n",
            mpi);
+  // the second bar touches the obstacle on a boundary it does not have
+  run_case("mpi_two_bodies_obstacle_contact_on_missing_boundary",
+           bars + second_bar +
+             "subsection Second body\n  set Contact normal = -1, 0\nend\n"
+             "subsection Obstacle contact\n  set Boundary id of the second "
+             "body = 7\nend\n" +
+             with("Obstacle", "Point on plane = 0, -1\n  set Normal = 0, 1"),
+           mpi);
   run_case("mpi_second_body_without_two_bodies",
            with("Second body", "Contact normal = -1, 0, 0"),
            mpi);

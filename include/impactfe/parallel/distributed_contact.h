@@ -1,5 +1,6 @@
 // The contact candidates of a distributed body: its nodes against a rigid
-// obstacle, or pairs between two parts of its mesh (two bodies). Each
+// obstacle, or the candidates of a serial ContactSet between the parts of
+// its mesh (bodies) and against obstacles. Each
 // candidate is owned by the rank that owns its first node's DoFs, and the
 // candidate data the contact problem needs (frames, gaps, local velocities) are
 // replicated on every rank (issue 14, doc/parallel.md).
@@ -53,7 +54,11 @@ namespace impactfe
         /// Side A's reference position.
         Point<dim>                           position;
         std::array<std::array<double, 3>, 3> frame{};
-        double                               initial_gap = 0.;
+        double                               initial_gap          = 0.;
+        double                               friction_coefficient = 0.;
+        /// The bodies (parts of the mesh) of sides A and B; B is
+        /// numbers::invalid_unsigned_int for a rigid obstacle.
+        unsigned int body_a = 0, body_b = numbers::invalid_unsigned_int;
         /// Side A's node, then side B's (one node, a segment's two or a
         /// face's four).
         unsigned int                n_nodes = 1;
@@ -72,25 +77,31 @@ namespace impactfe
             const double                       friction_coefficient);
 
       /**
-       * Candidates between two bodies held in the body's mesh as two parts
-       * (merge_body_meshes()): @p pairs are the serial ContactSet's
-       * node-to-node, node-to-segment or node-to-face candidates, built on
-       * the bodies' own coarse meshes (so that the pairing, the frames and
-       * the gaps are the serial programs'), whose vertex v of body b is
-       * vertex @p vertex_offsets[b] + v of the merged mesh. Each rank
-       * finds the DoFs of the vertices it owns; all are gathered.
+       * The candidates of bodies held in the body's mesh as parts
+       * (merge_body_meshes(), material id = body): @p pairs are a serial
+       * ContactSet's candidates (node-to-node, node-to-segment or
+       * node-to-face between bodies, node-to-obstacle), built on the
+       * bodies' own coarse meshes (so that the pairing, the frames, the
+       * gaps and the friction coefficients are the serial programs'), whose
+       * vertex v of body b is vertex @p vertex_offsets[b] + v of the merged
+       * mesh. Each rank finds the DoFs of the vertices it owns; all are
+       * gathered.
        */
       void
-      setup_between_bodies(const DistributedElasticBody<dim> &body,
-                           const ContactSet                  &pairs,
-                           const std::vector<unsigned int>   &vertex_offsets);
+      setup_from_contact_set(const DistributedElasticBody<dim> &body,
+                             const ContactSet                  &pairs,
+                             const std::vector<unsigned int>   &vertex_offsets);
 
       unsigned int
       n_candidates() const;
       unsigned int
       n_directions() const;
+      /// The largest friction coefficient of the candidates.
       double
       friction_coefficient() const;
+      /// The bodies the candidates name (1 for setup()).
+      unsigned int
+      n_bodies() const;
       const Candidate &
       candidate(const unsigned int c) const;
       /// Whether this rank owns candidate @p c (its side A node).
@@ -150,6 +161,7 @@ namespace impactfe
       MPI_Comm                    communicator = MPI_COMM_SELF;
       unsigned int                directions   = 1;
       unsigned int                this_rank    = 0;
+      unsigned int                bodies       = 1;
       double                      mu           = 0.;
       std::vector<Candidate>      candidate_list;
       mutable std::vector<double> partial;

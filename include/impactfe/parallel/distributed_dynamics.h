@@ -39,16 +39,16 @@ namespace impactfe
       unsigned int active_contacts  = 0;
       /// Sum over the contacts of P_N, and |sum of P_T| (as vectors) [N s].
       double normal_impulse = 0., tangential_impulse = 0.;
-      /// The total contact impulse on side A in global coordinates: on the
-      /// body against an obstacle, on the first body between two [N s].
-      std::array<double, 3> impulse{{0., 0., 0.}};
-      /// The part of the last step's impulse that acts in this one,
-      /// (1 - w)/w times it with w = TimeIntegrator::contact_force_weight():
-      /// with massless contact nodes (mass redistribution) and with
-      /// Newmark. The step changes side A's momentum by impulse +
-      /// carried_impulse (+ the loads').
-      std::array<double, 3> carried_impulse{{0., 0., 0.}};
-      bool                  fallback = false;
+      /// Per body (DistributedContact::n_bodies()), the contact impulse on
+      /// it in global coordinates: P on side A, -P on side B [N s].
+      std::vector<std::array<double, 3>> body_impulse;
+      /// Per body, the part of the last step's impulse that acts in this
+      /// one, (1 - w)/w times it with w =
+      /// TimeIntegrator::contact_force_weight(): with massless contact
+      /// nodes (mass redistribution) and with Newmark. The step changes a
+      /// body's momentum by body_impulse + carried_impulse (+ the loads').
+      std::vector<std::array<double, 3>> carried_impulse;
+      bool                               fallback = false;
     };
 
     /// Counts and worst values over the run.
@@ -299,6 +299,11 @@ namespace impactfe
       dense_contact_product(const std::vector<double> &x,
                             std::vector<double>       &y,
                             const bool                 use_schur);
+      /// Per body, the impulses of @p local (per candidate and
+      /// direction) in global coordinates, times @p factor.
+      std::vector<std::array<double, 3>>
+      body_impulses(const std::vector<double> &local,
+                    const double               factor) const;
       /// Solve the contact problem of lcp_candidates into lcp_P; whether
       /// it took the active set route (else: Lemke, fallback or chosen).
       void

@@ -15,6 +15,7 @@
 #include <impactfe/scenes/contact_scene.h>
 #include <impactfe/scenes/rigid_block.h>
 
+#include <array>
 #include <memory>
 #include <string>
 #include <utility>
@@ -46,6 +47,9 @@ namespace impactfe
       std::vector<double> second_velocity, contact_normal;
       std::string         discretization          = "node-to-node";
       double              friction_between_bodies = 0.;
+      /// Scene = two bodies: the boundary ids of the first and the second
+      /// body's nodes that can touch the obstacle (-1: none).
+      std::array<int, 2> obstacle_boundary_ids{{-1, -1}};
       /// Whether the second body has its own material, and that material.
       bool               second_body_has_own_material = false;
       MaterialParameters second_material;
@@ -148,10 +152,10 @@ namespace impactfe
       ConditionalOStream               pcout;
       DistributedElasticBody<dim>      body;
       DistributedContact<dim>          contact;
-      /// Scene = two bodies: the candidates between the bodies on their own
-      /// meshes (the serial ContactSet), and where each body's vertices
-      /// start in the merged mesh.
-      std::unique_ptr<ContactSet>                   pairs_between_bodies;
+      /// Scene = two bodies: the candidates between the bodies and against
+      /// the obstacle on the bodies' own meshes (the serial ContactSet),
+      /// and where each body's vertices start in the merged mesh.
+      std::unique_ptr<ContactSet>                   serial_candidates;
       std::vector<unsigned int>                     vertex_offsets;
       std::unique_ptr<RigidObstacle<dim>>           obstacle;
       std::unique_ptr<DistributedImpactSolver<dim>> solver;
