@@ -49,7 +49,132 @@ namespace impactfe
         error = Utilities::MPI::broadcast(comm, error, 0);
         AssertThrow(error.empty(), ExcMessage(error));
       }
+
+
+
+      // 'b:i' of subsection Bodies' @p entry: body b of @p n_bodies (from
+      // 1; returned from 0) and boundary id i.
+      std::pair<unsigned int, types::boundary_id>
+      body_and_boundary(const std::string &token,
+                        const unsigned int n_bodies,
+                        const std::string &entry)
+      {
+        const auto fail = [&](const std::string &why) {
+          AssertThrow(false,
+                      ExcMessage("Bodies: '" + entry + "' has '" + token +
+                                 "': " + why + "."));
+        };
+        const std::vector<std::string> parts =
+          Utilities::split_string_list(token, ':');
+        if (parts.size() != 2)
+          fail("expected 'body:boundary id'");
+        int body = -1, boundary = -1;
+        try
+          {
+            body     = Utilities::string_to_int(parts[0]);
+            boundary = Utilities::string_to_int(parts[1]);
+          }
+        catch (...)
+          {
+            fail("expected two integers, 'body:boundary id'");
+          }
+        if (body < 1 || body > static_cast<int>(n_bodies))
+          fail("the bodies are 1 to " + std::to_string(n_bodies));
+        if (boundary < 0 || boundary > 255)
+          fail("a boundary id is 0 to 255");
+        return {body - 1, static_cast<types::boundary_id>(boundary)};
+      }
     } // namespace
+
+
+
+    // Scene = bodies: subsection Bodies into the multibody lists; the
+    // pairs are node-to-segment (2D) or node-to-face (3D).
+    void
+    DistributedSceneParameters::parse_bodies(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Bodies");
+      const std::vector<std::string> files =
+        Utilities::split_string_list(prm.get("Mesh files"));
+      const std::string velocities = prm.get("Initial velocities");
+      const std::string pairs      = prm.get("Contact pairs");
+      const std::string contacts   = prm.get("Obstacle contacts");
+      const double      mu         = prm.get_double("Friction coefficient");
+      prm.leave_subsection();
+      if (!several_bodies)
+        {
+          AssertThrow(files.empty() && velocities.empty() && pairs.empty() &&
+                        contacts.empty() && mu == 0.,
+                      ExcMessage("The subsection 'Bodies' is for Scene = "
+                                 "bodies."));
+          return;
+        }
+      AssertThrow(files.size() >= 2,
+                  ExcMessage("Bodies: 'Mesh files' must name at least two "
+                             "files, got " +
+                             std::to_string(files.size()) + "."));
+      require_non_negative(mu, "Bodies", "Friction coefficient");
+      AssertThrow(friction_between_bodies == 0. &&
+                    discretization == "node-to-node",
+                  ExcMessage("The subsections 'Second body', 'Mesh of the "
+                             "second body' and 'Obstacle contact' are for "
+                             "Scene = two bodies."));
+      const unsigned int n = files.size();
+      for (const std::string &file : files)
+        {
+          MeshParameters body_mesh;
+          body_mesh.file_name = file;
+          body_meshes.push_back(body_mesh);
+        }
+      body_velocities.assign(n, {});
+      if (!velocities.empty())
+        {
+          const std::vector<std::string> list =
+            Utilities::split_string_list(velocities, ';');
+          AssertThrow(list.size() == n,
+                      ExcMessage("Bodies: 'Initial velocities' must give " +
+                                 std::to_string(n) +
+                                 " velocities separated by ';' (one per "
+                                 "body), got '" +
+                                 velocities + "'."));
+          for (unsigned int b = 0; b < n; ++b)
+            {
+              for (const std::string &v : Utilities::split_string_list(list[b]))
+                body_velocities[b].push_back(Utilities::string_to_double(v));
+              AssertThrow(body_velocities[b].size() == dimension,
+                          ExcMessage("Bodies: 'Initial velocities' must give " +
+                                     std::to_string(dimension) +
+                                     " components for each body, got '" +
+                                     list[b] + "' for body " +
+                                     std::to_string(b + 1) + "."));
+            }
+        }
+      for (const std::string &pair : Utilities::split_string_list(pairs))
+        {
+          const std::size_t at = pair.find(" against ");
+          AssertThrow(at != std::string::npos,
+                      ExcMessage("Bodies: 'Contact pairs' has '" + pair +
+                                 "': expected 'a:i against b:j'."));
+          const auto a = body_and_boundary(Utilities::trim(pair.substr(0, at)),
+                                           n,
+                                           "Contact pairs");
+          const auto b = body_and_boundary(Utilities::trim(pair.substr(at + 9)),
+                                           n,
+                                           "Contact pairs");
+          AssertThrow(a.first != b.first,
+                      ExcMessage("Bodies: 'Contact pairs' has '" + pair +
+                                 "': a body against itself."));
+          body_pairs.push_back({a.first, b.first, a.second, b.second});
+        }
+      AssertThrow(!body_pairs.empty() || !contacts.empty(),
+                  ExcMessage("Bodies: neither 'Contact pairs' nor 'Obstacle "
+                             "contacts' names a contact."));
+      for (const std::string &contact : Utilities::split_string_list(contacts))
+        obstacle_contacts.push_back(
+          body_and_boundary(contact, n, "Obstacle contacts"));
+      discretization = dimension == 2 ? "node-to-segment" : "node-to-face";
+      friction_between_bodies = mu;
+    }
 
 
 
@@ -66,7 +191,7 @@ namespace impactfe
       prm.declare_entry(
         "Scene",
         "sliding block",
-        Patterns::Selection("sliding block|impact|two bodies"),
+        Patterns::Selection("sliding block|impact|two bodies|bodies"),
         "sliding block: the box of subsection Geometry (or the mesh of "
         "subsection Mesh) launched along the plane, checked against the "
         "rigid-block model. impact: the body of 'Mesh file' thrown at the "
@@ -76,7 +201,9 @@ namespace impactfe
         "second body' (subsection 'Second body': the contact between "
         "them), and either or both against the obstacle if subsection "
         "'Obstacle contact' names their boundaries (the bars in 2D and 3D; "
-        "a block on another on a plane).");
+        "a block on another on a plane). bodies: any number of bodies, "
+        "their pairs and their contacts with the obstacle listed in "
+        "subsection 'Bodies' (three bars in a row).");
       prm.enter_subsection("Geometry");
       prm.declare_entry("Thickness",
                         "1",
@@ -130,6 +257,40 @@ namespace impactfe
                         "coefficients must be those of 'Material'); false: "
                         "of the first body's.");
       prm.leave_subsection();
+      prm.enter_subsection("Bodies");
+      prm.declare_entry("Mesh files",
+                        "",
+                        Patterns::List(Patterns::FileName(), 0),
+                        "Scene = bodies: one mesh file per body (body 1, 2, "
+                        "...), relative to the parameter file's directory "
+                        "[-].");
+      prm.declare_entry("Initial velocities",
+                        "",
+                        Patterns::Anything(),
+                        "Scene = bodies: each body's uniform initial "
+                        "velocity, one component per dimension, the bodies "
+                        "separated by ';' (e.g. '1, 0; 0, 0; 0, 0'); empty: "
+                        "all at rest [m/s].");
+      prm.declare_entry("Contact pairs",
+                        "",
+                        Patterns::Anything(),
+                        "Scene = bodies: the pairs between bodies, "
+                        "comma-separated, each 'a:i against b:j': the nodes "
+                        "of body a on boundary id i against the boundary id "
+                        "j of body b (node-to-segment in 2D, node-to-face in "
+                        "3D), with 'Friction coefficient' [-].");
+      prm.declare_entry("Friction coefficient",
+                        "0",
+                        Patterns::Double(),
+                        "Scene = bodies: Coulomb's coefficient of every "
+                        "pair between bodies [-]. Must be >= 0.");
+      prm.declare_entry("Obstacle contacts",
+                        "",
+                        Patterns::Anything(),
+                        "Scene = bodies: the boundaries that touch the "
+                        "obstacle of subsection Obstacle, comma-separated, "
+                        "each 'b:i' (body b, boundary id i) [-].");
+      prm.leave_subsection();
       prm.enter_subsection("Obstacle contact");
       for (const std::string body : {"first", "second"})
         prm.declare_entry("Boundary id of the " + body + " body",
@@ -156,9 +317,10 @@ namespace impactfe
                   ExcMessage("The parameter file '" + file +
                              "' does not exist."));
       prm.parse_input(file);
-      dimension  = prm.get_integer("Dimension");
-      two_bodies = prm.get("Scene") == "two bodies";
-      impact     = prm.get("Scene") == "impact" || two_bodies;
+      dimension      = prm.get_integer("Dimension");
+      two_bodies     = prm.get("Scene") == "two bodies";
+      several_bodies = prm.get("Scene") == "bodies";
+      impact = prm.get("Scene") == "impact" || two_bodies || several_bodies;
       prm.enter_subsection("Geometry");
       thickness = prm.get_double("Thickness");
       prm.leave_subsection();
@@ -191,8 +353,10 @@ namespace impactfe
         {prm.get_integer("Boundary id of the first body"),
          prm.get_integer("Boundary id of the second body")}};
       prm.leave_subsection();
-      const bool touches_obstacle =
-        obstacle_boundary_ids[0] >= 0 || obstacle_boundary_ids[1] >= 0;
+      parse_bodies(prm);
+      const bool touches_obstacle = obstacle_boundary_ids[0] >= 0 ||
+                                    obstacle_boundary_ids[1] >= 0 ||
+                                    !obstacle_contacts.empty();
       if (second_body_has_own_material)
         second_material.parse_parameters(prm,
                                          dimension,
@@ -203,13 +367,20 @@ namespace impactfe
       second_mesh.parse_parameters(prm, "Mesh of the second body");
       scene.parse_parameters(prm);
       mesh.parse_parameters(prm, "Mesh");
-      // two bodies read the obstacle only if they touch it
-      if (!two_bodies || touches_obstacle)
+      // bodies read the obstacle only if they touch it
+      if (!(two_bodies || several_bodies) || touches_obstacle)
         obstacle.parse_parameters(prm, dimension);
       material.parse_parameters(prm, dimension);
       linear_solver.parse_parameters(prm);
       box.parse_parameters(prm);
-      if (impact)
+      if (several_bodies)
+        {
+          AssertThrow(initial_velocity.empty() && !mesh.from_file(),
+                      ExcMessage("Scene = bodies: the bodies' meshes and "
+                                 "velocities are in subsection 'Bodies', not "
+                                 "in 'Mesh' and 'Initial conditions'."));
+        }
+      else if (impact)
         {
           AssertThrow(initial_velocity.size() == dimension,
                       ExcMessage("Initial conditions: 'Initial velocity' "
@@ -273,12 +444,26 @@ namespace impactfe
         }
       else
         AssertThrow(!second_mesh.from_file() && second_velocity.empty() &&
-                      contact_normal.empty() && friction_between_bodies == 0. &&
-                      discretization == "node-to-node" &&
-                      !second_body_has_own_material && !touches_obstacle,
+                      contact_normal.empty() &&
+                      (several_bodies || friction_between_bodies == 0.) &&
+                      (several_bodies || discretization == "node-to-node") &&
+                      !second_body_has_own_material &&
+                      obstacle_boundary_ids[0] < 0 &&
+                      obstacle_boundary_ids[1] < 0,
                     ExcMessage("The subsections 'Second body', 'Mesh of "
                                "the second body' and 'Obstacle contact' are "
                                "for Scene = two bodies."));
+      // two bodies in the multibody form
+      if (two_bodies)
+        {
+          body_meshes     = {mesh, second_mesh};
+          body_velocities = {initial_velocity, second_velocity};
+          body_pairs      = {
+                 {0, 1, mesh.contact_boundary_id, second_mesh.contact_boundary_id}};
+          for (unsigned int b = 0; b < 2; ++b)
+            if (obstacle_boundary_ids[b] >= 0)
+              obstacle_contacts.emplace_back(b, obstacle_boundary_ids[b]);
+        }
       AssertThrow(
         !second_body_has_own_material ||
           (second_material.rayleigh_mass == material.rayleigh_mass &&
@@ -335,57 +520,77 @@ namespace impactfe
     DistributedScene<dim>::make_grid()
     {
       auto &tria = body.triangulation();
-      if (parameters.two_bodies)
+      if (parameters.multibody())
         {
-          const double     thickness = dim == 2 ? parameters.thickness : 1.;
-          ElasticBody<dim> first("first body",
-                                 parameters.material,
-                                 parameters.scene.discretization,
-                                 thickness);
-          ElasticBody<dim> second("second body",
-                                  parameters.material,
-                                  parameters.scene.discretization,
-                                  thickness);
-          parameters.mesh.read(first.triangulation(), parameter_file);
-          parameters.second_mesh.read(second.triangulation(), parameter_file);
-          merge_body_meshes<dim>({&first.triangulation(),
-                                  &second.triangulation()},
-                                 tria);
-          vertex_offsets = {0, first.triangulation().n_vertices()};
+          const double       thickness = dim == 2 ? parameters.thickness : 1.;
+          const unsigned int n         = n_bodies();
+          std::vector<std::unique_ptr<ElasticBody<dim>>> serial_bodies;
+          std::vector<const ElasticBody<dim> *>          bodies;
+          std::vector<const Triangulation<dim> *>        meshes;
+          vertex_offsets.clear();
+          for (unsigned int b = 0; b < n; ++b)
+            {
+              const std::string name =
+                parameters.two_bodies ?
+                  (b == 0 ? "first body" : "second body") :
+                  "body " + std::to_string(b + 1);
+              serial_bodies.push_back(std::make_unique<ElasticBody<dim>>(
+                name,
+                parameters.material,
+                parameters.scene.discretization,
+                thickness));
+              parameters.body_meshes[b].read(
+                serial_bodies.back()->triangulation(), parameter_file);
+              vertex_offsets.push_back(b == 0 ? 0 :
+                                                vertex_offsets.back() +
+                                                  meshes.back()->n_vertices());
+              bodies.push_back(serial_bodies.back().get());
+              meshes.push_back(&serial_bodies.back()->triangulation());
+            }
+          merge_body_meshes<dim>(meshes, tria);
 
           // the obstacle, if a body touches it (its size: the bodies')
-          const auto  &ids = parameters.obstacle_boundary_ids;
-          const double mu  = parameters.friction_between_bodies;
+          const auto  &touching = parameters.obstacle_contacts;
+          const double mu       = parameters.friction_between_bodies;
           const double mu_obstacle =
-            ids[0] >= 0 || ids[1] >= 0 ?
-              parameters.obstacle.friction_coefficient :
-              0.;
-          if (ids[0] >= 0 || ids[1] >= 0)
+            touching.empty() ? 0. : parameters.obstacle.friction_coefficient;
+          if (!touching.empty())
             obstacle = parameters.obstacle.create<dim>(body_size());
-          serial_candidates =
-            std::make_unique<ContactSet>(mu > 0. || mu_obstacle > 0. ? dim : 1);
-          const std::vector<const ElasticBody<dim> *> bodies = {&first,
-                                                                &second};
-          const types::boundary_id id_a = parameters.mesh.contact_boundary_id;
-          const types::boundary_id id_b =
-            parameters.second_mesh.contact_boundary_id;
-          if (parameters.discretization == "node-to-segment")
-            serial_candidates->add_node_to_segment(
-              bodies, 0, id_a, 1, id_b, mu);
-          else if (parameters.discretization == "node-to-face")
-            serial_candidates->add_node_to_face(bodies, 0, id_a, 1, id_b, mu);
-          else
-            {
-              Tensor<1, dim> n;
-              for (unsigned int d = 0; d < dim; ++d)
-                n[d] = parameters.contact_normal[d];
-              serial_candidates->add_node_to_node(
-                bodies, 0, id_a, 1, id_b, n, mu);
-            }
-          for (unsigned int b = 0; b < 2; ++b)
-            if (ids[b] >= 0)
-              serial_candidates->add_node_to_obstacle(
-                bodies, b, ids[b], *obstacle, mu_obstacle);
+          serial_candidates = std::make_unique<ContactSet>(
+            (mu > 0. && !parameters.body_pairs.empty()) || mu_obstacle > 0. ?
+              dim :
+              1);
+          for (const auto &pair : parameters.body_pairs)
+            if (parameters.discretization == "node-to-segment")
+              serial_candidates->add_node_to_segment(bodies,
+                                                     pair.body_a,
+                                                     pair.boundary_a,
+                                                     pair.body_b,
+                                                     pair.boundary_b,
+                                                     mu);
+            else if (parameters.discretization == "node-to-face")
+              serial_candidates->add_node_to_face(bodies,
+                                                  pair.body_a,
+                                                  pair.boundary_a,
+                                                  pair.body_b,
+                                                  pair.boundary_b,
+                                                  mu);
+            else
+              {
+                Tensor<1, dim> normal_of_pair;
+                for (unsigned int d = 0; d < dim; ++d)
+                  normal_of_pair[d] = parameters.contact_normal[d];
+                serial_candidates->add_node_to_node(bodies,
+                                                    pair.body_a,
+                                                    pair.boundary_a,
+                                                    pair.body_b,
+                                                    pair.boundary_b,
+                                                    normal_of_pair,
+                                                    mu);
+              }
+          for (const auto &[b, boundary] : touching)
+            serial_candidates->add_node_to_obstacle(
+              bodies, b, boundary, *obstacle, mu_obstacle);
         }
       else if (parameters.mesh.from_file())
         parameters.mesh.read(tria, parameter_file);
@@ -459,7 +664,7 @@ namespace impactfe
       if (parameters.two_bodies && parameters.second_body_has_own_material)
         body.set_part_material(1, parameters.second_material);
       body.setup();
-      if (parameters.two_bodies)
+      if (parameters.multibody())
         {
           contact.setup_from_contact_set(body,
                                          *serial_candidates,
@@ -494,11 +699,9 @@ namespace impactfe
         parameters.linear_solver);
       solver->setup();
       work.reinit(body.locally_owned_dofs(), comm);
-      if (parameters.two_bodies)
-        {
-          solver->set_initial_velocity(launch_velocity(), 0);
-          solver->set_initial_velocity(second_launch_velocity(), 1);
-        }
+      if (parameters.multibody())
+        for (unsigned int b = 0; b < n_bodies(); ++b)
+          solver->set_initial_velocity(body_launch_velocity(b), b);
       else
         solver->set_initial_velocity(launch_velocity());
       normal[1] = 1.;
@@ -520,10 +723,11 @@ namespace impactfe
       for (const char *c :
            {"kinetic_energy", "elastic_energy", "active_contacts"})
         columns.push_back(c);
-      // two bodies: force_* is the sum over the bodies (zero, as in the
-      // serial programs), and each body has its own columns
-      if (parameters.two_bodies)
-        for (unsigned int b = 1; b <= 2; ++b)
+      // several bodies: force_* is the sum over the bodies (zero without
+      // an obstacle, as in the serial programs), and each body has its
+      // own columns
+      if (parameters.multibody())
+        for (unsigned int b = 1; b <= n_bodies(); ++b)
           for (const char *quantity : {"_force_", "_momentum_"})
             for (unsigned int d = 0; d < dim; ++d)
               columns.push_back("body_" + std::to_string(b) + quantity +
@@ -552,8 +756,8 @@ namespace impactfe
       const double                elastic_energy = 0.5 * (work * u);
       const Tensor<1, dim>        p = body.momentum(v); // collective
       std::vector<Tensor<1, dim>> per_body;
-      if (parameters.two_bodies)
-        for (unsigned int b = 0; b < 2; ++b)
+      if (parameters.multibody())
+        for (unsigned int b = 0; b < n_bodies(); ++b)
           per_body.push_back(body_momentum(v, b));
       if (parameters.impact)
         {
@@ -658,8 +862,8 @@ namespace impactfe
     DistributedScene<dim>::body_momentum(const DistributedVector &velocity,
                                          const unsigned int       b)
     {
-      return parameters.two_bodies ? body.momentum(velocity, b) :
-                                     body.momentum(velocity);
+      return parameters.multibody() ? body.momentum(velocity, b) :
+                                      body.momentum(velocity);
     }
 
 
@@ -696,7 +900,7 @@ namespace impactfe
               work = 0.;
               body.fill_uniform(work,
                                 e,
-                                parameters.two_bodies ?
+                                parameters.multibody() ?
                                   b :
                                   numbers::invalid_material_id);
               load[b][d] = work * body.external_force();
@@ -776,9 +980,10 @@ namespace impactfe
         body.momentum(solver->displacement()) * direction() / mass;
       const auto        &ts = parameters.scene.time_stepping;
       std::ostringstream out;
-      out << (parameters.two_bodies ? "Impact of two bodies in " :
-              parameters.impact     ? "Impact on an obstacle in " :
-                                      "Block sliding on a plane in ")
+      out << (parameters.multibody() ?
+                "Impact of " + std::to_string(n_bodies()) + " bodies in " :
+              parameters.impact ? "Impact on an obstacle in " :
+                                  "Block sliding on a plane in ")
           << dim << "D on " << n_ranks << " MPI rank"
           << (n_ranks > 1 ? "s" : "") << ", scheme " << to_string(ts.scheme)
           << " (theta = " << ts.theta << "), h = " << ts.time_step << " s, "
@@ -792,7 +997,7 @@ namespace impactfe
           << "  Mesh: " << body.triangulation().n_global_active_cells()
           << " Q1 cells, " << body.dof_handler().n_dofs() << " DoFs, "
           << contact.n_candidates() << " contact candidates; "
-          << (parameters.two_bodies ?
+          << (parameters.multibody() ?
                 parameters.discretization + " between the bodies, mu = " +
                   format_number(parameters.friction_between_bodies) +
                   (obstacle ? "; " : "") :
@@ -804,15 +1009,15 @@ namespace impactfe
           << "\n"
           << "  Contact candidates owned per rank: " << owned_range.min
           << " to " << owned_range.max << "\n";
-      const double speed_scale =
-        std::max(launch_velocity().norm(), second_launch_velocity().norm());
-      if (parameters.two_bodies)
-        for (unsigned int b = 0; b < 2; ++b)
+      double speed_scale = 0.;
+      for (unsigned int b = 0; b < n_bodies(); ++b)
+        speed_scale = std::max(speed_scale, body_launch_velocity(b).norm());
+      if (parameters.multibody())
+        for (unsigned int b = 0; b < n_bodies(); ++b)
           {
             const double         m_b = body.part_mass(b);
             const Tensor<1, dim> p_b = body_momentum(solver->velocity(), b);
-            const Tensor<1, dim> v_b =
-              b == 0 ? launch_velocity() : second_launch_velocity();
+            const Tensor<1, dim> v_b = body_launch_velocity(b);
             out << "  Body " << b + 1 << ": mass " << format_figure(m_b, 1e-9)
                 << " kg, initial velocity (";
             for (unsigned int d = 0; d < dim; ++d)
@@ -933,9 +1138,10 @@ namespace impactfe
       JsonObject summary;
       summary.add("program", "contact_mpi")
         .add("scene",
-             parameters.two_bodies ? "two bodies" :
-             parameters.impact     ? "impact" :
-                                     "sliding block")
+             parameters.two_bodies     ? "two bodies" :
+             parameters.several_bodies ? "bodies" :
+             parameters.impact         ? "impact" :
+                                         "sliding block")
         .add("dimension", double(dim))
         .add("ranks", double(n_ranks))
         .add("scheme", to_string(ts.scheme))

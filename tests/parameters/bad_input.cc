@@ -365,6 +365,22 @@ main()
              "body = 7\nend\n" +
              with("Obstacle", "Point on plane = 0, -1\n  set Normal = 0, 1"),
            mpi);
+  // Scene = bodies: a pair that names a body the scene does not have, and
+  // one body only
+  const std::string three_bars =
+    "set Dimension = 2\nset Scene = bodies\nsubsection Bodies\n  set Mesh "
+    "files = " PARAMETER_FILES_DIR
+    "/two_bars_2d_bar_1.msh, " PARAMETER_FILES_DIR
+    "/two_bars_2d_bar_2.msh, " PARAMETER_FILES_DIR "/three_bars_2d_bar_3.msh\n";
+  run_case("mpi_bodies_pair_with_a_fourth_body",
+           three_bars + "  set Contact pairs = 1:1 against 4:0\nend\n",
+           mpi);
+  run_case("mpi_bodies_one_mesh",
+           "set Dimension = 2\nset Scene = bodies\nsubsection Bodies\n  set "
+           "Mesh files = " PARAMETER_FILES_DIR
+           "/two_bars_2d_bar_1.msh\n  set Contact pairs = 1:1 against "
+           "2:0\nend\n",
+           mpi);
   run_case("mpi_second_body_without_two_bodies",
            with("Second body", "Contact normal = -1, 0, 0"),
            mpi);

@@ -1,8 +1,9 @@
 // The scenes of programs/contact_mpi, on a distributed mesh (issue 14,
 // doc/parallel.md): an elastic block (2D or 3D) sliding on a rigid plane
 // under gravity with Coulomb friction, a body read from a mesh file thrown
-// at a rigid obstacle (the cylinder and the plate), or at a second body
-// (the two bars).
+// at a rigid obstacle (the cylinder and the plate), at a second body (the
+// two bars; a block on another on a plane), or any number of bodies
+// (three bars in a row).
 #ifndef impactfe_parallel_distributed_scene_h
 #define impactfe_parallel_distributed_scene_h
 
@@ -37,8 +38,9 @@ namespace impactfe
       /// The sliding box, checked against the rigid block; or a body from
       /// `Mesh file` thrown at the obstacle with initial_velocity (impact);
       /// or that body thrown at the body of `Mesh of the second body`
-      /// (impact and two_bodies: node-to-node contact, no obstacle).
-      bool impact = false, two_bodies = false;
+      /// (impact and two_bodies); or the bodies of subsection `Bodies`
+      /// (impact and several_bodies).
+      bool impact = false, two_bodies = false, several_bodies = false;
       /// Scene = two bodies: the second body's mesh and uniform initial
       /// velocity, how the contact between the bodies is discretised, the
       /// contact normal of node-to-node pairs (from the second body towards
@@ -50,6 +52,28 @@ namespace impactfe
       /// Scene = two bodies: the boundary ids of the first and the second
       /// body's nodes that can touch the obstacle (-1: none).
       std::array<int, 2> obstacle_boundary_ids{{-1, -1}};
+      /// A contact pair between bodies: the nodes of body_a on boundary_a
+      /// (side A) against body_b's boundary_b (side B); bodies from 0.
+      struct BodyPair
+      {
+        unsigned int       body_a = 0, body_b = 1;
+        types::boundary_id boundary_a = 0, boundary_b = 0;
+      };
+      /// Scene = two bodies or bodies (multibody()), in one form: every
+      /// body's mesh and uniform initial velocity (empty: at rest), the
+      /// pairs between them (discretization and friction_between_bodies
+      /// for all), and the (body, boundary id) that touch the obstacle.
+      std::vector<MeshParameters>      body_meshes;
+      std::vector<std::vector<double>> body_velocities;
+      std::vector<BodyPair>            body_pairs;
+      std::vector<std::pair<unsigned int, types::boundary_id>>
+        obstacle_contacts;
+      /// Whether the scene holds several bodies (two bodies or bodies).
+      bool
+      multibody() const
+      {
+        return !body_meshes.empty();
+      }
       /// Whether the second body has its own material, and that material.
       bool               second_body_has_own_material = false;
       MaterialParameters second_material;
@@ -68,6 +92,12 @@ namespace impactfe
       /// the entry named).
       void
       read(const std::string &file);
+
+    private:
+      /// Scene = bodies: subsection Bodies into the multibody lists (and
+      /// checks that it is empty otherwise).
+      void
+      parse_bodies(ParameterHandler &prm);
     };
 
 
@@ -120,21 +150,25 @@ namespace impactfe
         return v;
       }
 
-      /// Scene = two bodies: the second body's velocity at t = 0.
+      /// Body @p b's uniform velocity at t = 0 (the body's when there is
+      /// one).
       Tensor<1, dim>
-      second_launch_velocity() const
+      body_launch_velocity(const unsigned int b) const
       {
-        Tensor<1, dim> v;
-        for (unsigned int d = 0; d < parameters.second_velocity.size(); ++d)
-          v[d] = parameters.second_velocity[d];
+        if (!parameters.multibody())
+          return launch_velocity();
+        Tensor<1, dim>             v;
+        const std::vector<double> &given = parameters.body_velocities[b];
+        for (unsigned int d = 0; d < given.size(); ++d)
+          v[d] = given[d];
         return v;
       }
 
-      /// The bodies of the scene: one, or two (material ids 0 and 1).
+      /// The bodies of the scene: one, or several (material id = body).
       unsigned int
       n_bodies() const
       {
-        return parameters.two_bodies ? 2 : 1;
+        return parameters.multibody() ? parameters.body_meshes.size() : 1;
       }
 
       /// The momentum of body @p b (the whole mesh when there is one).
