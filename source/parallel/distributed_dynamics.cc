@@ -889,10 +889,11 @@ namespace impactfe
         if (local_free_velocity[c * nd] + gap_terms[c] < 0.)
           return false;
 
-      report                  = DistributedStepReport();
-      report.time             = current_time + coarse->scheme->time_step();
-      report.n_substeps       = free_flight_factor;
-      report.body_impulse     = body_impulses(local_impulses, 0.);
+      report            = DistributedStepReport();
+      report.time       = current_time + coarse->scheme->time_step();
+      report.n_substeps = free_flight_factor;
+      // no contact acts: zero impulses on every body
+      report.body_impulse.assign(contact.n_bodies(), {{0., 0., 0.}});
       report.carried_impulse  = report.body_impulse;
       report.load_coefficient = coarse->scheme->time_step();
       v_old                   = v;
@@ -1054,7 +1055,7 @@ namespace impactfe
       const unsigned int                 nd = contact.n_directions();
       std::vector<std::array<double, 3>> result(contact.n_bodies(),
                                                 {{0., 0., 0.}});
-      if (factor == 0.)
+      if (factor == 0.) // no carry (w = 1)
         return result;
       for (unsigned int c = 0; c < contact.n_candidates(); ++c)
         {
