@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""ctest driver of parallel/three_bars: contact_mpi with Scene = bodies on
-three_bars.prm (three equal bars in a row, bar 1 thrown at the others).
-Checks
+"""ctest driver of parallel/three_bars and three_bars_3d: contact_mpi with
+Scene = bodies on three_bars.prm or three_bars_3d.prm (--dim 3: three
+equal bars in a row, bar 1 thrown at the others). Checks
 
 * one rank and two ranks give the same history.csv
   (tools/compare_histories.py, 1e-8), 20 cells along each bar;
@@ -24,14 +24,16 @@ from serial_vs_mpi import run as run_logged  # noqa: E402
 V0, L, H, STEP = 5.13588, 0.254, 0.0254, 0.2226e-5
 
 
-def run(command, prm, cells, make_mesh, work):
-    """Meshes of `cells` along each bar and the step for the same Courant
-    number, then the run; returns its history.csv."""
+def run(command, prm, dim, cells, make_mesh, work):
+    """Meshes of `cells` along each bar (4 across in 2D, 2 x 2 in 3D) and
+    the step for the same Courant number, then the run; returns its
+    history.csv."""
     os.makedirs(work)
+    across = "4" if dim == 2 else "2"
     for bar in range(3):
         with open(os.path.join(work, f"bar_{bar + 1}.msh"), "w") as out:
             subprocess.check_call(
-                [sys.executable, make_mesh, "2", str(cells), "4",
+                [sys.executable, make_mesh, str(dim), str(cells), across,
                  str((bar - 1) * L), str(L), str(H)], stdout=out)
     text = open(prm).read().replace(
         "set Time step = 0.2226e-5", f"set Time step = {STEP * 20 / cells}")
@@ -56,13 +58,15 @@ def main():
     ap.add_argument("--mpiexec", required=True)
     ap.add_argument("--compare", required=True)
     ap.add_argument("--work", required=True)
+    ap.add_argument("--dim", type=int, choices=(2, 3), default=2)
     a = ap.parse_args()
     shutil.rmtree(a.work, ignore_errors=True)
     mpi = shlex.split(a.mpiexec) + [a.program]
-    one = run([a.program], a.prm, 20, a.make_mesh,
+    one = run([a.program], a.prm, a.dim, 20, a.make_mesh,
               os.path.join(a.work, "one_rank"))
-    two = run(mpi, a.prm, 20, a.make_mesh, os.path.join(a.work, "two_ranks"))
-    fine = run(mpi, a.prm, 40, a.make_mesh,
+    two = run(mpi, a.prm, a.dim, 20, a.make_mesh,
+              os.path.join(a.work, "two_ranks"))
+    fine = run(mpi, a.prm, a.dim, 40, a.make_mesh,
                os.path.join(a.work, "two_ranks_40"))
     same = subprocess.call([sys.executable, a.compare, one, two])
 
