@@ -100,11 +100,24 @@ namespace impactfe
       const std::string pairs      = prm.get("Contact pairs");
       const std::string contacts   = prm.get("Obstacle contacts");
       const double      mu         = prm.get_double("Friction coefficient");
+      // each body's value of a material entry (empty: Material's for all)
+      std::vector<std::pair<std::string, std::vector<double>>> per_body;
+      for (const std::string entry :
+           {"Young's moduli", "Densities", "Poisson's ratios", "Viscosities"})
+        {
+          per_body.emplace_back(entry, std::vector<double>());
+          for (const std::string &v :
+               Utilities::split_string_list(prm.get(entry)))
+            per_body.back().second.push_back(Utilities::string_to_double(v));
+        }
       prm.leave_subsection();
+      bool has_material_lists = false;
+      for (const auto &entry : per_body)
+        has_material_lists = has_material_lists || !entry.second.empty();
       if (!several_bodies)
         {
           AssertThrow(files.empty() && velocities.empty() && pairs.empty() &&
-                        contacts.empty() && mu == 0.,
+                        contacts.empty() && mu == 0. && !has_material_lists,
                       ExcMessage("The subsection 'Bodies' is for Scene = "
                                  "bodies."));
           return;
@@ -174,6 +187,43 @@ namespace impactfe
           body_and_boundary(contact, n, "Obstacle contacts"));
       discretization = dimension == 2 ? "node-to-segment" : "node-to-face";
       friction_between_bodies = mu;
+
+      // per-body materials: Material's law with the listed values
+      if (!has_material_lists)
+        return;
+      body_materials.assign(n, material);
+      for (const auto &[entry, values] : per_body)
+        {
+          if (values.empty())
+            continue;
+          AssertThrow(values.size() == n,
+                      ExcMessage("Bodies: '" + entry + "' must give " +
+                                 std::to_string(n) +
+                                 " values (one per body) or none, got " +
+                                 std::to_string(values.size()) + "."));
+          for (unsigned int b = 0; b < n; ++b)
+            {
+              const double value = values[b];
+              const bool   valid = entry == "Poisson's ratios" ?
+                                     (value >= 0. && value < 0.5) :
+                                   entry == "Viscosities" ? value >= 0. :
+                                                            value > 0.;
+              AssertThrow(valid,
+                          ExcMessage("Bodies: '" + entry + "' has " +
+                                     format_input(value) + " for body " +
+                                     std::to_string(b + 1) + "; it must be " +
+                                     (entry == "Poisson's ratios" ?
+                                        "in [0, 0.5)" :
+                                      entry == "Viscosities" ? ">= 0" :
+                                                               "> 0") +
+                                     "."));
+              MaterialParameters &m                       = body_materials[b];
+              (entry == "Young's moduli"   ? m.youngs_modulus :
+               entry == "Densities"        ? m.density :
+               entry == "Poisson's ratios" ? m.poissons_ratio :
+                                             m.viscosity) = value;
+            }
+        }
     }
 
 
@@ -290,6 +340,21 @@ namespace impactfe
                         "Scene = bodies: the boundaries that touch the "
                         "obstacle of subsection Obstacle, comma-separated, "
                         "each 'b:i' (body b, boundary id i) [-].");
+      for (const auto &[entry, unit] :
+           std::vector<std::pair<std::string, std::string>>{
+             {"Young's moduli", "Pa"},
+             {"Densities", "kg/m^3"},
+             {"Poisson's ratios", "-"},
+             {"Viscosities", "Pa s"}})
+        prm.declare_entry(entry,
+                          "",
+                          Patterns::List(Patterns::Double(), 0),
+                          "Scene = bodies: one value per body, "
+                          "comma-separated, in place of subsection "
+                          "Material's (whose law, plane model and Rayleigh "
+                          "coefficients every body keeps); empty: "
+                          "Material's for every body [" +
+                            unit + "].");
       prm.leave_subsection();
       prm.enter_subsection("Obstacle contact");
       for (const std::string body : {"first", "second"})
@@ -350,9 +415,10 @@ namespace impactfe
       prm.leave_subsection();
       prm.enter_subsection("Obstacle contact");
       obstacle_boundary_ids = {
-        {prm.get_integer("Boundary id of the first body"),
-         prm.get_integer("Boundary id of the second body")}};
+        {static_cast<int>(prm.get_integer("Boundary id of the first body")),
+         static_cast<int>(prm.get_integer("Boundary id of the second body"))}};
       prm.leave_subsection();
+      material.parse_parameters(prm, dimension);
       parse_bodies(prm);
       const bool touches_obstacle = obstacle_boundary_ids[0] >= 0 ||
                                     obstacle_boundary_ids[1] >= 0 ||
@@ -370,7 +436,6 @@ namespace impactfe
       // bodies read the obstacle only if they touch it
       if (!(two_bodies || several_bodies) || touches_obstacle)
         obstacle.parse_parameters(prm, dimension);
-      material.parse_parameters(prm, dimension);
       linear_solver.parse_parameters(prm);
       box.parse_parameters(prm);
       if (several_bodies)
@@ -463,6 +528,8 @@ namespace impactfe
           for (unsigned int b = 0; b < 2; ++b)
             if (obstacle_boundary_ids[b] >= 0)
               obstacle_contacts.emplace_back(b, obstacle_boundary_ids[b]);
+          if (second_body_has_own_material)
+            body_materials = {material, second_material};
         }
       AssertThrow(
         !second_body_has_own_material ||
@@ -661,8 +728,8 @@ namespace impactfe
       Tensor<1, dim> g;
       g[1] = -parameters.box.gravity;
       body.set_gravity(g);
-      if (parameters.two_bodies && parameters.second_body_has_own_material)
-        body.set_part_material(1, parameters.second_material);
+      for (unsigned int b = 0; b < parameters.body_materials.size(); ++b)
+        body.set_part_material(b, parameters.body_materials[b]);
       body.setup();
       if (parameters.multibody())
         {

@@ -375,6 +375,17 @@ main()
   run_case("mpi_bodies_pair_with_a_fourth_body",
            three_bars + "  set Contact pairs = 1:1 against 4:0\nend\n",
            mpi);
+  // per-body materials: a list of the wrong length, a value out of range
+  run_case("mpi_bodies_densities_of_two_bodies",
+           three_bars +
+             "  set Contact pairs = 1:1 against 2:0\n  set Densities = 1, "
+             "2\nend\n",
+           mpi);
+  run_case("mpi_bodies_poissons_ratio_out_of_range",
+           three_bars +
+             "  set Contact pairs = 1:1 against 2:0\n  set Poisson's "
+             "ratios = 0, 0.5, 0\nend\n",
+           mpi);
   run_case("mpi_bodies_one_mesh",
            "set Dimension = 2\nset Scene = bodies\nsubsection Bodies\n  set "
            "Mesh files = " PARAMETER_FILES_DIR

@@ -77,6 +77,10 @@ namespace impactfe
       /// Whether the second body has its own material, and that material.
       bool               second_body_has_own_material = false;
       MaterialParameters second_material;
+      /// Scene = two bodies with `Own material`, or bodies with per-body
+      /// values in subsection Bodies: each body's material (material id =
+      /// body); empty: every body is of subsection Material's.
+      std::vector<MaterialParameters> body_materials;
       /// 2D: the out-of-plane thickness [m].
       double                   thickness = 1.;
       std::vector<double>      initial_velocity;
@@ -94,8 +98,9 @@ namespace impactfe
       read(const std::string &file);
 
     private:
-      /// Scene = bodies: subsection Bodies into the multibody lists (and
-      /// checks that it is empty otherwise).
+      /// Scene = bodies: subsection Bodies into the multibody lists and
+      /// body_materials (and checks that it is empty otherwise). Needs
+      /// `material` parsed.
       void
       parse_bodies(ParameterHandler &prm);
     };
