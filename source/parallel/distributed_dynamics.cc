@@ -1112,6 +1112,17 @@ namespace impactfe
 
 
     template <int dim>
+    void
+    DistributedImpactSolver<dim>::contact_impulse_field(
+      DistributedVector &field) const
+    {
+      field.reinit(body.locally_owned_dofs(), body.communicator());
+      contact.add_impulses(all_candidates, last_impulses, field);
+    }
+
+
+
+    template <int dim>
     const DistributedRunStatistics &
     DistributedImpactSolver<dim>::statistics() const
     {

@@ -883,15 +883,18 @@ namespace impactfe
           (step > 0 && step / interval == last_vtu_step / interval))
         return;
       last_vtu_step = step;
-      DistributedVector u_ghost, v_ghost;
-      u_ghost.reinit(body.locally_owned_dofs(),
-                     body.locally_relevant_dofs(),
-                     comm);
-      v_ghost.reinit(body.locally_owned_dofs(),
-                     body.locally_relevant_dofs(),
-                     comm);
-      u_ghost = u;
-      v_ghost = v;
+      // the nodal contact force of the last step: H P times the scheme's
+      // force per impulse (the serial programs' contact_force)
+      solver->contact_impulse_field(work);
+      work *= solver->integrator().force_per_impulse();
+      DistributedVector u_ghost, v_ghost, force_ghost;
+      for (DistributedVector *ghosted : {&u_ghost, &v_ghost, &force_ghost})
+        ghosted->reinit(body.locally_owned_dofs(),
+                        body.locally_relevant_dofs(),
+                        comm);
+      u_ghost     = u;
+      v_ghost     = v;
+      force_ghost = work;
       DataOut<dim> data_out;
       data_out.attach_dof_handler(body.dof_handler());
       const std::vector<
@@ -906,10 +909,24 @@ namespace impactfe
                                std::vector<std::string>(dim, "velocity"),
                                DataOut<dim>::type_dof_data,
                                vector_field);
+      data_out.add_data_vector(force_ghost,
+                               std::vector<std::string>(dim, "contact_force"),
+                               DataOut<dim>::type_dof_data,
+                               vector_field);
       Vector<float> subdomain(body.triangulation().n_active_cells());
       for (unsigned int i = 0; i < subdomain.size(); ++i)
         subdomain(i) = body.triangulation().locally_owned_subdomain();
       data_out.add_data_vector(subdomain, "subdomain");
+      // several bodies: each cell's body, numbered from 1 as in the
+      // parameter file and history.csv
+      Vector<float> body_number(body.triangulation().n_active_cells());
+      if (parameters.multibody())
+        {
+          for (const auto &cell : body.triangulation().active_cell_iterators())
+            if (cell->is_locally_owned())
+              body_number(cell->active_cell_index()) = cell->material_id() + 1;
+          data_out.add_data_vector(body_number, "body");
+        }
       data_out.build_patches();
       const std::string record = data_out.write_vtu_with_pvtu_record(
         parameters.scene.output.directory + "/", "solution", step, comm, 4);

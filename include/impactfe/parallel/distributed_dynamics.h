@@ -161,6 +161,11 @@ namespace impactfe
       /// Per candidate (replicated): whether it carries an impulse.
       const std::vector<bool> &
       active_set() const;
+      /// H P of the last step on the DoFs (zero before the first and after
+      /// a step without impulses); times the scheme's force_per_impulse()
+      /// it is the nodal contact force. Collective.
+      void
+      contact_impulse_field(DistributedVector &field) const;
       const DistributedRunStatistics &
       statistics() const;
       const TimeIntegrator &
