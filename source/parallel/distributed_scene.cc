@@ -52,6 +52,34 @@ namespace impactfe
 
 
 
+      // A token of subsection Bodies' @p entry without its optional
+      // suffix ' with friction x', and x (-1 without it: the entry's
+      // default).
+      std::pair<std::string, double>
+      without_friction(const std::string &token, const std::string &entry)
+      {
+        const std::string suffix = " with friction ";
+        const std::size_t at     = token.find(suffix);
+        if (at == std::string::npos)
+          return {token, -1.};
+        const std::string value = Utilities::trim(token.substr(at + 14));
+        double            mu    = -1.;
+        try
+          {
+            mu = Utilities::string_to_double(value);
+          }
+        catch (...)
+          {}
+        AssertThrow(mu >= 0.,
+                    ExcMessage("Bodies: '" + entry + "' has '" + token +
+                               "': the friction coefficient after 'with "
+                               "friction' must be a number >= 0, got '" +
+                               value + "'."));
+        return {Utilities::trim(token.substr(0, at)), mu};
+      }
+
+
+
       // 'b:i' of subsection Bodies' @p entry: body b of @p n_bodies (from
       // 1; returned from 0) and boundary id i.
       std::pair<unsigned int, types::boundary_id>
@@ -162,9 +190,10 @@ namespace impactfe
                                      std::to_string(b + 1) + "."));
             }
         }
-      for (const std::string &pair : Utilities::split_string_list(pairs))
+      for (const std::string &token : Utilities::split_string_list(pairs))
         {
-          const std::size_t at = pair.find(" against ");
+          const auto [pair, pair_mu] = without_friction(token, "Contact pairs");
+          const std::size_t at       = pair.find(" against ");
           AssertThrow(at != std::string::npos,
                       ExcMessage("Bodies: 'Contact pairs' has '" + pair +
                                  "': expected 'a:i against b:j'."));
@@ -177,14 +206,24 @@ namespace impactfe
           AssertThrow(a.first != b.first,
                       ExcMessage("Bodies: 'Contact pairs' has '" + pair +
                                  "': a body against itself."));
-          body_pairs.push_back({a.first, b.first, a.second, b.second});
+          body_pairs.push_back({a.first,
+                                b.first,
+                                a.second,
+                                b.second,
+                                pair_mu >= 0. ? pair_mu : mu});
         }
       AssertThrow(!body_pairs.empty() || !contacts.empty(),
                   ExcMessage("Bodies: neither 'Contact pairs' nor 'Obstacle "
                              "contacts' names a contact."));
-      for (const std::string &contact : Utilities::split_string_list(contacts))
-        obstacle_contacts.push_back(
-          body_and_boundary(contact, n, "Obstacle contacts"));
+      // the obstacle's coefficient is filled in once it is read (-1 here)
+      for (const std::string &token : Utilities::split_string_list(contacts))
+        {
+          const auto [contact, contact_mu] =
+            without_friction(token, "Obstacle contacts");
+          const auto [b, boundary] =
+            body_and_boundary(contact, n, "Obstacle contacts");
+          obstacle_contacts.push_back({b, boundary, contact_mu});
+        }
       discretization = dimension == 2 ? "node-to-segment" : "node-to-face";
       friction_between_bodies = mu;
 
@@ -224,6 +263,19 @@ namespace impactfe
                                              m.viscosity) = value;
             }
         }
+    }
+
+
+
+    bool
+    DistributedSceneParameters::multibody_friction() const
+    {
+      bool friction = false;
+      for (const BodyPair &pair : body_pairs)
+        friction = friction || pair.friction_coefficient > 0.;
+      for (const ObstacleContact &contact : obstacle_contacts)
+        friction = friction || contact.friction_coefficient > 0.;
+      return friction;
     }
 
 
@@ -328,18 +380,24 @@ namespace impactfe
                         "comma-separated, each 'a:i against b:j': the nodes "
                         "of body a on boundary id i against the boundary id "
                         "j of body b (node-to-segment in 2D, node-to-face in "
-                        "3D), with 'Friction coefficient' [-].");
+                        "3D), with 'Friction coefficient', or with its own "
+                        "coefficient after ' with friction' (e.g. '1:2 "
+                        "against 2:3 with friction 0.3') [-].");
       prm.declare_entry("Friction coefficient",
                         "0",
                         Patterns::Double(),
                         "Scene = bodies: Coulomb's coefficient of every "
-                        "pair between bodies [-]. Must be >= 0.");
+                        "pair between bodies that does not give its own "
+                        "[-]. Must be >= 0.");
       prm.declare_entry("Obstacle contacts",
                         "",
                         Patterns::Anything(),
                         "Scene = bodies: the boundaries that touch the "
                         "obstacle of subsection Obstacle, comma-separated, "
-                        "each 'b:i' (body b, boundary id i) [-].");
+                        "each 'b:i' (body b, boundary id i), with the "
+                        "obstacle's 'Friction coefficient' or with its own "
+                        "after ' with friction' (e.g. '1:2 with friction "
+                        "0.2') [-].");
       for (const auto &[entry, unit] :
            std::vector<std::pair<std::string, std::string>>{
              {"Young's moduli", "Pa"},
@@ -523,14 +581,24 @@ namespace impactfe
         {
           body_meshes     = {mesh, second_mesh};
           body_velocities = {initial_velocity, second_velocity};
-          body_pairs      = {
-                 {0, 1, mesh.contact_boundary_id, second_mesh.contact_boundary_id}};
+          body_pairs      = {{0,
+                              1,
+                              mesh.contact_boundary_id,
+                              second_mesh.contact_boundary_id,
+                              friction_between_bodies}};
           for (unsigned int b = 0; b < 2; ++b)
             if (obstacle_boundary_ids[b] >= 0)
-              obstacle_contacts.emplace_back(b, obstacle_boundary_ids[b]);
+              obstacle_contacts.push_back(
+                {b,
+                 static_cast<types::boundary_id>(obstacle_boundary_ids[b]),
+                 -1.});
           if (second_body_has_own_material)
             body_materials = {material, second_material};
         }
+      // an obstacle contact without its own coefficient: the obstacle's
+      for (ObstacleContact &contact : obstacle_contacts)
+        if (contact.friction_coefficient < 0.)
+          contact.friction_coefficient = obstacle.friction_coefficient;
       AssertThrow(
         !second_body_has_own_material ||
           (second_material.rayleigh_mass == material.rayleigh_mass &&
@@ -617,18 +685,14 @@ namespace impactfe
           merge_body_meshes<dim>(meshes, tria);
 
           // the obstacle, if a body touches it (its size: the bodies')
-          const auto  &touching = parameters.obstacle_contacts;
-          const double mu       = parameters.friction_between_bodies;
-          const double mu_obstacle =
-            touching.empty() ? 0. : parameters.obstacle.friction_coefficient;
+          const auto &touching = parameters.obstacle_contacts;
           if (!touching.empty())
             obstacle = parameters.obstacle.create<dim>(body_size());
           serial_candidates = std::make_unique<ContactSet>(
-            (mu > 0. && !parameters.body_pairs.empty()) || mu_obstacle > 0. ?
-              dim :
-              1);
+            parameters.multibody_friction() ? dim : 1);
           for (const auto &pair : parameters.body_pairs)
-            if (parameters.discretization == "node-to-segment")
+            if (const double mu = pair.friction_coefficient;
+                parameters.discretization == "node-to-segment")
               serial_candidates->add_node_to_segment(bodies,
                                                      pair.body_a,
                                                      pair.boundary_a,
@@ -655,9 +719,13 @@ namespace impactfe
                                                     normal_of_pair,
                                                     mu);
               }
-          for (const auto &[b, boundary] : touching)
+          for (const auto &contact : touching)
             serial_candidates->add_node_to_obstacle(
-              bodies, b, boundary, *obstacle, mu_obstacle);
+              bodies,
+              contact.body,
+              contact.boundary,
+              *obstacle,
+              contact.friction_coefficient);
         }
       else if (parameters.mesh.from_file())
         parameters.mesh.read(tria, parameter_file);
@@ -1062,7 +1130,19 @@ namespace impactfe
         body.momentum(solver->velocity()) * direction() / mass;
       const double distance =
         body.momentum(solver->displacement()) * direction() / mass;
-      const auto        &ts = parameters.scene.time_stepping;
+      const auto &ts = parameters.scene.time_stepping;
+      // the friction coefficients of the pairs and obstacle contacts, in
+      // the order of the parameter file
+      std::string pair_frictions, obstacle_frictions;
+      for (const auto &pair : parameters.body_pairs)
+        pair_frictions += (pair_frictions.empty() ? "" : ", ") +
+                          format_number(pair.friction_coefficient);
+      for (const auto &contact : parameters.obstacle_contacts)
+        obstacle_frictions += (obstacle_frictions.empty() ? "" : ", ") +
+                              format_number(contact.friction_coefficient);
+      if (!parameters.multibody())
+        obstacle_frictions =
+          format_number(parameters.obstacle.friction_coefficient);
       std::ostringstream out;
       out << (parameters.multibody() ?
                 "Impact of " + std::to_string(n_bodies()) + " bodies in " :
@@ -1081,15 +1161,13 @@ namespace impactfe
           << "  Mesh: " << body.triangulation().n_global_active_cells()
           << " Q1 cells, " << body.dof_handler().n_dofs() << " DoFs, "
           << contact.n_candidates() << " contact candidates; "
-          << (parameters.multibody() ?
+          << (parameters.multibody() && !parameters.body_pairs.empty() ?
                 parameters.discretization + " between the bodies, mu = " +
-                  format_number(parameters.friction_between_bodies) +
-                  (obstacle ? "; " : "") :
+                  pair_frictions + (obstacle ? "; " : "") :
                 std::string())
-          << (obstacle ?
-                "obstacle: " + obstacle->description() + ", mu = " +
-                  format_number(parameters.obstacle.friction_coefficient) :
-                std::string())
+          << (obstacle ? "obstacle: " + obstacle->description() +
+                           ", mu = " + obstacle_frictions :
+                         std::string())
           << "\n"
           << "  Contact candidates owned per rank: " << owned_range.min
           << " to " << owned_range.max << "\n";

@@ -9,7 +9,8 @@ An independent construction of the bars that the serial programs
 two_bars_2d and two_bars_3d build, for contact_mpi's Scene = two
 bodies (same vertex positions, own numbering).
 
-usage: make_bar_msh.py DIM NX NY X0 L H > file.msh
+usage: make_bar_msh.py DIM NX NY X0 L H [Y0] > file.msh
+(Y0, default 0, shifts the box to [Y0, Y0 + H] along y)
 (parameter_files/two_bars_2d_bar_1.msh is `2 20 4 -0.254 0.254 0.0254`,
  two_bars_2d_bar_2.msh `2 20 4 0 0.254 0.0254`; the 3D files
  `3 20 2 -0.254 0.254 0.0254` and `3 20 2 0 0.254 0.0254`)
@@ -17,10 +18,11 @@ usage: make_bar_msh.py DIM NX NY X0 L H > file.msh
 import itertools
 import sys
 
-if len(sys.argv) != 7:
+if len(sys.argv) not in (7, 8):
     sys.exit(__doc__)
 DIM, NX, NY = (int(a) for a in sys.argv[1:4])
 X0, L, H = (float(a) for a in sys.argv[4:7])
+Y0 = float(sys.argv[7]) if len(sys.argv) == 8 else 0.
 if DIM not in (2, 3):
     sys.exit("DIM must be 2 or 3")
 NZ = NY if DIM == 3 else 0
@@ -30,6 +32,8 @@ counts = (NX, NY, NZ)[:DIM]
 def coordinate(axis, i):
     if axis == 0:
         return X0 + L * i / NX
+    if axis == 1:
+        return Y0 + H * i / NY
     return H * i / NY
 
 

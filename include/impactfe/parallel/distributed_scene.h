@@ -54,20 +54,32 @@ namespace impactfe
       std::array<int, 2> obstacle_boundary_ids{{-1, -1}};
       /// A contact pair between bodies: the nodes of body_a on boundary_a
       /// (side A) against body_b's boundary_b (side B); bodies from 0.
+      /// and its Coulomb coefficient.
       struct BodyPair
       {
         unsigned int       body_a = 0, body_b = 1;
         types::boundary_id boundary_a = 0, boundary_b = 0;
+        double             friction_coefficient = 0.;
+      };
+      /// The nodes of @p body on @p boundary against the obstacle, with
+      /// their Coulomb coefficient.
+      struct ObstacleContact
+      {
+        unsigned int       body                 = 0;
+        types::boundary_id boundary             = 0;
+        double             friction_coefficient = 0.;
       };
       /// Scene = two bodies or bodies (multibody()), in one form: every
       /// body's mesh and uniform initial velocity (empty: at rest), the
-      /// pairs between them (discretization and friction_between_bodies
-      /// for all), and the (body, boundary id) that touch the obstacle.
+      /// pairs between them (discretization for all) and the boundaries
+      /// that touch the obstacle, each with its friction coefficient.
       std::vector<MeshParameters>      body_meshes;
       std::vector<std::vector<double>> body_velocities;
       std::vector<BodyPair>            body_pairs;
-      std::vector<std::pair<unsigned int, types::boundary_id>>
-        obstacle_contacts;
+      std::vector<ObstacleContact>     obstacle_contacts;
+      /// Whether any pair or obstacle contact has friction.
+      bool
+      multibody_friction() const;
       /// Whether the scene holds several bodies (two bodies or bodies).
       bool
       multibody() const
