@@ -181,7 +181,23 @@ namespace impactfe
           for (unsigned int b = 0; b < n; ++b)
             {
               for (const std::string &v : Utilities::split_string_list(list[b]))
-                body_velocities[b].push_back(Utilities::string_to_double(v));
+                {
+                  double value = 0.;
+                  try
+                    {
+                      value = Utilities::string_to_double(v);
+                    }
+                  catch (...)
+                    {
+                      AssertThrow(false,
+                                  ExcMessage("Bodies: 'Initial velocities' "
+                                             "has '" +
+                                             v + "' for body " +
+                                             std::to_string(b + 1) +
+                                             ", which is not a number."));
+                    }
+                  body_velocities[b].push_back(value);
+                }
               AssertThrow(body_velocities[b].size() == dimension,
                           ExcMessage("Bodies: 'Initial velocities' must give " +
                                      std::to_string(dimension) +

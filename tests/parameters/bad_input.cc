@@ -386,6 +386,10 @@ main()
              "  set Contact pairs = 1:1 against 2:0\n  set Poisson's "
              "ratios = 0, 0.5, 0\nend\n",
            mpi);
+  run_case("mpi_bodies_velocity_not_a_number",
+           three_bars + "  set Contact pairs = 1:1 against 2:0\n  set Initial "
+                        "velocities = 1, 0; 0, x; 0, 0\nend\n",
+           mpi);
   run_case("mpi_bodies_negative_pair_friction",
            three_bars +
              "  set Contact pairs = 1:1 against 2:0 with friction -0.1\nend\n",
