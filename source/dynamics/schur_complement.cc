@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "../utilities/blas_lapack.h"
 
@@ -88,6 +89,81 @@ namespace impactfe
     inverse.swap(new_inverse);
     schur.swap(new_schur);
     schur_single.assign(schur.begin(), schur.end());
+    split_into_groups();
+  }
+
+
+
+  // The groups are the connected components of the pattern of the lower
+  // triangles of S and S^{-1} (exact zeros between disconnected parts of
+  // A): a union-find over the entries.
+  void
+  DenseSchurComplement::split_into_groups()
+  {
+    groups.clear();
+    const std::size_t n = contact_dofs.size();
+    if (n < 2)
+      return;
+    std::vector<unsigned int> parent(n);
+    std::iota(parent.begin(), parent.end(), 0u);
+    const auto root = [&](unsigned int i) {
+      while (parent[i] != i)
+        i = parent[i] = parent[parent[i]];
+      return i;
+    };
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t i = j + 1; i < n; ++i)
+        if (schur[j * n + i] != 0. || inverse[j * n + i] != 0.)
+          {
+            const unsigned int a = root(i), b = root(j);
+            if (a != b)
+              parent[std::max(a, b)] = std::min(a, b);
+          }
+    std::vector<int>          group_of_root(n, -1);
+    std::vector<unsigned int> group_of(n);
+    unsigned int              n_found = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      {
+        const unsigned int r = root(i);
+        if (group_of_root[r] < 0)
+          group_of_root[r] = n_found++;
+        group_of[i] = group_of_root[r];
+      }
+    if (n_found < 2)
+      return;
+    groups.resize(n_found);
+    for (std::size_t i = 0; i < n; ++i)
+      groups[group_of[i]].index.push_back(i);
+    for (Group &group : groups)
+      {
+        const std::size_t m = group.index.size();
+        group.schur.assign(m * m, 0.);
+        group.inverse.assign(m * m, 0.);
+        for (std::size_t c = 0; c < m; ++c)
+          for (std::size_t r = c; r < m; ++r)
+            {
+              // the lower triangle: row index[r] >= column index[c]
+              const std::size_t at     = group.index[c] * n + group.index[r];
+              group.schur[c * m + r]   = schur[at];
+              group.inverse[c * m + r] = inverse[at];
+            }
+        group.schur_single.assign(group.schur.begin(), group.schur.end());
+      }
+    for (auto *dense : {&schur, &inverse})
+      {
+        dense->clear();
+        dense->shrink_to_fit();
+      }
+    schur_single.clear();
+    schur_single.shrink_to_fit();
+  }
+
+
+
+  unsigned int
+  DenseSchurComplement::n_groups() const
+  {
+    return groups.empty() ? (contact_dofs.empty() ? 0 : 1) : groups.size();
   }
 
 
@@ -145,8 +221,67 @@ namespace impactfe
 
 
   void
+  DenseSchurComplement::group_product(const unsigned int g,
+                                      const double      *x,
+                                      double            *y,
+                                      const bool         use_inverse,
+                                      const bool         single_precision) const
+  {
+    const Group          &group = groups[g];
+    const types::blas_int m     = group.index.size();
+    const types::blas_int step  = 1;
+    if (single_precision)
+      {
+        x_single.resize(m);
+        y_single.resize(m);
+        for (types::blas_int i = 0; i < m; ++i)
+          x_single[i] = x[group.index[i]];
+        const float one = 1.f, zero = 0.f;
+        ssymv_("L",
+               &m,
+               &one,
+               group.schur_single.data(),
+               &m,
+               x_single.data(),
+               &step,
+               &zero,
+               y_single.data(),
+               &step);
+        for (types::blas_int i = 0; i < m; ++i)
+          y[group.index[i]] += y_single[i];
+        return;
+      }
+    x_group.resize(m);
+    y_group.resize(m);
+    for (types::blas_int i = 0; i < m; ++i)
+      x_group[i] = x[group.index[i]];
+    const double one = 1., zero = 0.;
+    dsymv_("L",
+           &m,
+           &one,
+           use_inverse ? group.inverse.data() : group.schur.data(),
+           &m,
+           x_group.data(),
+           &step,
+           &zero,
+           y_group.data(),
+           &step);
+    for (types::blas_int i = 0; i < m; ++i)
+      y[group.index[i]] += y_group[i];
+  }
+
+
+
+  void
   DenseSchurComplement::vmult(const double *x, double *y) const
   {
+    if (!groups.empty())
+      {
+        std::fill(y, y + size(), 0.);
+        for (unsigned int g = 0; g < groups.size(); ++g)
+          group_product(g, x, y, false, false);
+        return;
+      }
     symmetric_product(schur, size(), x, y);
   }
 
@@ -158,6 +293,13 @@ namespace impactfe
     const types::blas_int n = size();
     if (n == 0)
       return;
+    if (!groups.empty())
+      {
+        std::fill(y, y + n, 0.);
+        for (unsigned int g = 0; g < groups.size(); ++g)
+          group_product(g, x, y, false, true);
+        return;
+      }
     x_single.assign(x, x + n);
     y_single.resize(n);
     const float           one = 1.f, zero = 0.f;
@@ -180,6 +322,13 @@ namespace impactfe
   void
   DenseSchurComplement::vmult_inverse(const double *x, double *y) const
   {
+    if (!groups.empty())
+      {
+        std::fill(y, y + size(), 0.);
+        for (unsigned int g = 0; g < groups.size(); ++g)
+          group_product(g, x, y, true, false);
+        return;
+      }
     symmetric_product(inverse, size(), x, y);
   }
 
@@ -272,6 +421,26 @@ namespace impactfe
                            "part " +
                            std::to_string(part) + " of " +
                            std::to_string(n_parts) + "."));
+    if (!groups.empty())
+      {
+        // each group to one part: the groups in order, a part taking
+        // groups until it holds its share of the entries
+        std::size_t total = 0;
+        for (const Group &group : groups)
+          total += group.index.size() * group.index.size();
+        std::size_t before = 0;
+        for (unsigned int g = 0; g < groups.size(); ++g)
+          {
+            const std::size_t m = groups[g].index.size();
+            // the part of the group's middle entry
+            const unsigned int owner = std::min<std::size_t>(
+              n_parts - 1, (2 * before + m * m) * n_parts / (2 * total));
+            before += m * m;
+            if (owner == part)
+              group_product(g, x, y, use_inverse, !use_inverse);
+          }
+        return;
+      }
     const auto [first, end] = part_columns(part, n_parts);
     const std::size_t n     = size();
     if (use_inverse)
@@ -292,9 +461,16 @@ namespace impactfe
   std::size_t
   DenseSchurComplement::memory_consumption() const
   {
-    return (schur.capacity() + inverse.capacity()) * sizeof(double) +
-           schur_single.capacity() * sizeof(float) +
-           contact_dofs.capacity() * sizeof(types::global_dof_index);
+    std::size_t bytes =
+      (schur.capacity() + inverse.capacity()) * sizeof(double) +
+      schur_single.capacity() * sizeof(float) +
+      contact_dofs.capacity() * sizeof(types::global_dof_index);
+    for (const Group &group : groups)
+      bytes +=
+        (group.schur.capacity() + group.inverse.capacity()) * sizeof(double) +
+        group.schur_single.capacity() * sizeof(float) +
+        group.index.capacity() * sizeof(unsigned int);
+    return bytes;
   }
 
 

@@ -291,6 +291,9 @@ namespace impactfe
                                              // the free-flight level makes
                                              // no contact product
                                              &level == &fine);
+      if (&level == &fine)
+        stats.contact_schur_groups =
+          level.substructured_solver->contact_schur_complement().n_groups();
     }
 
 

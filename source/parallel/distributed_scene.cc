@@ -1306,7 +1306,13 @@ namespace impactfe
             << loop_seconds << " (" << loop_seconds / n_steps_taken
             << " per step taken); " << stats.products << " products W x, "
             << stats.cg_iterations << " CG iterations; solves with M~ "
-            << stats.solve_seconds << " s (rank 0)\n";
+            << stats.solve_seconds << " s (rank 0)"
+            << (stats.contact_schur_groups > 1 ?
+                  "; contact Schur complement in " +
+                    std::to_string(stats.contact_schur_groups) +
+                    " uncoupled blocks" :
+                  std::string())
+            << "\n";
       out << "Results in " << parameters.scene.output.directory
           << "/: history.csv, summary.json"
           << (parameters.scene.output.vtu_output ? ", solution.pvd" : "")
@@ -1344,6 +1350,7 @@ namespace impactfe
         .add("products", double(stats.products))
         .add("cg_iterations", double(stats.cg_iterations))
         .add("solve_wall_seconds", stats.solve_seconds)
+        .add("contact_schur_groups", double(stats.contact_schur_groups))
         .add("largest_violation", largest_violation)
         .add("checks_passed", ok ? "yes" : "no");
       if (tracker)

@@ -66,6 +66,10 @@ namespace impactfe
       record(const lcp::ContactVerification &check);
       /// Wall seconds in the solves with M~ (this rank).
       double solve_seconds = 0.;
+      /// The substructured solver: the groups of contact DoFs that its
+      /// dense contact Schur complement does not couple (one per body
+      /// with contacts, DenseSchurComplement::n_groups()).
+      unsigned int contact_schur_groups = 0;
     };
 
     /**
