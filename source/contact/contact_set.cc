@@ -90,7 +90,8 @@ namespace impactfe
                     const types::boundary_id                     boundary_a,
                     const unsigned int                           body_b,
                     const double       friction_coefficient,
-                    const std::string &kind)
+                    const std::string &kind,
+                    const bool         searching = false)
     {
       AssertThrow(
         body_a < bodies.size() && body_b < bodies.size() && body_a != body_b,
@@ -99,7 +100,7 @@ namespace impactfe
                   ExcMessage(
                     "Contact: the friction coefficient must be >= 0."));
       const auto vertices = boundary_vertices(*bodies[body_a], boundary_a);
-      AssertThrow(!vertices.empty(),
+      AssertThrow(searching || !vertices.empty(),
                   ExcMessage("Contact: body '" + bodies[body_a]->name() +
                              "' has no vertex on boundary id " +
                              std::to_string(boundary_a) + "."));
@@ -251,17 +252,20 @@ namespace impactfe
     const types::boundary_id                     boundary_a,
     const unsigned int                           body_b,
     const types::boundary_id                     boundary_b,
-    const double                                 friction_coefficient)
+    const double                                 friction_coefficient,
+    const double                                 max_distance)
   {
     AssertThrow(dim == 2,
                 ExcMessage("Contact: node-to-segment candidates are "
                            "implemented in 2D only."));
+    const bool  searching  = max_distance < std::numeric_limits<double>::max();
     const auto  vertices_a = side_a_vertices(bodies,
                                             body_a,
                                             boundary_a,
                                             body_b,
                                             friction_coefficient,
-                                            "node-to-segment");
+                                            "node-to-segment",
+                                            searching);
     const auto &A          = *bodies[body_a];
     const auto &B          = *bodies[body_b];
 
@@ -289,11 +293,12 @@ namespace impactfe
               s.normal *= -1.;
             segments.push_back(s);
           }
-    AssertThrow(!segments.empty(),
+    AssertThrow(searching || !segments.empty(),
                 ExcMessage("Contact: body '" + B.name() +
                            "' has no boundary segment with id " +
                            std::to_string(boundary_b) + "."));
 
+    unsigned int n_added = 0;
     for (const unsigned int va : vertices_a)
       {
         const Point<dim> x       = vertex_position(A, va);
@@ -313,6 +318,8 @@ namespace impactfe
                 best_distance = distance;
               }
           }
+        if (searching && (best == nullptr || best_distance > max_distance))
+          continue;
         AssertThrow(best != nullptr,
                     ExcMessage(
                       "Contact: the node of body '" + A.name() +
@@ -336,8 +343,9 @@ namespace impactfe
                       best->normal,
                       (x - projection) * best->normal,
                       friction_coefficient);
+        ++n_added;
       }
-    return vertices_a.size();
+    return n_added;
   }
 
 
@@ -357,15 +365,23 @@ namespace impactfe
     const types::boundary_id                     boundary_a,
     const unsigned int                           body_b,
     const types::boundary_id                     boundary_b,
-    const double                                 friction_coefficient)
+    const double                                 friction_coefficient,
+    const double                                 max_distance)
   {
     AssertThrow(dim == 3,
                 ExcMessage("Contact: node-to-face candidates are 3D only "
                            "(node-to-segment in 2D)."));
-    const auto vertices_a = side_a_vertices(
-      bodies, body_a, boundary_a, body_b, friction_coefficient, "node-to-face");
-    const auto &A = *bodies[body_a];
-    const auto &B = *bodies[body_b];
+    const bool   searching  = max_distance < std::numeric_limits<double>::max();
+    const auto   vertices_a = side_a_vertices(bodies,
+                                            body_a,
+                                            boundary_a,
+                                            body_b,
+                                            friction_coefficient,
+                                            "node-to-face",
+                                            searching);
+    unsigned int n_added    = 0;
+    const auto  &A          = *bodies[body_a];
+    const auto  &B          = *bodies[body_b];
     if constexpr (dim == 3)
       {
         struct Face
@@ -397,15 +413,19 @@ namespace impactfe
                   nodal_normals[v] += normal;
                 BoundingBox<3> box(
                   std::vector<Point<3>>(face.p.begin(), face.p.end()));
-                box.extend(box.side_length(0) + box.side_length(1) +
-                           box.side_length(2));
+                // a search reaches max_distance within the boxes
+                box.extend(std::max(box.side_length(0) + box.side_length(1) +
+                                      box.side_length(2),
+                                    searching ? max_distance : 0.));
                 boxes.emplace_back(box, faces.size());
                 faces.push_back(face);
               }
-        AssertThrow(!faces.empty(),
+        AssertThrow(searching || !faces.empty(),
                     ExcMessage("Contact: body '" + B.name() +
                                "' has no boundary face with id " +
                                std::to_string(boundary_b) + "."));
+        if (faces.empty())
+          return 0;
         const auto tree = pack_rtree(boxes);
 
         // The closest point of a face to x: Newton's method on (xi, eta)
@@ -528,10 +548,12 @@ namespace impactfe
             for (const auto &hit : near)
               try_face(faces[hit.second]);
             // Farther than the widened boxes (a large initial gap): all
-            // the faces.
-            if (best == nullptr)
+            // the faces; a search skips the node instead.
+            if (best == nullptr && !searching)
               for (const Face &face : faces)
                 try_face(face);
+            if (searching && (best == nullptr || best_distance > max_distance))
+              continue;
             AssertThrow(best != nullptr,
                         ExcMessage("Contact: the node of body '" + A.name() +
                                    "' at (" + format_number(x[0]) + ", " +
@@ -564,9 +586,10 @@ namespace impactfe
                           Tensor<1, dim>(normal),
                           (x - y) * normal,
                           friction_coefficient);
+            ++n_added;
           }
       }
-    return vertices_a.size();
+    return n_added;
   }
 
 
@@ -819,6 +842,7 @@ namespace impactfe
     const types::boundary_id,                                       \
     const unsigned int,                                             \
     const types::boundary_id,                                       \
+    const double,                                                   \
     const double);                                                  \
   template unsigned int ContactSet::add_node_to_face<dim>(          \
     const std::vector<const ElasticBody<dim> *> &,                  \
@@ -826,6 +850,7 @@ namespace impactfe
     const types::boundary_id,                                       \
     const unsigned int,                                             \
     const types::boundary_id,                                       \
+    const double,                                                   \
     const double);                                                  \
   template unsigned int ContactSet::add_node_to_node<dim>(          \
     const std::vector<const ElasticBody<dim> *> &,                  \

@@ -1,3 +1,4 @@
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
@@ -128,6 +129,7 @@ namespace impactfe
       const std::string pairs      = prm.get("Contact pairs");
       const std::string contacts   = prm.get("Obstacle contacts");
       const double      mu         = prm.get_double("Friction coefficient");
+      search_distance              = prm.get_double("Contact search distance");
       // each body's value of a material entry (empty: Material's for all)
       std::vector<std::pair<std::string, std::vector<double>>> per_body;
       for (const std::string entry :
@@ -145,7 +147,8 @@ namespace impactfe
       if (!several_bodies)
         {
           AssertThrow(files.empty() && velocities.empty() && pairs.empty() &&
-                        contacts.empty() && mu == 0. && !has_material_lists,
+                        contacts.empty() && mu == 0. && !has_material_lists &&
+                        search_distance == 0.,
                       ExcMessage("The subsection 'Bodies' is for Scene = "
                                  "bodies."));
           return;
@@ -213,15 +216,31 @@ namespace impactfe
           AssertThrow(at != std::string::npos,
                       ExcMessage("Bodies: 'Contact pairs' has '" + pair +
                                  "': expected 'a:i against b:j'."));
-          const auto a = body_and_boundary(Utilities::trim(pair.substr(0, at)),
-                                           n,
-                                           "Contact pairs");
-          const auto b = body_and_boundary(Utilities::trim(pair.substr(at + 9)),
-                                           n,
-                                           "Contact pairs");
-          AssertThrow(a.first != b.first,
+          // 'all:i': every body (the contact search of make_grid())
+          const auto side = [&](const std::string &text) {
+            const std::string trimmed = Utilities::trim(text);
+            if (trimmed.rfind("all:", 0) == 0)
+              {
+                const auto any = body_and_boundary("1" + trimmed.substr(3),
+                                                   1,
+                                                   "Contact pairs");
+                return std::make_pair(numbers::invalid_unsigned_int,
+                                      any.second);
+              }
+            return body_and_boundary(trimmed, n, "Contact pairs");
+          };
+          const auto a = side(pair.substr(0, at));
+          const auto b = side(pair.substr(at + 9));
+          AssertThrow(a.first != b.first ||
+                        a.first == numbers::invalid_unsigned_int,
                       ExcMessage("Bodies: 'Contact pairs' has '" + pair +
                                  "': a body against itself."));
+          AssertThrow((a.first != numbers::invalid_unsigned_int &&
+                       b.first != numbers::invalid_unsigned_int) ||
+                        search_distance > 0.,
+                      ExcMessage("Bodies: 'Contact pairs' has '" + pair +
+                                 "': a pair with 'all' needs 'Contact search "
+                                 "distance' > 0."));
           body_pairs.push_back({a.first,
                                 b.first,
                                 a.second,
@@ -396,9 +415,20 @@ namespace impactfe
                         "comma-separated, each 'a:i against b:j': the nodes "
                         "of body a on boundary id i against the boundary id "
                         "j of body b (node-to-segment in 2D, node-to-face in "
-                        "3D), with 'Friction coefficient', or with its own "
+                        "3D; 'all' in place of a body: every body, within "
+                        "'Contact search distance'), with 'Friction "
+                        "coefficient', or with its own "
                         "coefficient after ' with friction' (e.g. '1:2 "
                         "against 2:3 with friction 0.3') [-].");
+      prm.declare_entry("Contact search distance",
+                        "0",
+                        Patterns::Double(0.),
+                        "Scene = bodies: for 'Contact pairs' with 'all' in "
+                        "place of a body ('all:2 against all:3': every "
+                        "body's nodes on boundary id 2 against every other "
+                        "body's boundary id 3), the largest distance of a "
+                        "node from the other body's boundary at which it "
+                        "becomes a candidate [m].");
       prm.declare_entry("Friction coefficient",
                         "0",
                         Patterns::Double(),
@@ -706,9 +736,66 @@ namespace impactfe
             obstacle = parameters.obstacle.create<dim>(body_size());
           serial_candidates = std::make_unique<ContactSet>(
             parameters.multibody_friction() ? dim : 1);
+          // pairs with 'all': every ordered pair of bodies whose bounding
+          // boxes come within the search distance (a body against itself
+          // never; with the same boundary id on both sides, only the lower
+          // numbered body is side A, so that no two bodies are paired twice)
+          const double                  reach = parameters.search_distance;
+          std::vector<BoundingBox<dim>> boxes;
+          for (const auto *mesh : meshes)
+            {
+              BoundingBox<dim> box(mesh->get_vertices());
+              box.extend(reach);
+              boxes.push_back(box);
+            }
+          for (const auto &pair : parameters.body_pairs)
+            {
+              const auto all = numbers::invalid_unsigned_int;
+              if (pair.body_a != all && pair.body_b != all)
+                continue;
+              unsigned int found = 0;
+              for (unsigned int a = 0; a < n; ++a)
+                for (unsigned int b = 0; b < n; ++b)
+                  {
+                    if (a == b || (pair.body_a != all && pair.body_a != a) ||
+                        (pair.body_b != all && pair.body_b != b) ||
+                        (pair.boundary_a == pair.boundary_b && b < a) ||
+                        boxes[a].get_neighbor_type(boxes[b]) ==
+                          NeighborType::not_neighbors)
+                      continue;
+                    found += dim == 2 ? serial_candidates->add_node_to_segment(
+                                          bodies,
+                                          a,
+                                          pair.boundary_a,
+                                          b,
+                                          pair.boundary_b,
+                                          pair.friction_coefficient,
+                                          reach) :
+                                        serial_candidates->add_node_to_face(
+                                          bodies,
+                                          a,
+                                          pair.boundary_a,
+                                          b,
+                                          pair.boundary_b,
+                                          pair.friction_coefficient,
+                                          reach);
+                  }
+              AssertThrow(found > 0,
+                          ExcMessage(
+                            "Bodies: 'Contact pairs' with 'all' found no node "
+                            "on boundary id " +
+                            std::to_string(pair.boundary_a) +
+                            " within 'Contact search distance' = " +
+                            format_number(reach) + " m of a boundary id " +
+                            std::to_string(pair.boundary_b) +
+                            " of another body."));
+            }
           for (const auto &pair : parameters.body_pairs)
             if (const double mu = pair.friction_coefficient;
-                parameters.discretization == "node-to-segment")
+                pair.body_a == numbers::invalid_unsigned_int ||
+                pair.body_b == numbers::invalid_unsigned_int)
+              continue;
+            else if (parameters.discretization == "node-to-segment")
               serial_candidates->add_node_to_segment(bodies,
                                                      pair.body_a,
                                                      pair.boundary_a,

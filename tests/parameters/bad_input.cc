@@ -390,6 +390,15 @@ main()
            three_bars + "  set Contact pairs = 1:1 against 2:0\n  set Initial "
                         "velocities = 1, 0; 0, x; 0, 0\nend\n",
            mpi);
+  // a contact search that finds nothing, and one without a distance
+  run_case("mpi_bodies_search_finds_nothing",
+           three_bars +
+             "  set Contact pairs = all:1 against all:1\n  set Contact "
+             "search distance = 1e-9\nend\n",
+           mpi);
+  run_case("mpi_bodies_search_without_distance",
+           three_bars + "  set Contact pairs = all:1 against 2:0\nend\n",
+           mpi);
   run_case("mpi_bodies_negative_pair_friction",
            three_bars +
              "  set Contact pairs = 1:1 against 2:0 with friction -0.1\nend\n",

@@ -12,6 +12,7 @@
 #include <impactfe/contact/rigid_obstacle.h>
 
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -137,15 +138,23 @@ namespace impactfe
      * A, and the relative motion of the projection point interpolates the
      * segment's two nodes linearly. A is the "slave" side, B the "master".
      * Throws if a node projects on no segment.
+     *
+     * With a finite @p max_distance (a contact search between bodies that
+     * may not face each other): only the nodes within @p max_distance of
+     * a segment become candidates, the others and a missing boundary id on
+     * either body are skipped without a message. Returns the number of
+     * candidates added.
      */
     template <int dim>
     unsigned int
-    add_node_to_segment(const std::vector<const ElasticBody<dim> *> &bodies,
-                        const unsigned int                           body_a,
-                        const types::boundary_id                     boundary_a,
-                        const unsigned int                           body_b,
-                        const types::boundary_id                     boundary_b,
-                        const double friction_coefficient = 0.);
+    add_node_to_segment(
+      const std::vector<const ElasticBody<dim> *> &bodies,
+      const unsigned int                           body_a,
+      const types::boundary_id                     boundary_a,
+      const unsigned int                           body_b,
+      const types::boundary_id                     boundary_b,
+      const double                                 friction_coefficient = 0.,
+      const double max_distance = std::numeric_limits<double>::infinity());
 
     /**
      * Node-to-face candidates (3D) between two bodies whose interface
@@ -160,15 +169,18 @@ namespace impactfe
      * continuous across face edges, so a node on an edge gets the same
      * normal from either face. A node farther from B than the widened boxes
      * is projected on all the faces. Throws if a node projects on no face.
+     * A finite @p max_distance makes it a search, as add_node_to_segment().
      */
     template <int dim>
     unsigned int
-    add_node_to_face(const std::vector<const ElasticBody<dim> *> &bodies,
-                     const unsigned int                           body_a,
-                     const types::boundary_id                     boundary_a,
-                     const unsigned int                           body_b,
-                     const types::boundary_id                     boundary_b,
-                     const double friction_coefficient = 0.);
+    add_node_to_face(
+      const std::vector<const ElasticBody<dim> *> &bodies,
+      const unsigned int                           body_a,
+      const types::boundary_id                     boundary_a,
+      const unsigned int                           body_b,
+      const types::boundary_id                     boundary_b,
+      const double                                 friction_coefficient = 0.,
+      const double max_distance = std::numeric_limits<double>::infinity());
 
     /**
      * Node-to-node candidates between two bodies with matching interface

@@ -75,8 +75,11 @@ namespace impactfe
       /// that touch the obstacle, each with its friction coefficient.
       std::vector<MeshParameters>      body_meshes;
       std::vector<std::vector<double>> body_velocities;
-      std::vector<BodyPair>            body_pairs;
-      std::vector<ObstacleContact>     obstacle_contacts;
+      /// body_a or body_b numbers::invalid_unsigned_int: 'all' (every
+      /// body, within search_distance [m]).
+      std::vector<BodyPair>        body_pairs;
+      double                       search_distance = 0.;
+      std::vector<ObstacleContact> obstacle_contacts;
       /// Whether any pair or obstacle contact has friction.
       bool
       multibody_friction() const;
