@@ -205,16 +205,55 @@ namespace impactfe
 
 
     void
+    symv(const types::blas_int n, const double *A, const double *x, double *y)
+    {
+      const double          one = 1., zero = 0.;
+      const types::blas_int step = 1;
+      dsymv_("L", &n, &one, A, &n, x, &step, &zero, y, &step);
+    }
+
+    void
+    symv(const types::blas_int n, const float *A, const float *x, float *y)
+    {
+      const float           one = 1.f, zero = 0.f;
+      const types::blas_int step = 1;
+      ssymv_("L", &n, &one, A, &n, x, &step, &zero, y, &step);
+    }
+
+    void
     symmetric_product(const std::vector<double> &matrix,
                       const types::blas_int      n,
                       const double              *x,
                       double                    *y)
     {
-      if (n == 0)
-        return;
-      const double          one = 1., zero = 0.;
-      const types::blas_int step = 1;
-      dsymv_("L", &n, &one, matrix.data(), &n, x, &step, &zero, y, &step);
+      if (n > 0)
+        symv(n, matrix.data(), x, y);
+    }
+  } // namespace
+
+
+
+  namespace
+  {
+    // y[index] += A x[index] for a group's block A (lower triangle), in
+    // the precision of A, through the work vectors x_work and y_work.
+    template <typename Number>
+    void
+    add_group_product(const std::vector<unsigned int> &index,
+                      const std::vector<Number>       &A,
+                      const double                    *x,
+                      double                          *y,
+                      std::vector<Number>             &x_work,
+                      std::vector<Number>             &y_work)
+    {
+      const types::blas_int m = index.size();
+      x_work.resize(m);
+      y_work.resize(m);
+      for (types::blas_int i = 0; i < m; ++i)
+        x_work[i] = x[index[i]];
+      symv(m, A.data(), x_work.data(), y_work.data());
+      for (types::blas_int i = 0; i < m; ++i)
+        y[index[i]] += y_work[i];
     }
   } // namespace
 
@@ -227,47 +266,17 @@ namespace impactfe
                                       const bool         use_inverse,
                                       const bool         single_precision) const
   {
-    const Group          &group = groups[g];
-    const types::blas_int m     = group.index.size();
-    const types::blas_int step  = 1;
+    const Group &group = groups[g];
     if (single_precision)
-      {
-        x_single.resize(m);
-        y_single.resize(m);
-        for (types::blas_int i = 0; i < m; ++i)
-          x_single[i] = x[group.index[i]];
-        const float one = 1.f, zero = 0.f;
-        ssymv_("L",
-               &m,
-               &one,
-               group.schur_single.data(),
-               &m,
-               x_single.data(),
-               &step,
-               &zero,
-               y_single.data(),
-               &step);
-        for (types::blas_int i = 0; i < m; ++i)
-          y[group.index[i]] += y_single[i];
-        return;
-      }
-    x_group.resize(m);
-    y_group.resize(m);
-    for (types::blas_int i = 0; i < m; ++i)
-      x_group[i] = x[group.index[i]];
-    const double one = 1., zero = 0.;
-    dsymv_("L",
-           &m,
-           &one,
-           use_inverse ? group.inverse.data() : group.schur.data(),
-           &m,
-           x_group.data(),
-           &step,
-           &zero,
-           y_group.data(),
-           &step);
-    for (types::blas_int i = 0; i < m; ++i)
-      y[group.index[i]] += y_group[i];
+      add_group_product(
+        group.index, group.schur_single, x, y, x_single, y_single);
+    else
+      add_group_product(group.index,
+                        use_inverse ? group.inverse : group.schur,
+                        x,
+                        y,
+                        x_group,
+                        y_group);
   }
 
 
@@ -302,18 +311,7 @@ namespace impactfe
       }
     x_single.assign(x, x + n);
     y_single.resize(n);
-    const float           one = 1.f, zero = 0.f;
-    const types::blas_int step = 1;
-    ssymv_("L",
-           &n,
-           &one,
-           schur_single.data(),
-           &n,
-           x_single.data(),
-           &step,
-           &zero,
-           y_single.data(),
-           &step);
+    symv(n, schur_single.data(), x_single.data(), y_single.data());
     std::copy(y_single.begin(), y_single.end(), y);
   }
 

@@ -17,19 +17,17 @@ The VTU reader follows deal.II's zlib-compressed appended-inline format:
 each DataArray is base64(header) + base64(zlib data), the header four
 uint32 (1 block, its size, the last block's size, the compressed
 size)."""
-import argparse
 import base64
 import csv
 import os
 import shlex
-import shutil
 import struct
-import subprocess
 import sys
 import xml.etree.ElementTree as ET
 import zlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from serial_vs_mpi import bodies_arguments, write_meshes  # noqa: E402
 from serial_vs_mpi import run as run_logged  # noqa: E402
 
 
@@ -93,20 +91,11 @@ def body_forces(pvtu, dim):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--program", required=True)
-    ap.add_argument("--prm", required=True)
-    ap.add_argument("--make-mesh", required=True)
-    ap.add_argument("--mpiexec", required=True)
-    ap.add_argument("--work", required=True)
-    a = ap.parse_args()
-    shutil.rmtree(a.work, ignore_errors=True)
+    a = bodies_arguments(compare=False)
     os.makedirs(a.work)
-    for bar in range(3):
-        with open(os.path.join(a.work, f"bar_{bar + 1}.msh"), "w") as out:
-            subprocess.check_call(
-                [sys.executable, a.make_mesh, "2", "20", "4",
-                 str((bar - 1) * 0.254), "0.254", "0.0254"], stdout=out)
+    write_meshes(a.make_mesh, a.work,
+                 {f"bar_{bar + 1}.msh": (2, 20, 4, (bar - 1) * 0.254, 0.254,
+                                         0.0254) for bar in range(3)})
     text = open(a.prm).read().replace(
         "set VTU output             = false",
         "set VTU output             = true\n  set Output interval        = 4")

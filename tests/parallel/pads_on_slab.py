@@ -15,7 +15,6 @@ each pad's pair with its own friction coefficient, 0.5 and 0.1). Checks
   fails for one of them;
 * the pads did move (p_x > 0.5 of mu m g T at the end) and the slab
   stayed faster than both (its mean velocity above theirs)."""
-import argparse
 import csv
 import os
 import shlex
@@ -24,6 +23,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from serial_vs_mpi import bodies_arguments, write_meshes  # noqa: E402
 from serial_vs_mpi import run as run_logged  # noqa: E402
 
 RHO, THICKNESS, G = 1000., 0.01, 9.81
@@ -36,25 +36,14 @@ def run(command, prm, make_mesh, work):
     os.makedirs(work)
     meshes = {"slab.msh": SLAB}
     meshes.update({f"pad_{b}.msh": args for b, (args, _) in PADS.items()})
-    for name, args in meshes.items():
-        with open(os.path.join(work, name), "w") as out:
-            subprocess.check_call([sys.executable, make_mesh, *args],
-                                  stdout=out)
+    write_meshes(make_mesh, work, meshes)
     shutil.copy(prm, os.path.join(work, "pads_on_slab.prm"))
     run_logged(command + ["pads_on_slab.prm"], work, "log")
     return os.path.join(work, "results", "history.csv")
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--program", required=True)
-    ap.add_argument("--prm", required=True)
-    ap.add_argument("--make-mesh", required=True)
-    ap.add_argument("--mpiexec", required=True)
-    ap.add_argument("--compare", required=True)
-    ap.add_argument("--work", required=True)
-    a = ap.parse_args()
-    shutil.rmtree(a.work, ignore_errors=True)
+    a = bodies_arguments()
     one = run([a.program], a.prm, a.make_mesh,
               os.path.join(a.work, "one_rank"))
     two = run(shlex.split(a.mpiexec) + [a.program], a.prm, a.make_mesh,

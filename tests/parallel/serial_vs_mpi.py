@@ -15,6 +15,33 @@ import subprocess
 import sys
 
 
+def write_meshes(make_mesh, work, meshes):
+    """Each {file name: make_bar_msh.py's arguments} of @p meshes into
+    @p work (the bar and block meshes of the Scene = bodies tests)."""
+    for name, args in meshes.items():
+        with open(os.path.join(work, name), "w") as out:
+            subprocess.check_call([sys.executable, make_mesh,
+                                   *(str(x) for x in args)], stdout=out)
+
+
+def bodies_arguments(prm_options=("--prm",), compare=True, dim=False):
+    """The parsed command line of the Scene = bodies drivers: --program,
+    the parameter files @p prm_options, --make-mesh, --mpiexec, --compare
+    (if @p compare), --work (emptied here) and --dim (if @p dim)."""
+    ap = argparse.ArgumentParser()
+    for option in ("--program",) + tuple(prm_options) + ("--make-mesh",
+                                                         "--mpiexec"):
+        ap.add_argument(option, required=True)
+    if compare:
+        ap.add_argument("--compare", required=True)
+    ap.add_argument("--work", required=True)
+    if dim:
+        ap.add_argument("--dim", type=int, choices=(2, 3), default=2)
+    a = ap.parse_args()
+    shutil.rmtree(a.work, ignore_errors=True)
+    return a
+
+
 def run(command, cwd, log):
     with open(os.path.join(cwd, log), "w") as out:
         code = subprocess.call(command, cwd=cwd, stdout=out,

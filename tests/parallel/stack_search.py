@@ -12,17 +12,16 @@ on three blocks stacked on a plane, the pairs named one by one
   (tools/compare_histories.py, 1e-8);
 * the upper blocks were dragged (their momentum along x grows), so that
   the pairs between blocks carried impulses."""
-import argparse
 import csv
 import filecmp
 import os
 import re
 import shlex
-import shutil
 import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from serial_vs_mpi import bodies_arguments, write_meshes  # noqa: E402
 from serial_vs_mpi import run as run_logged  # noqa: E402
 
 BLOCKS = {"block_1.msh": ("2", "10", "2", "0", "0.1", "0.02", "0"),
@@ -35,10 +34,8 @@ def run(command, prm, make_mesh, work, dim):
     over their height, node-to-face); its history.csv and its candidate
     count."""
     os.makedirs(work)
-    for name, args in BLOCKS.items():
-        with open(os.path.join(work, name), "w") as out:
-            subprocess.check_call([sys.executable, make_mesh, str(dim),
-                                   *args[1:]], stdout=out)
+    write_meshes(make_mesh, work,
+                 {name: (dim,) + args[1:] for name, args in BLOCKS.items()})
     text = open(prm).read()
     if dim == 3:
         for old, new in (("set Dimension = 2", "set Dimension = 3"),
@@ -60,17 +57,7 @@ def run(command, prm, make_mesh, work, dim):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--program", required=True)
-    ap.add_argument("--explicit", required=True)
-    ap.add_argument("--search", required=True)
-    ap.add_argument("--make-mesh", required=True)
-    ap.add_argument("--mpiexec", required=True)
-    ap.add_argument("--compare", required=True)
-    ap.add_argument("--work", required=True)
-    ap.add_argument("--dim", type=int, choices=(2, 3), default=2)
-    a = ap.parse_args()
-    shutil.rmtree(a.work, ignore_errors=True)
+    a = bodies_arguments(("--explicit", "--search"), dim=True)
     named, n_named = run([a.program], a.explicit, a.make_mesh,
                          os.path.join(a.work, "named"), a.dim)
     found, n_found = run([a.program], a.search, a.make_mesh,

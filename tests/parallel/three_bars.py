@@ -15,15 +15,14 @@ subsection Bodies' lists). Checks
   with 40 cells (the same Courant number);
 * the total momentum stays m_1 v0 (each run checks its impulse balance).
 """
-import argparse
 import csv
 import os
 import shlex
-import shutil
 import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from serial_vs_mpi import bodies_arguments, write_meshes  # noqa: E402
 from serial_vs_mpi import run as run_logged  # noqa: E402
 
 import bars_1d_exact  # noqa: E402
@@ -66,12 +65,10 @@ def run(command, prm, dim, cells, make_mesh, work):
     the step for the same Courant number, then the run; returns its
     history.csv."""
     os.makedirs(work)
-    across = "4" if dim == 2 else "2"
-    for bar in range(3):
-        with open(os.path.join(work, f"bar_{bar + 1}.msh"), "w") as out:
-            subprocess.check_call(
-                [sys.executable, make_mesh, str(dim), str(cells), across,
-                 str((bar - 1) * L), str(L), str(H)], stdout=out)
+    across = 4 if dim == 2 else 2
+    write_meshes(make_mesh, work,
+                 {f"bar_{bar + 1}.msh": (dim, cells, across, (bar - 1) * L,
+                                         L, H) for bar in range(3)})
     text = open(prm).read().replace(
         "set Time step = 0.2226e-5", f"set Time step = {STEP * 20 / cells}")
     with open(os.path.join(work, "three_bars.prm"), "w") as out:
@@ -89,16 +86,7 @@ def final_fractions(history):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--program", required=True)
-    ap.add_argument("--prm", required=True)
-    ap.add_argument("--make-mesh", required=True)
-    ap.add_argument("--mpiexec", required=True)
-    ap.add_argument("--compare", required=True)
-    ap.add_argument("--work", required=True)
-    ap.add_argument("--dim", type=int, choices=(2, 3), default=2)
-    a = ap.parse_args()
-    shutil.rmtree(a.work, ignore_errors=True)
+    a = bodies_arguments(dim=True)
     mpi = shlex.split(a.mpiexec) + [a.program]
     one = run([a.program], a.prm, a.dim, 20, a.make_mesh,
               os.path.join(a.work, "one_rank"))
