@@ -310,7 +310,12 @@ namespace impactfe
             const double         xi = ((x - s.p1) * t) / t.norm_square();
             if (xi < -1e-8 || xi > 1. + 1e-8)
               continue;
-            const double distance = std::abs((x - s.p1) * s.normal);
+            const double signed_distance = (x - s.p1) * s.normal;
+            // a search pairs a node only with the outer side of a segment:
+            // the bodies do not overlap at the reference configuration
+            if (searching && signed_distance < -1e-6 * max_distance)
+              continue;
+            const double distance = std::abs(signed_distance);
             if (best == nullptr || distance < best_distance)
               {
                 best          = &s;
@@ -537,6 +542,9 @@ namespace impactfe
                 w = closest_edge_point(face, x);
               const auto [y, n] = interpolate(face, *w);
               if (on_edge && !((x - y) * n >= 0.5 * n.norm() * x.distance(y)))
+                return;
+              // a search: only the outer side of the face (as in 2D)
+              if (searching && (x - y) * n < -1e-6 * max_distance * n.norm())
                 return;
               if (best == nullptr || x.distance(y) < best_distance)
                 {

@@ -917,6 +917,38 @@ namespace impactfe
                         *obstacle,
                         parameters.obstacle.friction_coefficient);
         }
+      // The bodies must not overlap at t = 0: a candidate that starts
+      // inside the other side would be pushed out in the first step, an
+      // impulse no physics asked for (e.g. a pair of the wrong sides)
+      {
+        const double size = body_size();
+        for (unsigned int c = 0; c < contact.n_candidates(); ++c)
+          {
+            const auto &candidate = contact.candidate(c);
+            if (!(candidate.initial_gap < -1e-9 * size))
+              continue;
+            std::ostringstream where;
+            for (unsigned int d = 0; d < dim; ++d)
+              where << (d == 0 ? "(" : ", ") << candidate.position[d];
+            where << ")";
+            const std::string side_a =
+              parameters.multibody() ?
+                "body " + std::to_string(candidate.body_a + 1) :
+                "the body";
+            const std::string side_b =
+              candidate.body_b == numbers::invalid_unsigned_int ?
+                "the obstacle" :
+                "body " + std::to_string(candidate.body_b + 1);
+            AssertThrow(false,
+                        ExcMessage("The contact candidate of " + side_a +
+                                   " at " + where.str() + " starts " +
+                                   format_number(-candidate.initial_gap) +
+                                   " m inside " + side_b +
+                                   ": the bodies overlap at t = 0 (check the "
+                                   "meshes, the contact pairs and the "
+                                   "obstacle)."));
+          }
+      }
       // Mass redistribution: every candidate's nodes, on both sides, lose
       // their mass (as ContactScene::redistribute_mass())
       if (parameters.scene.discretization.mass_redistribution)

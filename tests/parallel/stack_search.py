@@ -10,6 +10,12 @@ on three blocks stacked on a plane, the pairs named one by one
   the same order make the same run);
 * the search run on two ranks gives the one-rank history
   (tools/compare_histories.py, 1e-8);
+* a search within 0.05 m (more than a block's height) finds more
+  candidates, on the outer sides only, and gives the same history to
+  1e-8: the far candidates never touch. (Paired with the inner side, a
+  block's lower nodes would start 0.04 m inside the block two above and
+  be pushed out: 2.5e5 times the initial energy before the search kept to
+  the outer sides);
 * the upper blocks were dragged (their momentum along x grows), so that
   the pairs between blocks carried impulses."""
 import csv
@@ -64,11 +70,25 @@ def main():
                          os.path.join(a.work, "search"), a.dim)
     two, _ = run(shlex.split(a.mpiexec) + [a.program], a.search, a.make_mesh,
                  os.path.join(a.work, "search_two_ranks"), a.dim)
+    # a search distance larger than a block: pairs with the farther blocks
+    # too, only on the outer sides (no block starts inside another)
+    wide_prm = os.path.join(a.work, "wide.prm")
+    with open(wide_prm, "w") as out:
+        out.write(open(a.search).read().replace(
+            "set Contact search distance = 1e-9",
+            "set Contact search distance = 0.05"))
+    wide, n_wide = run([a.program], wide_prm, a.make_mesh,
+                       os.path.join(a.work, "search_wide"), a.dim)
     same = n_named == n_found and n_named > 0 and \
         filecmp.cmp(named, found, shallow=False)
     print(f"named pairs: {n_named} candidates; search: {n_found}; "
           f"history.csv identical: {'OK' if same else 'WRONG'}")
     ok = same and subprocess.call([sys.executable, a.compare, found, two]) == 0
+    far = n_wide > n_named
+    print(f"search within 0.05 m: {n_wide} candidates (the far ones never "
+          f"touch): {'OK' if far else 'WRONG'}")
+    ok = ok and far and \
+        subprocess.call([sys.executable, a.compare, named, wide]) == 0
     rows = list(csv.DictReader(open(found)))
     dragged = all(float(rows[-1][f"body_{b}_momentum_x"]) > 0.
                   for b in (2, 3))

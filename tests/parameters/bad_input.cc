@@ -399,6 +399,14 @@ main()
   run_case("mpi_bodies_search_without_distance",
            three_bars + "  set Contact pairs = all:1 against 2:0\nend\n",
            mpi);
+  // a pair of the wrong sides: block 2's lower side against block 1's
+  // lower side, which it starts 0.02 m inside
+  run_case("mpi_bodies_overlap",
+           "set Dimension = 2\nset Scene = bodies\nsubsection Bodies\n  set "
+           "Mesh files = " PARAMETER_FILES_DIR
+           "/block_tower_1.msh, " PARAMETER_FILES_DIR
+           "/block_tower_2.msh\n  set Contact pairs = 2:2 against 1:2\nend\n",
+           mpi);
   run_case("mpi_bodies_negative_pair_friction",
            three_bars +
              "  set Contact pairs = 1:1 against 2:0 with friction -0.1\nend\n",

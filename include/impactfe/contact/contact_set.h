@@ -141,9 +141,11 @@ namespace impactfe
      *
      * With a finite @p max_distance (a contact search between bodies that
      * may not face each other): only the nodes within @p max_distance of
-     * a segment become candidates, the others and a missing boundary id on
-     * either body are skipped without a message. Returns the number of
-     * candidates added.
+     * the outer side of a segment become candidates (a node behind a
+     * segment, by more than 1e-6 max_distance, is not paired with it: the
+     * bodies do not overlap at the reference configuration); the others
+     * and a missing boundary id on either body are skipped without a
+     * message. Returns the number of candidates added.
      */
     template <int dim>
     unsigned int
