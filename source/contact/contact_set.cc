@@ -81,6 +81,29 @@ namespace impactfe
       return body.triangulation().get_vertices()[vertex];
     }
 
+    // A contact search found node @p x of body @p A behind a side of body
+    // @p B: if it lies inside B, the bodies overlap, which the search must
+    // not hide by leaving the node out.
+    template <int dim>
+    void
+    check_not_inside(const ElasticBody<dim> &A,
+                     const ElasticBody<dim> &B,
+                     const Point<dim>       &x)
+    {
+      for (const auto &cell : B.triangulation().active_cell_iterators())
+        if (cell->point_inside(x))
+          {
+            std::ostringstream where;
+            for (unsigned int d = 0; d < dim; ++d)
+              where << (d == 0 ? "(" : ", ") << x[d];
+            AssertThrow(false,
+                        ExcMessage("Contact search: the node of body '" +
+                                   A.name() + "' at " + where.str() +
+                                   ") lies inside body '" + B.name() +
+                                   "': the bodies overlap at t = 0."));
+          }
+    }
+
     // The checks of every candidate set between two bodies, and the nodes
     // of side A (@p kind names the set in the messages).
     template <int dim>
@@ -304,6 +327,7 @@ namespace impactfe
         const Point<dim> x       = vertex_position(A, va);
         const Segment   *best    = nullptr;
         double           best_xi = 0., best_distance = 0.;
+        bool             behind = false;
         for (const Segment &s : segments)
           {
             const Tensor<1, dim> t  = s.p2 - s.p1;
@@ -314,7 +338,10 @@ namespace impactfe
             // a search pairs a node only with the outer side of a segment:
             // the bodies do not overlap at the reference configuration
             if (searching && signed_distance < -1e-6 * max_distance)
-              continue;
+              {
+                behind = behind || -signed_distance <= max_distance;
+                continue;
+              }
             const double distance = std::abs(signed_distance);
             if (best == nullptr || distance < best_distance)
               {
@@ -323,6 +350,8 @@ namespace impactfe
                 best_distance = distance;
               }
           }
+        if (behind)
+          check_not_inside(A, B, x);
         if (searching && (best == nullptr || best_distance > max_distance))
           continue;
         AssertThrow(best != nullptr,
@@ -528,6 +557,7 @@ namespace impactfe
             double                best_distance = -1.;
             const Face           *best          = nullptr;
             std::array<double, 4> best_weights{};
+            bool                  behind   = false;
             const auto            try_face = [&](const Face &face) {
               auto w = project(face, x);
               // No minimum inside the face: the face's closest point is on
@@ -545,7 +575,10 @@ namespace impactfe
                 return;
               // a search: only the outer side of the face (as in 2D)
               if (searching && (x - y) * n < -1e-6 * max_distance * n.norm())
-                return;
+                {
+                  behind = behind || x.distance(y) <= max_distance;
+                  return;
+                }
               if (best == nullptr || x.distance(y) < best_distance)
                 {
                   best          = &face;
@@ -560,6 +593,8 @@ namespace impactfe
             if (best == nullptr && !searching)
               for (const Face &face : faces)
                 try_face(face);
+            if (behind)
+              check_not_inside(A, B, Point<dim>(x));
             if (searching && (best == nullptr || best_distance > max_distance))
               continue;
             AssertThrow(best != nullptr,

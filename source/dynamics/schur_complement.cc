@@ -85,11 +85,22 @@ namespace impactfe
                       " on its contact DoFs failed (LAPACK dpotri info " +
                       std::to_string(info) + ")."));
       }
+    std::vector<Group> new_groups =
+      find_groups(new_dofs.size(), new_schur, new_inverse);
+    // only the groups' blocks are kept when there are several
+    if (!new_groups.empty())
+      {
+        new_schur.clear();
+        new_inverse.clear();
+      }
     contact_dofs.swap(new_dofs);
     inverse.swap(new_inverse);
     schur.swap(new_schur);
+    groups.swap(new_groups);
     schur_single.assign(schur.begin(), schur.end());
-    split_into_groups();
+    for (auto *dense : {&schur, &inverse})
+      dense->shrink_to_fit();
+    schur_single.shrink_to_fit();
   }
 
 
@@ -97,13 +108,14 @@ namespace impactfe
   // The groups are the connected components of the pattern of the lower
   // triangles of S and S^{-1} (exact zeros between disconnected parts of
   // A): a union-find over the entries.
-  void
-  DenseSchurComplement::split_into_groups()
+  std::vector<DenseSchurComplement::Group>
+  DenseSchurComplement::find_groups(const std::size_t          n,
+                                    const std::vector<double> &schur,
+                                    const std::vector<double> &inverse)
   {
-    groups.clear();
-    const std::size_t n = contact_dofs.size();
+    std::vector<Group> groups;
     if (n < 2)
-      return;
+      return groups;
     std::vector<unsigned int> parent(n);
     std::iota(parent.begin(), parent.end(), 0u);
     const auto root = [&](unsigned int i) {
@@ -130,7 +142,7 @@ namespace impactfe
         group_of[i] = group_of_root[r];
       }
     if (n_found < 2)
-      return;
+      return groups;
     groups.resize(n_found);
     for (std::size_t i = 0; i < n; ++i)
       groups[group_of[i]].index.push_back(i);
@@ -149,13 +161,7 @@ namespace impactfe
             }
         group.schur_single.assign(group.schur.begin(), group.schur.end());
       }
-    for (auto *dense : {&schur, &inverse})
-      {
-        dense->clear();
-        dense->shrink_to_fit();
-      }
-    schur_single.clear();
-    schur_single.shrink_to_fit();
+    return groups;
   }
 
 
@@ -282,16 +288,25 @@ namespace impactfe
 
 
   void
+  DenseSchurComplement::all_groups_product(const double *x,
+                                           double       *y,
+                                           const bool    use_inverse,
+                                           const bool    single_precision) const
+  {
+    std::fill(y, y + size(), 0.);
+    for (unsigned int g = 0; g < groups.size(); ++g)
+      group_product(g, x, y, use_inverse, single_precision);
+  }
+
+
+
+  void
   DenseSchurComplement::vmult(const double *x, double *y) const
   {
     if (!groups.empty())
-      {
-        std::fill(y, y + size(), 0.);
-        for (unsigned int g = 0; g < groups.size(); ++g)
-          group_product(g, x, y, false, false);
-        return;
-      }
-    symmetric_product(schur, size(), x, y);
+      all_groups_product(x, y, false, false);
+    else
+      symmetric_product(schur, size(), x, y);
   }
 
 
@@ -304,9 +319,7 @@ namespace impactfe
       return;
     if (!groups.empty())
       {
-        std::fill(y, y + n, 0.);
-        for (unsigned int g = 0; g < groups.size(); ++g)
-          group_product(g, x, y, false, true);
+        all_groups_product(x, y, false, true);
         return;
       }
     x_single.assign(x, x + n);
@@ -321,13 +334,9 @@ namespace impactfe
   DenseSchurComplement::vmult_inverse(const double *x, double *y) const
   {
     if (!groups.empty())
-      {
-        std::fill(y, y + size(), 0.);
-        for (unsigned int g = 0; g < groups.size(); ++g)
-          group_product(g, x, y, true, false);
-        return;
-      }
-    symmetric_product(inverse, size(), x, y);
+      all_groups_product(x, y, true, false);
+    else
+      symmetric_product(inverse, size(), x, y);
   }
 
 

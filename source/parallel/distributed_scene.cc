@@ -10,12 +10,14 @@
 #include <impactfe/parallel/distributed_scene.h>
 #include <impactfe/utilities/program.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <type_traits>
 
 namespace impactfe
 {
@@ -53,6 +55,27 @@ namespace impactfe
 
 
 
+      // @p text as a number (double or int), or a throw with @p message.
+      template <typename Number>
+      Number
+      number_or_throw(const std::string &text, const std::string &message)
+      {
+        try
+          {
+            if constexpr (std::is_same_v<Number, int>)
+              return Utilities::string_to_int(text);
+            else
+              return Utilities::string_to_double(text);
+          }
+        catch (...)
+          {
+            AssertThrow(false, ExcMessage(message));
+          }
+        return Number();
+      }
+
+
+
       // A token of subsection Bodies' @p entry without its optional
       // suffix ' with friction x', and x (-1 without it: the entry's
       // default).
@@ -63,30 +86,28 @@ namespace impactfe
         const std::size_t at     = token.find(suffix);
         if (at == std::string::npos)
           return {token, -1.};
-        const std::string value = Utilities::trim(token.substr(at + 14));
-        double            mu    = -1.;
-        try
-          {
-            mu = Utilities::string_to_double(value);
-          }
-        catch (...)
-          {}
-        AssertThrow(mu >= 0.,
-                    ExcMessage("Bodies: '" + entry + "' has '" + token +
-                               "': the friction coefficient after 'with "
-                               "friction' must be a number >= 0, got '" +
-                               value + "'."));
+        const std::string value =
+          Utilities::trim(token.substr(at + suffix.size()));
+        const std::string message =
+          "Bodies: '" + entry + "' has '" + token +
+          "': the friction coefficient after 'with friction' must be a "
+          "number >= 0, got '" +
+          value + "'.";
+        const double mu = number_or_throw<double>(value, message);
+        AssertThrow(mu >= 0., ExcMessage(message));
         return {Utilities::trim(token.substr(0, at)), mu};
       }
 
 
 
       // 'b:i' of subsection Bodies' @p entry: body b of @p n_bodies (from
-      // 1; returned from 0) and boundary id i.
+      // 1; returned from 0) and boundary id i; with @p allow_all also
+      // 'all:i' (every body: numbers::invalid_unsigned_int).
       std::pair<unsigned int, types::boundary_id>
       body_and_boundary(const std::string &token,
                         const unsigned int n_bodies,
-                        const std::string &entry)
+                        const std::string &entry,
+                        const bool         allow_all = false)
       {
         const auto fail = [&](const std::string &why) {
           AssertThrow(false,
@@ -97,21 +118,20 @@ namespace impactfe
           Utilities::split_string_list(token, ':');
         if (parts.size() != 2)
           fail("expected 'body:boundary id'");
-        int body = -1, boundary = -1;
-        try
-          {
-            body     = Utilities::string_to_int(parts[0]);
-            boundary = Utilities::string_to_int(parts[1]);
-          }
-        catch (...)
-          {
-            fail("expected two integers, 'body:boundary id'");
-          }
+        const std::string integers =
+          "Bodies: '" + entry + "' has '" + token + "': expected " +
+          (allow_all ? "'body:boundary id' or 'all:boundary id'" :
+                       "'body:boundary id'") +
+          " with integers.";
+        const bool all  = allow_all && parts[0] == "all";
+        const int  body = all ? 1 : number_or_throw<int>(parts[0], integers);
+        const int  boundary = number_or_throw<int>(parts[1], integers);
         if (body < 1 || body > static_cast<int>(n_bodies))
           fail("the bodies are 1 to " + std::to_string(n_bodies));
         if (boundary < 0 || boundary > 255)
           fail("a boundary id is 0 to 255");
-        return {body - 1, static_cast<types::boundary_id>(boundary)};
+        return {all ? numbers::invalid_unsigned_int : body - 1,
+                static_cast<types::boundary_id>(boundary)};
       }
     } // namespace
 
@@ -185,21 +205,10 @@ namespace impactfe
             {
               for (const std::string &v : Utilities::split_string_list(list[b]))
                 {
-                  double value = 0.;
-                  try
-                    {
-                      value = Utilities::string_to_double(v);
-                    }
-                  catch (...)
-                    {
-                      AssertThrow(false,
-                                  ExcMessage("Bodies: 'Initial velocities' "
-                                             "has '" +
-                                             v + "' for body " +
-                                             std::to_string(b + 1) +
-                                             ", which is not a number."));
-                    }
-                  body_velocities[b].push_back(value);
+                  body_velocities[b].push_back(number_or_throw<double>(
+                    v,
+                    "Bodies: 'Initial velocities' has '" + v + "' for body " +
+                      std::to_string(b + 1) + ", which is not a number."));
                 }
               AssertThrow(body_velocities[b].size() == dimension,
                           ExcMessage("Bodies: 'Initial velocities' must give " +
@@ -217,20 +226,14 @@ namespace impactfe
                       ExcMessage("Bodies: 'Contact pairs' has '" + pair +
                                  "': expected 'a:i against b:j'."));
           // 'all:i': every body (the contact search of make_grid())
-          const auto side = [&](const std::string &text) {
-            const std::string trimmed = Utilities::trim(text);
-            if (trimmed.rfind("all:", 0) == 0)
-              {
-                const auto any = body_and_boundary("1" + trimmed.substr(3),
-                                                   1,
-                                                   "Contact pairs");
-                return std::make_pair(numbers::invalid_unsigned_int,
-                                      any.second);
-              }
-            return body_and_boundary(trimmed, n, "Contact pairs");
-          };
-          const auto a = side(pair.substr(0, at));
-          const auto b = side(pair.substr(at + 9));
+          const auto a = body_and_boundary(Utilities::trim(pair.substr(0, at)),
+                                           n,
+                                           "Contact pairs",
+                                           true);
+          const auto b = body_and_boundary(Utilities::trim(pair.substr(at + 9)),
+                                           n,
+                                           "Contact pairs",
+                                           true);
           AssertThrow(a.first != b.first ||
                         a.first == numbers::invalid_unsigned_int,
                       ExcMessage("Bodies: 'Contact pairs' has '" + pair +
@@ -250,6 +253,17 @@ namespace impactfe
       AssertThrow(!body_pairs.empty() || !contacts.empty(),
                   ExcMessage("Bodies: neither 'Contact pairs' nor 'Obstacle "
                              "contacts' names a contact."));
+      AssertThrow(search_distance == 0. ||
+                    std::any_of(body_pairs.begin(),
+                                body_pairs.end(),
+                                [](const BodyPair &pair) {
+                                  return pair.body_a ==
+                                           numbers::invalid_unsigned_int ||
+                                         pair.body_b ==
+                                           numbers::invalid_unsigned_int;
+                                }),
+                  ExcMessage("Bodies: 'Contact search distance' is for "
+                             "'Contact pairs' with 'all', and none has it."));
       // the obstacle's coefficient is filled in once it is read (-1 here)
       for (const std::string &token : Utilities::split_string_list(contacts))
         {
@@ -738,8 +752,8 @@ namespace impactfe
             parameters.multibody_friction() ? dim : 1);
           // pairs with 'all': every ordered pair of bodies whose bounding
           // boxes come within the search distance (a body against itself
-          // never; with the same boundary id on both sides, only the lower
-          // numbered body is side A, so that no two bodies are paired twice)
+          // never; 'all:i against all:i' makes only the lower numbered body
+          // side A, so that no two bodies are paired twice)
           const double                  reach = parameters.search_distance;
           std::vector<BoundingBox<dim>> boxes;
           for (const auto *mesh : meshes)
@@ -748,38 +762,52 @@ namespace impactfe
               box.extend(reach);
               boxes.push_back(box);
             }
+          // One pair of bodies: the candidates of body a's boundary against
+          // body b's, within @p distance (infinite: every node of a named
+          // pair, which must project).
+          const auto add_pair = [&](const auto        &pair,
+                                    const unsigned int a,
+                                    const unsigned int b,
+                                    const double       distance) {
+            const double mu = pair.friction_coefficient;
+            if (parameters.discretization == "node-to-segment")
+              return serial_candidates->add_node_to_segment(
+                bodies, a, pair.boundary_a, b, pair.boundary_b, mu, distance);
+            if (parameters.discretization == "node-to-face")
+              return serial_candidates->add_node_to_face(
+                bodies, a, pair.boundary_a, b, pair.boundary_b, mu, distance);
+            Tensor<1, dim> normal_of_pair;
+            for (unsigned int d = 0; d < dim; ++d)
+              normal_of_pair[d] = parameters.contact_normal[d];
+            return serial_candidates->add_node_to_node(bodies,
+                                                       a,
+                                                       pair.boundary_a,
+                                                       b,
+                                                       pair.boundary_b,
+                                                       normal_of_pair,
+                                                       mu);
+          };
+          const auto all = numbers::invalid_unsigned_int;
           for (const auto &pair : parameters.body_pairs)
             {
-              const auto all = numbers::invalid_unsigned_int;
               if (pair.body_a != all && pair.body_b != all)
-                continue;
+                {
+                  add_pair(pair,
+                           pair.body_a,
+                           pair.body_b,
+                           std::numeric_limits<double>::infinity());
+                  continue;
+                }
               unsigned int found = 0;
               for (unsigned int a = 0; a < n; ++a)
                 for (unsigned int b = 0; b < n; ++b)
-                  {
-                    if (a == b || (pair.body_a != all && pair.body_a != a) ||
-                        (pair.body_b != all && pair.body_b != b) ||
-                        (pair.boundary_a == pair.boundary_b && b < a) ||
-                        boxes[a].get_neighbor_type(boxes[b]) ==
-                          NeighborType::not_neighbors)
-                      continue;
-                    found += dim == 2 ? serial_candidates->add_node_to_segment(
-                                          bodies,
-                                          a,
-                                          pair.boundary_a,
-                                          b,
-                                          pair.boundary_b,
-                                          pair.friction_coefficient,
-                                          reach) :
-                                        serial_candidates->add_node_to_face(
-                                          bodies,
-                                          a,
-                                          pair.boundary_a,
-                                          b,
-                                          pair.boundary_b,
-                                          pair.friction_coefficient,
-                                          reach);
-                  }
+                  if (a != b && (pair.body_a == all || pair.body_a == a) &&
+                      (pair.body_b == all || pair.body_b == b) &&
+                      !(pair.body_a == all && pair.body_b == all &&
+                        pair.boundary_a == pair.boundary_b && b < a) &&
+                      boxes[a].get_neighbor_type(boxes[b]) !=
+                        NeighborType::not_neighbors)
+                    found += add_pair(pair, a, b, reach);
               AssertThrow(found > 0,
                           ExcMessage(
                             "Bodies: 'Contact pairs' with 'all' found no node "
@@ -790,38 +818,6 @@ namespace impactfe
                             std::to_string(pair.boundary_b) +
                             " of another body."));
             }
-          for (const auto &pair : parameters.body_pairs)
-            if (const double mu = pair.friction_coefficient;
-                pair.body_a == numbers::invalid_unsigned_int ||
-                pair.body_b == numbers::invalid_unsigned_int)
-              continue;
-            else if (parameters.discretization == "node-to-segment")
-              serial_candidates->add_node_to_segment(bodies,
-                                                     pair.body_a,
-                                                     pair.boundary_a,
-                                                     pair.body_b,
-                                                     pair.boundary_b,
-                                                     mu);
-            else if (parameters.discretization == "node-to-face")
-              serial_candidates->add_node_to_face(bodies,
-                                                  pair.body_a,
-                                                  pair.boundary_a,
-                                                  pair.body_b,
-                                                  pair.boundary_b,
-                                                  mu);
-            else
-              {
-                Tensor<1, dim> normal_of_pair;
-                for (unsigned int d = 0; d < dim; ++d)
-                  normal_of_pair[d] = parameters.contact_normal[d];
-                serial_candidates->add_node_to_node(bodies,
-                                                    pair.body_a,
-                                                    pair.boundary_a,
-                                                    pair.body_b,
-                                                    pair.boundary_b,
-                                                    normal_of_pair,
-                                                    mu);
-              }
           for (const auto &contact : touching)
             serial_candidates->add_node_to_obstacle(
               bodies,

@@ -407,6 +407,14 @@ main()
            "/block_tower_1.msh, " PARAMETER_FILES_DIR
            "/block_tower_2.msh\n  set Contact pairs = 2:2 against 1:2\nend\n",
            mpi);
+  // a search between two copies of one block: a node inside the other
+  run_case("mpi_bodies_search_overlap",
+           "set Dimension = 2\nset Scene = bodies\nsubsection Bodies\n  set "
+           "Mesh files = " PARAMETER_FILES_DIR
+           "/block_tower_1.msh, " PARAMETER_FILES_DIR
+           "/block_tower_1.msh\n  set Contact pairs = all:2 against all:3\n  "
+           "set Contact search distance = 0.05\nend\n",
+           mpi);
   run_case("mpi_bodies_negative_pair_friction",
            three_bars +
              "  set Contact pairs = 1:1 against 2:0 with friction -0.1\nend\n",

@@ -143,9 +143,10 @@ namespace impactfe
      * may not face each other): only the nodes within @p max_distance of
      * the outer side of a segment become candidates (a node behind a
      * segment, by more than 1e-6 max_distance, is not paired with it: the
-     * bodies do not overlap at the reference configuration); the others
-     * and a missing boundary id on either body are skipped without a
-     * message. Returns the number of candidates added.
+     * bodies do not overlap at the reference configuration; if such a node
+     * lies inside body B, it throws, naming the node); the others and a
+     * missing boundary id on either body are skipped without a message.
+     * Returns the number of candidates added.
      */
     template <int dim>
     unsigned int

@@ -153,18 +153,27 @@ namespace impactfe
     std::vector<Group>          groups;
     mutable std::vector<double> x_group, y_group;
 
-    /// Split S and S^{-1} into the groups it does not couple, if there are
-    /// several (compute_from_factor()).
-    void
-    split_into_groups();
-    /// y += (or, with @p overwrite, y =) the product of group @p g with x
-    /// (S^{-1}, or S in single precision).
+    /// The groups of the n unknowns that the dense S and S^{-1} (lower
+    /// triangles) do not couple, with their blocks; none if they are one
+    /// (compute_from_factor()).
+    static std::vector<Group>
+    find_groups(const std::size_t          n,
+                const std::vector<double> &schur,
+                const std::vector<double> &inverse);
+    /// y += the product of group @p g with x: S^{-1} (@p use_inverse), S,
+    /// or S in single precision (@p single_precision).
     void
     group_product(const unsigned int g,
                   const double      *x,
                   double            *y,
                   const bool         use_inverse,
                   const bool         single_precision) const;
+    /// y = the product of every group with x (as group_product()).
+    void
+    all_groups_product(const double *x,
+                       double       *y,
+                       const bool    use_inverse,
+                       const bool    single_precision) const;
   };
 
 
