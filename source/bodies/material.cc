@@ -73,17 +73,24 @@ namespace impactfe
     rayleigh_mass      = prm.get_double("Rayleigh mass coefficient");
     rayleigh_stiffness = prm.get_double("Rayleigh stiffness coefficient");
     prm.leave_subsection();
+    check(subsection);
+  }
 
-    require_positive(youngs_modulus, subsection, "Young's modulus");
-    require_positive(density, subsection, "Density");
+
+
+  void
+  MaterialParameters::check(const std::string &where) const
+  {
+    require_positive(youngs_modulus, where, "Young's modulus");
+    require_positive(density, where, "Density");
     AssertThrow(poissons_ratio >= 0. && poissons_ratio < 0.5,
-                ExcMessage(subsection +
+                ExcMessage(where +
                            ": 'Poisson's ratio' must be in [0, 0.5), "
                            "got " +
                            format_input(poissons_ratio) + "."));
-    require_non_negative(viscosity, subsection, "Viscosity");
+    require_non_negative(viscosity, where, "Viscosity");
     AssertThrow(rayleigh_mass >= 0. && rayleigh_stiffness >= 0.,
-                ExcMessage(subsection +
+                ExcMessage(where +
                            ": the Rayleigh coefficients must be >= 0."));
   }
 

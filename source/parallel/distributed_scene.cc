@@ -55,6 +55,22 @@ namespace impactfe
 
 
 
+      // The per-body material lists of subsection Bodies: the entry, its
+      // unit and the member of MaterialParameters it sets.
+      struct PerBodyMaterialEntry
+      {
+        const char *name;
+        const char *unit;
+        double MaterialParameters::*member;
+      };
+      const PerBodyMaterialEntry per_body_material_entries[] = {
+        {"Young's moduli", "Pa", &MaterialParameters::youngs_modulus},
+        {"Densities", "kg/m^3", &MaterialParameters::density},
+        {"Poisson's ratios", "-", &MaterialParameters::poissons_ratio},
+        {"Viscosities", "Pa s", &MaterialParameters::viscosity}};
+
+
+
       // @p text as a number (double or int), or a throw with @p message.
       template <typename Number>
       Number
@@ -151,19 +167,18 @@ namespace impactfe
       const double      mu         = prm.get_double("Friction coefficient");
       search_distance              = prm.get_double("Contact search distance");
       // each body's value of a material entry (empty: Material's for all)
-      std::vector<std::pair<std::string, std::vector<double>>> per_body;
-      for (const std::string entry :
-           {"Young's moduli", "Densities", "Poisson's ratios", "Viscosities"})
+      std::vector<std::vector<double>> per_body;
+      for (const auto &entry : per_body_material_entries)
         {
-          per_body.emplace_back(entry, std::vector<double>());
+          per_body.emplace_back();
           for (const std::string &v :
-               Utilities::split_string_list(prm.get(entry)))
-            per_body.back().second.push_back(Utilities::string_to_double(v));
+               Utilities::split_string_list(prm.get(entry.name)))
+            per_body.back().push_back(Utilities::string_to_double(v));
         }
       prm.leave_subsection();
       bool has_material_lists = false;
-      for (const auto &entry : per_body)
-        has_material_lists = has_material_lists || !entry.second.empty();
+      for (const auto &values : per_body)
+        has_material_lists = has_material_lists || !values.empty();
       if (!several_bodies)
         {
           AssertThrow(files.empty() && velocities.empty() && pairs.empty() &&
@@ -280,38 +295,24 @@ namespace impactfe
       if (!has_material_lists)
         return;
       body_materials.assign(n, material);
-      for (const auto &[entry, values] : per_body)
+      for (unsigned int e = 0; e < per_body.size(); ++e)
         {
+          const std::vector<double> &values = per_body[e];
+          const auto                &entry  = per_body_material_entries[e];
           if (values.empty())
             continue;
           AssertThrow(values.size() == n,
-                      ExcMessage("Bodies: '" + entry + "' must give " +
-                                 std::to_string(n) +
+                      ExcMessage("Bodies: '" + std::string(entry.name) +
+                                 "' must give " + std::to_string(n) +
                                  " values (one per body) or none, got " +
                                  std::to_string(values.size()) + "."));
           for (unsigned int b = 0; b < n; ++b)
-            {
-              const double value = values[b];
-              const bool   valid = entry == "Poisson's ratios" ?
-                                     (value >= 0. && value < 0.5) :
-                                   entry == "Viscosities" ? value >= 0. :
-                                                            value > 0.;
-              AssertThrow(valid,
-                          ExcMessage("Bodies: '" + entry + "' has " +
-                                     format_input(value) + " for body " +
-                                     std::to_string(b + 1) + "; it must be " +
-                                     (entry == "Poisson's ratios" ?
-                                        "in [0, 0.5)" :
-                                      entry == "Viscosities" ? ">= 0" :
-                                                               "> 0") +
-                                     "."));
-              MaterialParameters &m                       = body_materials[b];
-              (entry == "Young's moduli"   ? m.youngs_modulus :
-               entry == "Densities"        ? m.density :
-               entry == "Poisson's ratios" ? m.poissons_ratio :
-                                             m.viscosity) = value;
-            }
+            body_materials[b].*entry.member = values[b];
         }
+      // the ranges of subsection Material, for each body
+      for (unsigned int b = 0; b < n; ++b)
+        body_materials[b].check("Bodies, body " + std::to_string(b + 1) +
+                                " (Material with its values)");
     }
 
 
@@ -458,13 +459,8 @@ namespace impactfe
                         "obstacle's 'Friction coefficient' or with its own "
                         "after ' with friction' (e.g. '1:2 with friction "
                         "0.2') [-].");
-      for (const auto &[entry, unit] :
-           std::vector<std::pair<std::string, std::string>>{
-             {"Young's moduli", "Pa"},
-             {"Densities", "kg/m^3"},
-             {"Poisson's ratios", "-"},
-             {"Viscosities", "Pa s"}})
-        prm.declare_entry(entry,
+      for (const auto &entry : per_body_material_entries)
+        prm.declare_entry(entry.name,
                           "",
                           Patterns::List(Patterns::Double(), 0),
                           "Scene = bodies: one value per body, "
@@ -472,7 +468,7 @@ namespace impactfe
                           "Material's (whose law, plane model and Rayleigh "
                           "coefficients every body keeps); empty: "
                           "Material's for every body [" +
-                            unit + "].");
+                            std::string(entry.unit) + "].");
       prm.leave_subsection();
       prm.enter_subsection("Obstacle contact");
       for (const std::string body : {"first", "second"})

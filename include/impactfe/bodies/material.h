@@ -54,6 +54,14 @@ namespace impactfe
                      const unsigned int dim,
                      const std::string &subsection = "Material");
 
+    /**
+     * Throw, naming @p where and the entry, if a value is out of its range
+     * (E > 0, rho > 0, nu in [0, 0.5), viscosity and Rayleigh coefficients
+     * >= 0). parse_parameters() calls it.
+     */
+    void
+    check(const std::string &where) const;
+
     /** Kelvin--Voigt relaxation time eta/E plus the Rayleigh stiffness term. */
     double
     stiffness_damping_factor() const
