@@ -57,6 +57,31 @@ namespace impactfe
 
 
 
+  void
+  ContactSet::refer_to_reference_configuration(
+    const std::function<std::array<double, 3>(unsigned int, unsigned int)>
+      &displacement)
+  {
+    for (ContactCandidate &c : candidate_list)
+      {
+        // u_A - sum_k w_k u_Bk (an obstacle does not move)
+        std::array<double, 3> relative = displacement(c.body_a, c.vertex_a);
+        for (unsigned int d = 0; d < 3; ++d)
+          c.position[d] -= relative[d];
+        for (unsigned int k = 0; k < c.n_vertices_b; ++k)
+          {
+            const std::array<double, 3> u_b =
+              displacement(c.body_b, c.vertices_b[k]);
+            for (unsigned int d = 0; d < 3; ++d)
+              relative[d] -= c.weights_b[k] * u_b[d];
+          }
+        for (unsigned int d = 0; d < 3; ++d)
+          c.initial_gap -= c.frame[0][d] * relative[d];
+      }
+  }
+
+
+
   namespace
   {
     // Vertices of a body on the boundary with the given id.
@@ -276,12 +301,16 @@ namespace impactfe
     const unsigned int                           body_b,
     const types::boundary_id                     boundary_b,
     const double                                 friction_coefficient,
-    const double                                 max_distance)
+    const double                                 max_distance,
+    const double                                 max_penetration)
   {
     AssertThrow(dim == 2,
                 ExcMessage("Contact: node-to-segment candidates are "
                            "implemented in 2D only."));
-    const bool  searching  = max_distance < std::numeric_limits<double>::max();
+    const bool searching = max_distance < std::numeric_limits<double>::max();
+    // how far a node may lie behind a side it is paired with
+    const double sunk =
+      max_penetration >= 0. ? max_penetration : 1e-6 * max_distance;
     const auto  vertices_a = side_a_vertices(bodies,
                                             body_a,
                                             boundary_a,
@@ -337,9 +366,10 @@ namespace impactfe
             const double signed_distance = (x - s.p1) * s.normal;
             // a search pairs a node only with the outer side of a segment:
             // the bodies do not overlap at the reference configuration
-            if (searching && signed_distance < -1e-6 * max_distance)
+            if (searching && signed_distance < -sunk)
               {
-                behind = behind || -signed_distance <= max_distance;
+                behind = behind || (-signed_distance <= max_distance &&
+                                    max_penetration < 0.);
                 continue;
               }
             const double distance = std::abs(signed_distance);
@@ -400,12 +430,15 @@ namespace impactfe
     const unsigned int                           body_b,
     const types::boundary_id                     boundary_b,
     const double                                 friction_coefficient,
-    const double                                 max_distance)
+    const double                                 max_distance,
+    const double                                 max_penetration)
   {
     AssertThrow(dim == 3,
                 ExcMessage("Contact: node-to-face candidates are 3D only "
                            "(node-to-segment in 2D)."));
-    const bool   searching  = max_distance < std::numeric_limits<double>::max();
+    const bool   searching = max_distance < std::numeric_limits<double>::max();
+    const double sunk =
+      max_penetration >= 0. ? max_penetration : 1e-6 * max_distance;
     const auto   vertices_a = side_a_vertices(bodies,
                                             body_a,
                                             boundary_a,
@@ -574,9 +607,10 @@ namespace impactfe
               if (on_edge && !((x - y) * n >= 0.5 * n.norm() * x.distance(y)))
                 return;
               // a search: only the outer side of the face (as in 2D)
-              if (searching && (x - y) * n < -1e-6 * max_distance * n.norm())
+              if (searching && (x - y) * n < -sunk * n.norm())
                 {
-                  behind = behind || x.distance(y) <= max_distance;
+                  behind = behind || (x.distance(y) <= max_distance &&
+                                      max_penetration < 0.);
                   return;
                 }
               if (best == nullptr || x.distance(y) < best_distance)
@@ -886,6 +920,7 @@ namespace impactfe
     const unsigned int,                                             \
     const types::boundary_id,                                       \
     const double,                                                   \
+    const double,                                                   \
     const double);                                                  \
   template unsigned int ContactSet::add_node_to_face<dim>(          \
     const std::vector<const ElasticBody<dim> *> &,                  \
@@ -893,6 +928,7 @@ namespace impactfe
     const types::boundary_id,                                       \
     const unsigned int,                                             \
     const types::boundary_id,                                       \
+    const double,                                                   \
     const double,                                                   \
     const double);                                                  \
   template unsigned int ContactSet::add_node_to_node<dim>(          \

@@ -140,48 +140,14 @@ namespace impactfe
 
 
 
-    // The merged mesh keeps each body's vertices in order after its offset
-    // (merge_body_meshes()); the positions are compared to make sure.
+    // Each rank lists the needed vertices whose DoFs it owns (vertex, DoFs,
+    // rank); the all-gather gives every rank the same map.
     template <int dim>
-    void
-    DistributedContact<dim>::setup_from_contact_set(
-      const DistributedElasticBody<dim> &body,
-      const ContactSet                  &pairs,
-      const std::vector<unsigned int>   &vertex_offsets)
+    std::map<unsigned int, typename DistributedContact<dim>::Node>
+    DistributedContact<dim>::gather_vertex_nodes(
+      const DistributedElasticBody<dim>                       &body,
+      const std::map<unsigned int, std::optional<Point<dim>>> &needed) const
     {
-      double largest_mu = 0.;
-      for (const ContactCandidate &c : pairs.candidates())
-        largest_mu = std::max(largest_mu, c.friction_coefficient);
-      start_setup(body, largest_mu);
-      // the set's directions (dim if any candidate has friction)
-      AssertThrow(pairs.n_directions() == directions,
-                  ExcMessage("Contact: the candidate set has " +
-                             std::to_string(pairs.n_directions()) +
-                             " local directions for a largest mu = " +
-                             format_number(largest_mu) + "."));
-      bodies                   = vertex_offsets.size();
-      const auto merged_vertex = [&](const unsigned int b,
-                                     const unsigned int v) {
-        AssertThrow(b < vertex_offsets.size(),
-                    ExcMessage("Contact: a candidate names body " +
-                               std::to_string(b) + " of " +
-                               std::to_string(vertex_offsets.size()) + "."));
-        return vertex_offsets[b] + v;
-      };
-      // vertex -> its position if known (side A's)
-      std::map<unsigned int, std::optional<Point<dim>>> needed;
-      for (const ContactCandidate &c : pairs.candidates())
-        {
-          Point<dim> x;
-          for (unsigned int d = 0; d < dim; ++d)
-            x[d] = c.position[d];
-          needed[merged_vertex(c.body_a, c.vertex_a)] = x;
-          for (unsigned int k = 0; k < c.n_vertices_b; ++k)
-            needed.emplace(merged_vertex(c.body_b, c.vertices_b[k]),
-                           std::nullopt);
-        }
-
-      // vertex, DoFs, rank of the needed vertices whose DoFs this rank owns
       const IndexSet        &owned = body.locally_owned_dofs();
       std::vector<double>    mine;
       std::set<unsigned int> seen;
@@ -220,6 +186,89 @@ namespace impactfe
             node.owner = static_cast<unsigned int>(list[i + 1 + dim]);
             nodes[static_cast<unsigned int>(list[i])] = node;
           }
+      return nodes;
+    }
+
+
+
+    template <int dim>
+    void
+    DistributedContact<dim>::set_potential_contact_vertices(
+      const DistributedElasticBody<dim> &body,
+      const std::vector<unsigned int>   &vertices)
+    {
+      std::map<unsigned int, std::optional<Point<dim>>> needed;
+      for (const unsigned int v : vertices)
+        needed.emplace(v, std::nullopt);
+      potential_nodes.clear();
+      for (const auto &[vertex, node] : gather_vertex_nodes(body, needed))
+        potential_nodes.push_back(node);
+      AssertThrow(potential_nodes.size() == needed.size(),
+                  ExcMessage(
+                    "Contact: " +
+                    std::to_string(needed.size() - potential_nodes.size()) +
+                    " vertices of the contact boundaries have no "
+                    "owned DoFs."));
+    }
+
+
+
+    template <int dim>
+    const std::vector<typename DistributedContact<dim>::Node> &
+    DistributedContact<dim>::potential_contact_nodes() const
+    {
+      return potential_nodes;
+    }
+
+
+
+    // The merged mesh keeps each body's vertices in order after its offset
+    // (merge_body_meshes()); the positions are compared to make sure.
+    template <int dim>
+    void
+    DistributedContact<dim>::setup_from_contact_set(
+      const DistributedElasticBody<dim> &body,
+      const ContactSet                  &pairs,
+      const std::vector<unsigned int>   &vertex_offsets,
+      const bool                         allow_empty)
+    {
+      double largest_mu = 0.;
+      for (const ContactCandidate &c : pairs.candidates())
+        largest_mu = std::max(largest_mu, c.friction_coefficient);
+      start_setup(body, largest_mu);
+      // the set's directions (dim if any candidate has friction; a search
+      // during the run may find only frictionless pairs of a scene that
+      // has frictional ones)
+      directions = pairs.n_directions();
+      AssertThrow(largest_mu == 0. || directions == dim,
+                  ExcMessage("Contact: the candidate set has " +
+                             std::to_string(pairs.n_directions()) +
+                             " local directions for a largest mu = " +
+                             format_number(largest_mu) + "."));
+      bodies                   = vertex_offsets.size();
+      const auto merged_vertex = [&](const unsigned int b,
+                                     const unsigned int v) {
+        AssertThrow(b < vertex_offsets.size(),
+                    ExcMessage("Contact: a candidate names body " +
+                               std::to_string(b) + " of " +
+                               std::to_string(vertex_offsets.size()) + "."));
+        return vertex_offsets[b] + v;
+      };
+      // vertex -> its position if known (side A's)
+      std::map<unsigned int, std::optional<Point<dim>>> needed;
+      for (const ContactCandidate &c : pairs.candidates())
+        {
+          Point<dim> x;
+          for (unsigned int d = 0; d < dim; ++d)
+            x[d] = c.position[d];
+          needed[merged_vertex(c.body_a, c.vertex_a)] = x;
+          for (unsigned int k = 0; k < c.n_vertices_b; ++k)
+            needed.emplace(merged_vertex(c.body_b, c.vertices_b[k]),
+                           std::nullopt);
+        }
+
+      const std::map<unsigned int, Node> nodes =
+        gather_vertex_nodes(body, needed);
       AssertThrow(nodes.size() == needed.size(),
                   ExcMessage(
                     "Contact: " + std::to_string(needed.size() - nodes.size()) +
@@ -245,7 +294,10 @@ namespace impactfe
             }
           candidate_list.push_back(c);
         }
-      finish_setup("the candidate set is empty");
+      if (!allow_empty)
+        finish_setup("the candidate set is empty");
+      else if (!candidate_list.empty())
+        finish_setup("");
     }
 
 

@@ -234,29 +234,100 @@ namespace impactfe
     // C: every DoF of every candidate, so that H x of any set of candidates
     // lies in C; each node once (a node of side B may serve several
     // candidates), in the order the dense complement keeps.
+    // With a contact search during the run, C holds the DoFs of every node
+    // it may pair (DistributedContact::potential_contact_nodes()) first.
     template <int dim>
     void
     DistributedImpactSolver<dim>::setup_contact_slots()
     {
-      std::map<types::global_dof_index, unsigned int> slot_of_node;
+      slot_of_node.clear();
       contact_dofs.clear();
+      const auto add_node = [&](const auto &node) {
+        const auto slot =
+          slot_of_node.emplace(node.dofs[0], contact_dofs.size());
+        if (slot.second)
+          contact_dofs.insert(contact_dofs.end(),
+                              node.dofs.begin(),
+                              node.dofs.end());
+      };
+      for (const auto &node : contact.potential_contact_nodes())
+        add_node(node);
+      for (unsigned int c = 0; c < contact.n_candidates(); ++c)
+        for (unsigned int i = 0; i < contact.candidate(c).n_nodes; ++i)
+          add_node(contact.candidate(c).nodes[i]);
+      n_contact_dofs = contact_dofs.size();
+      dense_in.assign(n_contact_dofs, 0.);
+      dense_out.assign(n_contact_dofs, 0.);
+      find_contact_slots();
+    }
+
+
+
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::find_contact_slots()
+    {
       contact_slots.resize(contact.n_candidates());
       for (unsigned int c = 0; c < contact.n_candidates(); ++c)
         for (unsigned int i = 0; i < contact.candidate(c).n_nodes; ++i)
           {
-            const auto &node = contact.candidate(c).nodes[i];
-            const auto  slot =
-              slot_of_node.emplace(node.dofs[0], contact_dofs.size());
-            if (slot.second)
-              contact_dofs.insert(contact_dofs.end(),
-                                  node.dofs.begin(),
-                                  node.dofs.end());
+            const auto slot =
+              slot_of_node.find(contact.candidate(c).nodes[i].dofs[0]);
+            AssertThrow(slot != slot_of_node.end(),
+                        ExcMessage("A contact candidate found during the run "
+                                   "has a node outside the contact boundaries "
+                                   "of the set-up."));
             for (unsigned int d = 0; d < dim; ++d)
-              contact_slots[c][i][d] = slot.first->second + d;
+              contact_slots[c][i][d] = slot->second + d;
           }
-      n_contact_dofs = contact_dofs.size();
-      dense_in.assign(n_contact_dofs, 0.);
-      dense_out.assign(n_contact_dofs, 0.);
+    }
+
+
+
+    // @sect3{New candidates}
+    // After a contact search the candidates are new; what a candidate
+    // carries from step to step (active in the last step, its contact
+    // state, its last impulse) goes with it to its successor.
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::candidates_changed(
+      const std::vector<unsigned int> &previous)
+    {
+      AssertThrow(previous.size() == contact.n_candidates(),
+                  ExcMessage("candidates_changed(): one entry per candidate "
+                             "is needed."));
+      AssertThrow(!newmark && owned_massless_offsets.empty() &&
+                    body.massless_dofs().empty(),
+                  ExcMessage("A contact search during the run needs a "
+                             "theta-scheme without mass redistribution: "
+                             "their impulses carry over to the next step on "
+                             "the candidates' nodes."));
+      const unsigned int n  = contact.n_candidates();
+      const unsigned int nd = contact.n_directions();
+      const unsigned int old_nd =
+        active.empty() ? nd : last_impulses.size() / active.size();
+      const std::vector<bool>         old_active   = active;
+      const std::vector<ContactState> old_states   = last_states;
+      const std::vector<double>       old_impulses = last_impulses;
+      active.assign(n, false);
+      last_states.assign(n, ContactState::open);
+      last_impulses.assign(n * nd, 0.);
+      for (unsigned int c = 0; c < n; ++c)
+        if (const unsigned int p = previous[c];
+            p != numbers::invalid_unsigned_int)
+          {
+            AssertIndexRange(p, old_active.size());
+            active[c]      = old_active[p];
+            last_states[c] = old_states[p];
+            for (unsigned int k = 0; k < std::min(nd, old_nd); ++k)
+              last_impulses[c * nd + k] = old_impulses[p * old_nd + k];
+          }
+      in_lcp.assign(n, false);
+      local_impulses.assign(n * nd, 0.);
+      all_candidates.resize(n);
+      std::iota(all_candidates.begin(), all_candidates.end(), 0u);
+      if (fine.substructured_solver)
+        find_contact_slots();
     }
 
 

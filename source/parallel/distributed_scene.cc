@@ -16,7 +16,10 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
+#include <set>
 #include <sstream>
+#include <tuple>
 #include <type_traits>
 
 namespace impactfe
@@ -166,6 +169,7 @@ namespace impactfe
       const std::string contacts   = prm.get("Obstacle contacts");
       const double      mu         = prm.get_double("Friction coefficient");
       search_distance              = prm.get_double("Contact search distance");
+      search_interval              = prm.get_integer("Contact search interval");
       // each body's value of a material entry (empty: Material's for all)
       std::vector<std::vector<double>> per_body;
       for (const auto &entry : per_body_material_entries)
@@ -183,7 +187,7 @@ namespace impactfe
         {
           AssertThrow(files.empty() && velocities.empty() && pairs.empty() &&
                         contacts.empty() && mu == 0. && !has_material_lists &&
-                        search_distance == 0.,
+                        search_distance == 0. && search_interval == 0,
                       ExcMessage("The subsection 'Bodies' is for Scene = "
                                  "bodies."));
           return;
@@ -268,7 +272,7 @@ namespace impactfe
       AssertThrow(!body_pairs.empty() || !contacts.empty(),
                   ExcMessage("Bodies: neither 'Contact pairs' nor 'Obstacle "
                              "contacts' names a contact."));
-      AssertThrow(search_distance == 0. ||
+      AssertThrow(search_distance == 0. || search_interval > 0 ||
                     std::any_of(body_pairs.begin(),
                                 body_pairs.end(),
                                 [](const BodyPair &pair) {
@@ -278,7 +282,8 @@ namespace impactfe
                                            numbers::invalid_unsigned_int;
                                 }),
                   ExcMessage("Bodies: 'Contact search distance' is for "
-                             "'Contact pairs' with 'all', and none has it."));
+                             "'Contact pairs' with 'all' or 'Contact search "
+                             "interval' > 0, and there is neither."));
       // the obstacle's coefficient is filled in once it is read (-1 here)
       for (const std::string &token : Utilities::split_string_list(contacts))
         {
@@ -443,7 +448,19 @@ namespace impactfe
                         "body's nodes on boundary id 2 against every other "
                         "body's boundary id 3), the largest distance of a "
                         "node from the other body's boundary at which it "
-                        "becomes a candidate [m].");
+                        "becomes a candidate; with 'Contact search "
+                        "interval' > 0 also for the named pairs in the "
+                        "searches during the run [m].");
+      prm.declare_entry(
+        "Contact search interval",
+        "0",
+        Patterns::Integer(0),
+        "Scene = bodies: every this many steps the pairs are made again in "
+        "the current configuration (the vertices at X + u): large sliding, "
+        "and bodies that start apart; 0: once, at t = 0 (small sliding). A "
+        "pair with 'all' must then reach, with 'Contact search distance', "
+        "what the bodies approach in this many steps. Needs a theta-scheme "
+        "without mass redistribution [-].");
       prm.declare_entry("Friction coefficient",
                         "0",
                         Patterns::Double(),
@@ -552,6 +569,14 @@ namespace impactfe
         obstacle.parse_parameters(prm, dimension);
       linear_solver.parse_parameters(prm);
       box.parse_parameters(prm);
+      AssertThrow(search_interval == 0 ||
+                    (scene.time_stepping.scheme != Scheme::newmark &&
+                     !scene.discretization.mass_redistribution),
+                  ExcMessage("Bodies: 'Contact search interval' = " +
+                             std::to_string(search_interval) +
+                             " needs a theta-scheme without mass "
+                             "redistribution (their impulses carry over to "
+                             "the next step on the candidates' nodes)."));
       if (several_bodies)
         {
           AssertThrow(initial_velocity.empty() && !mesh.from_file(),
@@ -715,9 +740,8 @@ namespace impactfe
         {
           const double       thickness = dim == 2 ? parameters.thickness : 1.;
           const unsigned int n         = n_bodies();
-          std::vector<std::unique_ptr<ElasticBody<dim>>> serial_bodies;
-          std::vector<const ElasticBody<dim> *>          bodies;
-          std::vector<const Triangulation<dim> *>        meshes;
+          std::vector<const Triangulation<dim> *> meshes;
+          serial_bodies.clear();
           vertex_offsets.clear();
           for (unsigned int b = 0; b < n; ++b)
             {
@@ -735,92 +759,17 @@ namespace impactfe
               vertex_offsets.push_back(b == 0 ? 0 :
                                                 vertex_offsets.back() +
                                                   meshes.back()->n_vertices());
-              bodies.push_back(serial_bodies.back().get());
               meshes.push_back(&serial_bodies.back()->triangulation());
             }
           merge_body_meshes<dim>(meshes, tria);
 
           // the obstacle, if a body touches it (its size: the bodies')
-          const auto &touching = parameters.obstacle_contacts;
-          if (!touching.empty())
+          if (!parameters.obstacle_contacts.empty())
             obstacle = parameters.obstacle.create<dim>(body_size());
-          serial_candidates = std::make_unique<ContactSet>(
-            parameters.multibody_friction() ? dim : 1);
-          // pairs with 'all': every ordered pair of bodies whose bounding
-          // boxes come within the search distance (a body against itself
-          // never; 'all:i against all:i' makes only the lower numbered body
-          // side A, so that no two bodies are paired twice)
-          const double                  reach = parameters.search_distance;
-          std::vector<BoundingBox<dim>> boxes;
-          for (const auto *mesh : meshes)
-            {
-              BoundingBox<dim> box(mesh->get_vertices());
-              box.extend(reach);
-              boxes.push_back(box);
-            }
-          // One pair of bodies: the candidates of body a's boundary against
-          // body b's, within @p distance (infinite: every node of a named
-          // pair, which must project).
-          const auto add_pair = [&](const auto        &pair,
-                                    const unsigned int a,
-                                    const unsigned int b,
-                                    const double       distance) {
-            const double mu = pair.friction_coefficient;
-            if (parameters.discretization == "node-to-segment")
-              return serial_candidates->add_node_to_segment(
-                bodies, a, pair.boundary_a, b, pair.boundary_b, mu, distance);
-            if (parameters.discretization == "node-to-face")
-              return serial_candidates->add_node_to_face(
-                bodies, a, pair.boundary_a, b, pair.boundary_b, mu, distance);
-            Tensor<1, dim> normal_of_pair;
-            for (unsigned int d = 0; d < dim; ++d)
-              normal_of_pair[d] = parameters.contact_normal[d];
-            return serial_candidates->add_node_to_node(bodies,
-                                                       a,
-                                                       pair.boundary_a,
-                                                       b,
-                                                       pair.boundary_b,
-                                                       normal_of_pair,
-                                                       mu);
-          };
-          const auto all = numbers::invalid_unsigned_int;
-          for (const auto &pair : parameters.body_pairs)
-            {
-              if (pair.body_a != all && pair.body_b != all)
-                {
-                  add_pair(pair,
-                           pair.body_a,
-                           pair.body_b,
-                           std::numeric_limits<double>::infinity());
-                  continue;
-                }
-              unsigned int found = 0;
-              for (unsigned int a = 0; a < n; ++a)
-                for (unsigned int b = 0; b < n; ++b)
-                  if (a != b && (pair.body_a == all || pair.body_a == a) &&
-                      (pair.body_b == all || pair.body_b == b) &&
-                      !(pair.body_a == all && pair.body_b == all &&
-                        pair.boundary_a == pair.boundary_b && b < a) &&
-                      boxes[a].get_neighbor_type(boxes[b]) !=
-                        NeighborType::not_neighbors)
-                    found += add_pair(pair, a, b, reach);
-              AssertThrow(found > 0,
-                          ExcMessage(
-                            "Bodies: 'Contact pairs' with 'all' found no node "
-                            "on boundary id " +
-                            std::to_string(pair.boundary_a) +
-                            " within 'Contact search distance' = " +
-                            format_number(reach) + " m of a boundary id " +
-                            std::to_string(pair.boundary_b) +
-                            " of another body."));
-            }
-          for (const auto &contact : touching)
-            serial_candidates->add_node_to_obstacle(
-              bodies,
-              contact.body,
-              contact.boundary,
-              *obstacle,
-              contact.friction_coefficient);
+          serial_candidates = find_candidates(false);
+          // the bodies' meshes are needed again only to search
+          if (parameters.search_interval == 0)
+            serial_bodies.clear();
         }
       else if (parameters.mesh.from_file())
         parameters.mesh.read(tria, parameter_file);
@@ -855,6 +804,267 @@ namespace impactfe
 
     // The obstacle's finite differences need the body's size: the box's
     // length, or the extent of the mesh read from a file, over all ranks.
+    // @sect3{The contact candidates}
+    // The pairs between the bodies and the obstacle contacts, by the serial
+    // ContactSet on the bodies' own meshes (at t = 0 the reference
+    // configuration; in a contact search during the run the current one,
+    // search_contacts()).
+    template <int dim>
+    std::unique_ptr<ContactSet>
+    DistributedScene<dim>::find_candidates(const bool during_run) const
+    {
+      const unsigned int                    n = n_bodies();
+      std::vector<const ElasticBody<dim> *> bodies;
+      for (const auto &serial_body : serial_bodies)
+        bodies.push_back(serial_body.get());
+      auto candidates =
+        std::make_unique<ContactSet>(parameters.multibody_friction() ? dim : 1);
+      // pairs with 'all': every ordered pair of bodies whose bounding
+      // boxes come within the search distance (a body against itself
+      // never; 'all:i against all:i' makes only the lower numbered body
+      // side A, so that no two bodies are paired twice)
+      const double                  reach = parameters.search_distance;
+      std::vector<BoundingBox<dim>> boxes;
+      for (const auto *serial_body : bodies)
+        {
+          BoundingBox<dim> box(serial_body->triangulation().get_vertices());
+          box.extend(reach);
+          boxes.push_back(box);
+        }
+      // One pair of bodies: the candidates of body a's boundary against
+      // body b's, within @p distance (infinite: every node of a named
+      // pair, which must project).
+      const auto add_pair = [&](const auto        &pair,
+                                const unsigned int a,
+                                const unsigned int b,
+                                const double       distance) {
+        const double mu = pair.friction_coefficient;
+        // in the deformed configuration a closed contact may have sunk
+        // into the other side (a corner sliding onto a segment the other
+        // body has not pressed down): pair it as long as it lies within
+        // the search distance
+        const double sunk = during_run ? distance : -1.;
+        if (parameters.discretization == "node-to-segment")
+          return candidates->add_node_to_segment(
+            bodies, a, pair.boundary_a, b, pair.boundary_b, mu, distance, sunk);
+        if (parameters.discretization == "node-to-face")
+          return candidates->add_node_to_face(
+            bodies, a, pair.boundary_a, b, pair.boundary_b, mu, distance, sunk);
+        Tensor<1, dim> normal_of_pair;
+        for (unsigned int d = 0; d < dim; ++d)
+          normal_of_pair[d] = parameters.contact_normal[d];
+        return candidates->add_node_to_node(
+          bodies, a, pair.boundary_a, b, pair.boundary_b, normal_of_pair, mu);
+      };
+      const auto all = numbers::invalid_unsigned_int;
+      for (const auto &pair : parameters.body_pairs)
+        {
+          // a named pair: every node, which must project at t = 0; in a
+          // search during the run those within the search distance, if
+          // one is given (a node may have slid off the other body)
+          if (pair.body_a != all && pair.body_b != all)
+            {
+              add_pair(pair,
+                       pair.body_a,
+                       pair.body_b,
+                       during_run && reach > 0. ?
+                         reach :
+                         std::numeric_limits<double>::infinity());
+              continue;
+            }
+          unsigned int found = 0;
+          for (unsigned int a = 0; a < n; ++a)
+            for (unsigned int b = 0; b < n; ++b)
+              if (a != b && (pair.body_a == all || pair.body_a == a) &&
+                  (pair.body_b == all || pair.body_b == b) &&
+                  !(pair.body_a == all && pair.body_b == all &&
+                    pair.boundary_a == pair.boundary_b && b < a) &&
+                  boxes[a].get_neighbor_type(boxes[b]) !=
+                    NeighborType::not_neighbors)
+                found += add_pair(pair, a, b, reach);
+          // with searches during the run, bodies may start apart
+          AssertThrow(found > 0 || parameters.search_interval > 0,
+                      ExcMessage(
+                        "Bodies: 'Contact pairs' with 'all' found no node "
+                        "on boundary id " +
+                        std::to_string(pair.boundary_a) +
+                        " within 'Contact search distance' = " +
+                        format_number(reach) + " m of a boundary id " +
+                        std::to_string(pair.boundary_b) + " of another body."));
+        }
+      for (const auto &contact : parameters.obstacle_contacts)
+        candidates->add_node_to_obstacle(bodies,
+                                         contact.body,
+                                         contact.boundary,
+                                         *obstacle,
+                                         contact.friction_coefficient);
+      return candidates;
+    }
+
+
+
+    // What a contact search during the run needs: the DoFs of the
+    // vertices this rank owns (to gather u), and the nodes it may pair,
+    // every vertex on a boundary that a pair or an obstacle contact names
+    // (the substructured solver's contact DoFs).
+    template <int dim>
+    void
+    DistributedScene<dim>::prepare_contact_searches()
+    {
+      const IndexSet &owned = body.locally_owned_dofs();
+      owned_vertex_dofs.clear();
+      for (const auto &cell : body.dof_handler().active_cell_iterators())
+        if (cell->is_locally_owned() || cell->is_ghost())
+          for (const unsigned int v : cell->vertex_indices())
+            if (owned.is_element(cell->vertex_dof_index(v, 0)))
+              for (unsigned int d = 0; d < dim; ++d)
+                owned_vertex_dofs[cell->vertex_index(v)][d] =
+                  cell->vertex_dof_index(v, d);
+
+      reference_vertices.clear();
+      for (const auto &serial_body : serial_bodies)
+        reference_vertices.push_back(
+          serial_body->triangulation().get_vertices());
+
+      std::set<unsigned int> vertices;
+      const auto             add_boundary = [&](const unsigned int       b,
+                                    const types::boundary_id boundary) {
+        for (const auto &cell :
+             serial_bodies[b]->triangulation().active_cell_iterators())
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary() && face->boundary_id() == boundary)
+              for (const unsigned int i : face->vertex_indices())
+                vertices.insert(vertex_offsets[b] + face->vertex_index(i));
+      };
+      const auto all = numbers::invalid_unsigned_int;
+      for (const auto &pair : parameters.body_pairs)
+        for (unsigned int b = 0; b < n_bodies(); ++b)
+          {
+            if (pair.body_a == all || pair.body_a == b)
+              add_boundary(b, pair.boundary_a);
+            if (pair.body_b == all || pair.body_b == b)
+              add_boundary(b, pair.boundary_b);
+          }
+      for (const auto &touching : parameters.obstacle_contacts)
+        add_boundary(touching.body, touching.boundary);
+      contact.set_potential_contact_vertices(
+        body, std::vector<unsigned int>(vertices.begin(), vertices.end()));
+    }
+
+
+
+    // @sect4{Contact search during the run}
+    // Every `Contact search interval` steps: the bodies' meshes are moved
+    // to X + u (u gathered at every vertex on every rank), the candidates
+    // are found there as at t = 0, referred back to the reference
+    // configuration (ContactSet::refer_to_reference_configuration(): the
+    // same gaps, frames of the current configuration), and replace the
+    // old ones; a candidate of the same node of body a against body b
+    // keeps its predecessor's contact state. The substructured solver's
+    // factors stay: its contact DoFs hold every node of the searched
+    // boundaries (setup_system()).
+    template <int dim>
+    void
+    DistributedScene<dim>::search_contacts()
+    {
+      const auto start = std::chrono::steady_clock::now();
+      // u at every vertex of the merged mesh, on every rank
+      std::vector<double> vertex_displacement(
+        body.triangulation().n_vertices() * dim, 0.);
+      const DistributedVector &u = solver->displacement();
+      for (const auto &[vertex, dofs] : owned_vertex_dofs)
+        for (unsigned int d = 0; d < dim; ++d)
+          vertex_displacement[vertex * dim + d] = u[dofs[d]];
+      Utilities::MPI::sum(vertex_displacement, comm, vertex_displacement);
+      const auto displacement = [&](const unsigned int b,
+                                    const unsigned int v) {
+        std::array<double, 3> x{{0., 0., 0.}};
+        for (unsigned int d = 0; d < dim; ++d)
+          x[d] = vertex_displacement[(vertex_offsets[b] + v) * dim + d];
+        return x;
+      };
+      // to X + u, or back to X exactly (no drift over many searches)
+      const auto move_meshes = [&](const bool displaced) {
+        for (unsigned int b = 0; b < serial_bodies.size(); ++b)
+          for (const auto &cell :
+               serial_bodies[b]->triangulation().active_cell_iterators())
+            for (const unsigned int i : cell->vertex_indices())
+              {
+                const unsigned int          v = cell->vertex_index(i);
+                const std::array<double, 3> w = displacement(b, v);
+                cell->vertex(i)               = reference_vertices[b][v];
+                if (displaced)
+                  for (unsigned int d = 0; d < dim; ++d)
+                    cell->vertex(i)[d] += w[d];
+              }
+      };
+
+      move_meshes(true);
+      std::unique_ptr<ContactSet> found;
+      try
+        {
+          found = find_candidates(true);
+        }
+      catch (const ExceptionBase &e)
+        {
+          std::ostringstream what;
+          e.print_info(what);
+          AssertThrow(false,
+                      ExcMessage("The contact search at t = " +
+                                 format_number(solver->time()) +
+                                 " s failed: " + Utilities::trim(what.str())));
+        }
+      move_meshes(false);
+      found->refer_to_reference_configuration(displacement);
+
+      // each new candidate's predecessor: the same node of body a against
+      // body b (the k-th of them the k-th, should a node meet a body twice)
+      using Key =
+        std::tuple<unsigned int, types::global_dof_index, unsigned int>;
+      std::map<Key, std::vector<unsigned int>> old_candidates;
+      for (unsigned int c = 0; c < contact.n_candidates(); ++c)
+        {
+          const auto &candidate = contact.candidate(c);
+          old_candidates[{candidate.body_a,
+                          candidate.nodes[0].dofs[0],
+                          candidate.body_b}]
+            .push_back(c);
+        }
+      const unsigned int old_count = contact.n_candidates();
+      contact.setup_from_contact_set(body, *found, vertex_offsets, true);
+      std::map<Key, unsigned int> seen;
+      std::vector<unsigned int>   previous(contact.n_candidates(),
+                                         numbers::invalid_unsigned_int);
+      unsigned int                kept = 0;
+      for (unsigned int c = 0; c < contact.n_candidates(); ++c)
+        {
+          const auto        &candidate = contact.candidate(c);
+          const Key          key{candidate.body_a,
+                        candidate.nodes[0].dofs[0],
+                        candidate.body_b};
+          const auto         list = old_candidates.find(key);
+          const unsigned int k    = seen[key]++;
+          if (list != old_candidates.end() && k < list->second.size())
+            {
+              previous[c] = list->second[k];
+              ++kept;
+            }
+        }
+      solver->candidates_changed(previous);
+      ++search_statistics.searches;
+      search_statistics.new_candidates += contact.n_candidates() - kept;
+      search_statistics.dropped_candidates += old_count - kept;
+      search_statistics.fewest =
+        std::min(search_statistics.fewest, contact.n_candidates());
+      search_statistics.most =
+        std::max(search_statistics.most, contact.n_candidates());
+      search_statistics.seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
+    }
+
+
+
     template <int dim>
     double
     DistributedScene<dim>::body_size() const
@@ -898,8 +1108,11 @@ namespace impactfe
         {
           contact.setup_from_contact_set(body,
                                          *serial_candidates,
-                                         vertex_offsets);
+                                         vertex_offsets,
+                                         parameters.search_interval > 0);
           serial_candidates.reset();
+          if (parameters.search_interval > 0)
+            prepare_contact_searches();
         }
       else
         {
@@ -1193,6 +1406,7 @@ namespace impactfe
       // weight (w < 1 for Newmark and massless contact nodes, whose
       // impulse acts over this step and, (1 - w)/w of it, over the next)
       const double w = solver->integrator().contact_force_weight();
+      unsigned int steps_since_search = 0;
       // a free-flight step makes k steps h at once, never past the end
       for (unsigned int step = 0; step < n_steps;)
         {
@@ -1201,6 +1415,14 @@ namespace impactfe
           last_report = solver->do_time_step(n_steps - step);
           step += last_report.n_substeps;
           ++n_steps_taken;
+          steps_since_search += last_report.n_substeps;
+          if (parameters.search_interval > 0 &&
+              steps_since_search >= parameters.search_interval &&
+              step < n_steps)
+            {
+              search_contacts();
+              steps_since_search = 0;
+            }
           MPI_Barrier(comm);
           loop_seconds +=
             std::chrono::duration<double>(Clock::now() - start).count();
@@ -1298,6 +1520,18 @@ namespace impactfe
           << "\n"
           << "  Contact candidates owned per rank: " << owned_range.min
           << " to " << owned_range.max << "\n";
+      const auto &searched = search_statistics;
+      if (parameters.search_interval > 0)
+        out << "  Contact searches: " << searched.searches << " (every "
+            << parameters.search_interval << " steps); they added "
+            << searched.new_candidates << " candidates and dropped "
+            << searched.dropped_candidates << "; "
+            << (searched.searches > 0 ?
+                  std::to_string(searched.fewest) + " to " +
+                    std::to_string(searched.most) +
+                    " candidates after a search" :
+                  std::string("none made"))
+            << "\n";
       double speed_scale = 0.;
       for (unsigned int b = 0; b < n_bodies(); ++b)
         speed_scale = std::max(speed_scale, body_launch_velocity(b).norm());
@@ -1418,6 +1652,10 @@ namespace impactfe
             << " per step taken); " << stats.products << " products W x, "
             << stats.cg_iterations << " CG iterations; solves with M~ "
             << stats.solve_seconds << " s (rank 0)"
+            << (searched.searches > 0 ?
+                  "; contact searches " + format_number(searched.seconds) +
+                    " s (rank 0)" :
+                  std::string())
             << (stats.contact_schur_groups > 1 ?
                   "; contact Schur complement in " +
                     std::to_string(stats.contact_schur_groups) +
@@ -1462,6 +1700,12 @@ namespace impactfe
         .add("cg_iterations", double(stats.cg_iterations))
         .add("solve_wall_seconds", stats.solve_seconds)
         .add("contact_schur_groups", double(stats.contact_schur_groups))
+        .add("contact_search_interval", double(parameters.search_interval))
+        .add("contact_searches", double(searched.searches))
+        .add("contact_search_new_candidates", double(searched.new_candidates))
+        .add("contact_search_dropped_candidates",
+             double(searched.dropped_candidates))
+        .add("contact_search_wall_seconds", searched.seconds)
         .add("largest_violation", largest_violation)
         .add("checks_passed", ok ? "yes" : "no");
       if (tracker)
@@ -1475,6 +1719,7 @@ namespace impactfe
               << " contacts=" << contact.n_candidates() << " steps=" << n_steps
               << " seconds_per_step=" << loop_seconds / n_steps_taken
               << " fallbacks=" << stats.fallbacks
+              << " searches=" << searched.searches
               << " largest_violation=" << largest_violation << std::endl;
       AssertThrow(ok, ExcMessage("contact_mpi: a check failed (see above)."));
     }

@@ -415,6 +415,18 @@ main()
            "/block_tower_1.msh\n  set Contact pairs = all:2 against all:3\n  "
            "set Contact search distance = 0.05\nend\n",
            mpi);
+  // searches during the run: not with mass redistribution (its impulses
+  // carry over on the candidates' nodes), not for one body
+  run_case("mpi_bodies_search_interval_mass_redistribution",
+           three_bars +
+             "  set Contact pairs = 1:1 against 2:0\n  set Contact search "
+             "interval = 1\nend\nsubsection Discretization\n  set Mass "
+             "redistribution = true\nend\n",
+           mpi);
+  run_case("mpi_search_interval_one_body",
+           "set Dimension = 2\nsubsection Bodies\n  set Contact search "
+           "interval = 5\nend\n",
+           mpi);
   run_case("mpi_bodies_negative_pair_friction",
            three_bars +
              "  set Contact pairs = 1:1 against 2:0 with friction -0.1\nend\n",

@@ -12,6 +12,7 @@
 #include <impactfe/contact/rigid_obstacle.h>
 
 #include <array>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -146,6 +147,10 @@ namespace impactfe
      * bodies do not overlap at the reference configuration; if such a node
      * lies inside body B, it throws, naming the node); the others and a
      * missing boundary id on either body are skipped without a message.
+     * A @p max_penetration >= 0 replaces that 1e-6 max_distance: a search
+     * in a deformed configuration (during a run) pairs a node that has
+     * sunk into a side by up to @p max_penetration with it, at a negative
+     * gap, and skips nodes deeper than that without a message.
      * Returns the number of candidates added.
      */
     template <int dim>
@@ -157,7 +162,8 @@ namespace impactfe
       const unsigned int                           body_b,
       const types::boundary_id                     boundary_b,
       const double                                 friction_coefficient = 0.,
-      const double max_distance = std::numeric_limits<double>::infinity());
+      const double max_distance    = std::numeric_limits<double>::infinity(),
+      const double max_penetration = -1.);
 
     /**
      * Node-to-face candidates (3D) between two bodies whose interface
@@ -183,7 +189,8 @@ namespace impactfe
       const unsigned int                           body_b,
       const types::boundary_id                     boundary_b,
       const double                                 friction_coefficient = 0.,
-      const double max_distance = std::numeric_limits<double>::infinity());
+      const double max_distance    = std::numeric_limits<double>::infinity(),
+      const double max_penetration = -1.);
 
     /**
      * Node-to-node candidates between two bodies with matching interface
@@ -201,6 +208,21 @@ namespace impactfe
                      const types::boundary_id                     boundary_b,
                      const Tensor<1, dim>                        &normal,
                      const double friction_coefficient = 0.);
+
+    /**
+     * For candidates found on displaced meshes (a contact search in the
+     * current configuration, the vertices at X + u): refer them to the
+     * reference configuration, keeping the pairing, the frames and the
+     * weights. Side A's position becomes X_A = x_A - u_A, and the initial
+     * gap g_0 = g - n . (u_A - sum_k w_k u_Bk), so that g_0 + H_N^T u is the
+     * gap found at the current u (and H_N^T u keeps measuring from the
+     * reference). @p displacement(body, vertex) gives a vertex's u (3
+     * components, padded).
+     */
+    void
+    refer_to_reference_configuration(
+      const std::function<std::array<double, 3>(unsigned int, unsigned int)>
+        &displacement);
 
     /**
      * Fix the global DoF layout (the block sizes of the bodies) and build

@@ -12,6 +12,8 @@
 #include <impactfe/parallel/distributed_body.h>
 
 #include <array>
+#include <map>
+#include <optional>
 #include <vector>
 
 namespace impactfe
@@ -85,12 +87,29 @@ namespace impactfe
        * gaps and the friction coefficients are the serial programs'), whose
        * vertex v of body b is vertex @p vertex_offsets[b] + v of the merged
        * mesh. Each rank finds the DoFs of the vertices it owns; all are
-       * gathered.
+       * gathered. The local directions are the set's. With @p allow_empty
+       * (a contact search during the run) the set may be empty. Collective;
+       * it replaces the candidates.
        */
       void
       setup_from_contact_set(const DistributedElasticBody<dim> &body,
                              const ContactSet                  &pairs,
-                             const std::vector<unsigned int>   &vertex_offsets);
+                             const std::vector<unsigned int>   &vertex_offsets,
+                             const bool allow_empty = false);
+
+      /**
+       * The nodes of the merged mesh's @p vertices (all the vertices that
+       * a contact search during the run may pair): the substructured
+       * solver keeps their DoFs in its contact Schur complement, so that
+       * new candidates among them need no new factorisation. Collective;
+       * call after the set-up.
+       */
+      void
+      set_potential_contact_vertices(const DistributedElasticBody<dim> &body,
+                                     const std::vector<unsigned int> &vertices);
+      /// The nodes set_potential_contact_vertices() listed (empty if none).
+      const std::vector<Node> &
+      potential_contact_nodes() const;
 
       unsigned int
       n_candidates() const;
@@ -148,6 +167,12 @@ namespace impactfe
       gather_boundary_nodes(const DistributedElasticBody<dim> &body,
                             const types::boundary_id           boundary_id,
                             std::vector<Point<dim>>           &positions) const;
+      /// The nodes of the merged mesh's vertices @p needed (with side A's
+      /// reference position to check the numbering, if given).
+      std::map<unsigned int, Node>
+      gather_vertex_nodes(
+        const DistributedElasticBody<dim>                       &body,
+        const std::map<unsigned int, std::optional<Point<dim>>> &needed) const;
       /// Sort by side A's position and check that there are candidates.
       void
       finish_setup(const std::string &where);
@@ -164,6 +189,7 @@ namespace impactfe
       unsigned int                bodies       = 1;
       double                      mu           = 0.;
       std::vector<Candidate>      candidate_list;
+      std::vector<Node>           potential_nodes;
       mutable std::vector<double> partial;
     };
   } // namespace distributed

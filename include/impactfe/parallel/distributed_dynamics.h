@@ -18,6 +18,7 @@
 #include <impactfe/time_integration/time_integrator.h>
 
 #include <array>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -141,6 +142,19 @@ namespace impactfe
       void
       setup();
 
+      /**
+       * The contact's candidates were replaced (a contact search during the
+       * run); @p previous[c] is new candidate c's index in the old list, or
+       * numbers::invalid_unsigned_int: the successors keep their
+       * predecessors' contact state and impulse. Their nodes must be among
+       * the set-up's candidates' nodes or
+       * DistributedContact::potential_contact_nodes() (the substructured
+       * solver's factors are kept). A theta-scheme without mass
+       * redistribution only.
+       */
+      void
+      candidates_changed(const std::vector<unsigned int> &previous);
+
       /// A uniform velocity on the cells with material id @p part (all
       /// cells by default), leaving the other DoFs as they are.
       void
@@ -212,8 +226,10 @@ namespace impactfe
       bool              acceleration_ready = false;
       DistributedVector acceleration, predicted_displacement,
         predicted_velocity;
-      /// The contact DoFs of the substructured solver (each node's once).
-      std::vector<types::global_dof_index> contact_dofs;
+      /// The contact DoFs of the substructured solver (each node's once),
+      /// and each node's first slot among them (by its first DoF).
+      std::vector<types::global_dof_index>            contact_dofs;
+      std::map<types::global_dof_index, unsigned int> slot_of_node;
       /// Mass redistribution: the offsets in this rank's part of the
       /// vectors of the massless DoFs it owns; every candidate (for the
       /// last impulse's carry, H P^i).
@@ -254,6 +270,9 @@ namespace impactfe
       /// The contact DoFs and each candidate's slots among them.
       void
       setup_contact_slots();
+      /// Each candidate's slots among the contact DoFs.
+      void
+      find_contact_slots();
       /// The substructured solver of the level's M~.
       void
       setup_substructured_solver(StepOperators &level);

@@ -17,6 +17,8 @@
 #include <impactfe/scenes/rigid_block.h>
 
 #include <array>
+#include <limits>
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
@@ -77,8 +79,10 @@ namespace impactfe
       std::vector<std::vector<double>> body_velocities;
       /// body_a or body_b numbers::invalid_unsigned_int: 'all' (every
       /// body, within search_distance [m]).
-      std::vector<BodyPair>        body_pairs;
-      double                       search_distance = 0.;
+      std::vector<BodyPair> body_pairs;
+      double                search_distance = 0.;
+      /// Steps between two contact searches during the run (0: once).
+      unsigned int                 search_interval = 0;
       std::vector<ObstacleContact> obstacle_contacts;
       /// Whether any pair or obstacle contact has friction.
       bool
@@ -142,6 +146,17 @@ namespace impactfe
     private:
       void
       make_grid();
+      /// Scene = two bodies or bodies: the candidates on the bodies' own
+      /// meshes (serial_bodies), as they are; @p during_run: a contact
+      /// search during the run (named pairs within the search distance).
+      std::unique_ptr<ContactSet>
+      find_candidates(const bool during_run) const;
+      /// What the searches during the run need (setup_system()).
+      void
+      prepare_contact_searches();
+      /// The candidates found again in the current configuration.
+      void
+      search_contacts();
       void
       setup_system();
       void
@@ -209,8 +224,24 @@ namespace impactfe
       /// Scene = two bodies: the candidates between the bodies and against
       /// the obstacle on the bodies' own meshes (the serial ContactSet),
       /// and where each body's vertices start in the merged mesh.
-      std::unique_ptr<ContactSet>                   serial_candidates;
-      std::vector<unsigned int>                     vertex_offsets;
+      std::unique_ptr<ContactSet> serial_candidates;
+      std::vector<unsigned int>   vertex_offsets;
+      /// The bodies' own meshes (kept for contact searches during the run),
+      /// and the merged mesh's vertices whose DoFs this rank owns.
+      std::vector<std::unique_ptr<ElasticBody<dim>>> serial_bodies;
+      std::vector<std::vector<Point<dim>>>           reference_vertices;
+      std::map<unsigned int, std::array<types::global_dof_index, dim>>
+        owned_vertex_dofs;
+      /// The contact searches during the run: how many, the candidates
+      /// they added and dropped, the fewest and most candidates after one,
+      /// and their wall seconds.
+      struct
+      {
+        unsigned int searches = 0, new_candidates = 0, dropped_candidates = 0,
+                     fewest = std::numeric_limits<unsigned int>::max(),
+                     most   = 0;
+        double seconds      = 0.;
+      } search_statistics;
       std::unique_ptr<RigidObstacle<dim>>           obstacle;
       std::unique_ptr<DistributedImpactSolver<dim>> solver;
       std::unique_ptr<HistoryWriter>                history;
