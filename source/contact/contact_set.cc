@@ -77,6 +77,11 @@ namespace impactfe
           }
         for (unsigned int d = 0; d < 3; ++d)
           c.initial_gap -= c.frame[0][d] * relative[d];
+        // the extent holds the slide from the contact point found here
+        for (unsigned int k = 1; k < 3; ++k)
+          for (unsigned int d = 0; d < 3; ++d)
+            for (double &bound : c.tangential_extent[k - 1])
+              bound += c.frame[k][d] * relative[d];
       }
   }
 
@@ -287,6 +292,55 @@ namespace impactfe
 
 
 
+  // The box's corners bound every point of side B's boundary, so their
+  // projections on a tangent bound the slide that keeps side A above it.
+  template <int dim>
+  void
+  ContactSet::set_tangential_extent(const ElasticBody<dim> &B,
+                                    const BoundingBox<dim> &box_of_b)
+  {
+    ContactCandidate &c = candidate_list.back();
+    Point<dim>        contact_point;
+    for (unsigned int k = 0; k < c.n_vertices_b; ++k)
+      contact_point +=
+        c.weights_b[k] * (vertex_position(B, c.vertices_b[k]) - Point<dim>());
+    for (unsigned int k = 1; k < dim; ++k)
+      {
+        auto &range = c.tangential_extent[k - 1];
+        range       = {{std::numeric_limits<double>::max(),
+                        std::numeric_limits<double>::lowest()}};
+        for (unsigned int corner = 0; corner < (1u << dim); ++corner)
+          {
+            double s = 0.;
+            for (unsigned int d = 0; d < dim; ++d)
+              s += c.frame[k][d] * (((corner >> d) & 1u) ?
+                                      box_of_b.get_boundary_points().second[d] :
+                                      box_of_b.get_boundary_points().first[d]) -
+                   c.frame[k][d] * contact_point[d];
+            range[0] = std::min(range[0], s);
+            range[1] = std::max(range[1], s);
+          }
+      }
+  }
+
+
+
+  namespace
+  {
+    // The bounding box of a body's vertices on a boundary id.
+    template <int dim>
+    BoundingBox<dim>
+    boundary_box(const ElasticBody<dim> &body, const types::boundary_id id)
+    {
+      std::vector<Point<dim>> points;
+      for (const unsigned int v : boundary_vertices(body, id))
+        points.push_back(vertex_position(body, v));
+      return points.empty() ? BoundingBox<dim>() : BoundingBox<dim>(points);
+    }
+  } // namespace
+
+
+
   // @sect3{Node-to-segment}
   // Each slave node is projected on the master segments; the nearest
   // segment whose parameter xi lies in [0, 1] (up to a small tolerance,
@@ -311,15 +365,16 @@ namespace impactfe
     // how far a node may lie behind a side it is paired with
     const double sunk =
       max_penetration >= 0. ? max_penetration : 1e-6 * max_distance;
-    const auto  vertices_a = side_a_vertices(bodies,
+    const auto             vertices_a = side_a_vertices(bodies,
                                             body_a,
                                             boundary_a,
                                             body_b,
                                             friction_coefficient,
                                             "node-to-segment",
                                             searching);
-    const auto &A          = *bodies[body_a];
-    const auto &B          = *bodies[body_b];
+    const auto            &A          = *bodies[body_a];
+    const auto            &B          = *bodies[body_b];
+    const BoundingBox<dim> box_of_b   = boundary_box(B, boundary_b);
 
     struct Segment
     {
@@ -407,6 +462,7 @@ namespace impactfe
                       best->normal,
                       (x - projection) * best->normal,
                       friction_coefficient);
+        set_tangential_extent(B, box_of_b);
         ++n_added;
       }
     return n_added;
@@ -439,16 +495,17 @@ namespace impactfe
     const bool   searching = max_distance < std::numeric_limits<double>::max();
     const double sunk =
       max_penetration >= 0. ? max_penetration : 1e-6 * max_distance;
-    const auto   vertices_a = side_a_vertices(bodies,
+    const auto             vertices_a = side_a_vertices(bodies,
                                             body_a,
                                             boundary_a,
                                             body_b,
                                             friction_coefficient,
                                             "node-to-face",
                                             searching);
-    unsigned int n_added    = 0;
-    const auto  &A          = *bodies[body_a];
-    const auto  &B          = *bodies[body_b];
+    unsigned int           n_added    = 0;
+    const auto            &A          = *bodies[body_a];
+    const auto            &B          = *bodies[body_b];
+    const BoundingBox<dim> box_of_b   = boundary_box(B, boundary_b);
     if constexpr (dim == 3)
       {
         struct Face
@@ -663,6 +720,7 @@ namespace impactfe
                           Tensor<1, dim>(normal),
                           (x - y) * normal,
                           friction_coefficient);
+            set_tangential_extent(B, box_of_b);
             ++n_added;
           }
       }
@@ -684,9 +742,10 @@ namespace impactfe
   {
     const auto vertices_a = side_a_vertices(
       bodies, body_a, boundary_a, body_b, friction_coefficient, "node-to-node");
-    const auto &A          = *bodies[body_a];
-    const auto &B          = *bodies[body_b];
-    const auto  vertices_b = boundary_vertices(B, boundary_b);
+    const auto            &A          = *bodies[body_a];
+    const auto            &B          = *bodies[body_b];
+    const BoundingBox<dim> box_of_b   = boundary_box(B, boundary_b);
+    const auto             vertices_b = boundary_vertices(B, boundary_b);
     AssertThrow(!vertices_b.empty(),
                 ExcMessage("Contact: body '" + B.name() +
                            "' has no vertex on boundary id " +
@@ -738,6 +797,7 @@ namespace impactfe
                       n,
                       (xa - vertex_position(B, partner)) * n,
                       friction_coefficient);
+        set_tangential_extent(B, box_of_b);
       }
     return vertices_a.size();
   }

@@ -5,6 +5,7 @@
 #include <impactfe/utilities/program.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 #include <set>
@@ -282,6 +283,7 @@ namespace impactfe
           c.frame                = pair.frame;
           c.initial_gap          = pair.initial_gap;
           c.friction_coefficient = pair.friction_coefficient;
+          c.tangential_extent    = pair.tangential_extent;
           c.body_a               = pair.body_a;
           c.body_b               = pair.body_b;
           c.nodes[0] = nodes.at(merged_vertex(pair.body_a, pair.vertex_a));
@@ -394,6 +396,39 @@ namespace impactfe
                      owned_part(candidate_list[c], 0, u);
       gap.resize(partial.size());
       Utilities::MPI::sum(partial, communicator, gap);
+    }
+
+
+
+    // Per candidate between bodies and tangent, the slide s = t_k . (u_A -
+    // sum w u_B) from the contact point of the set-up; how far it lies
+    // outside the candidate's tangential_extent, as a fraction of the
+    // extent's length (side B's contact boundary along t_k).
+    template <int dim>
+    double
+    DistributedContact<dim>::largest_slide_off(const DistributedVector &u) const
+    {
+      partial.assign(candidate_list.size() * (dim - 1), 0.);
+      for (unsigned int c = 0; c < candidate_list.size(); ++c)
+        if (candidate_list[c].body_b != numbers::invalid_unsigned_int)
+          for (unsigned int k = 1; k < dim; ++k)
+            partial[c * (dim - 1) + k - 1] =
+              owned_part(candidate_list[c], k, u);
+      std::vector<double> slide(partial.size());
+      Utilities::MPI::sum(partial, communicator, slide);
+      double largest = 0.;
+      for (unsigned int c = 0; c < candidate_list.size(); ++c)
+        if (candidate_list[c].body_b != numbers::invalid_unsigned_int)
+          for (unsigned int k = 1; k < dim; ++k)
+            {
+              const auto  &range  = candidate_list[c].tangential_extent[k - 1];
+              const double s      = slide[c * (dim - 1) + k - 1];
+              const double length = range[1] - range[0];
+              if (length > 0. && std::isfinite(length))
+                largest = std::max(
+                  {largest, (s - range[1]) / length, (range[0] - s) / length});
+            }
+      return largest;
     }
 
 

@@ -1415,6 +1415,12 @@ namespace impactfe
           last_report = solver->do_time_step(n_steps - step);
           step += last_report.n_substeps;
           ++n_steps_taken;
+          // small sliding keeps the pairs of t = 0: watch that no node
+          // slides off the other body's contact boundary
+          if (parameters.multibody() && parameters.search_interval == 0)
+            largest_slide_off =
+              std::max(largest_slide_off,
+                       contact.largest_slide_off(solver->displacement()));
           steps_since_search += last_report.n_substeps;
           if (parameters.search_interval > 0 &&
               steps_since_search >= parameters.search_interval &&
@@ -1595,6 +1601,26 @@ namespace impactfe
                     parameters.scene.verification.max_impulse_balance_error);
       ok &=
         print_check(out, "contact verification", largest_violation, "<=", 1e-8);
+      // a node past the end of the other body's contact boundary is held
+      // by that boundary extended (a block sliding on in the air): not a
+      // failed check, since small sliding is the scene's own choice, but
+      // never silent
+      if (parameters.multibody() && parameters.search_interval == 0)
+        {
+          out << "  Small sliding (the pairs of t = 0): largest slide of a "
+                 "node off the other body's contact boundary "
+              << format_figure(largest_slide_off, 1e-12)
+              << " of that boundary's length\n";
+          if (largest_slide_off > 0.01)
+            out << "  Warning: nodes slid off the other body's contact "
+                   "boundary by more than 1 % of its length; the pairs of "
+                   "t = 0 hold them on that boundary extended. "
+                << (parameters.several_bodies ?
+                      "Set 'Bodies/Contact search interval' to make the "
+                      "pairs again during the run.\n" :
+                      "Scene = bodies with 'Contact search interval' makes "
+                      "the pairs again during the run.\n");
+        }
       // relative to the initial energy, or to the largest stored one when
       // the body starts at rest
       const double energy_scale =
@@ -1700,6 +1726,7 @@ namespace impactfe
         .add("cg_iterations", double(stats.cg_iterations))
         .add("solve_wall_seconds", stats.solve_seconds)
         .add("contact_schur_groups", double(stats.contact_schur_groups))
+        .add("largest_slide_off", largest_slide_off)
         .add("contact_search_interval", double(parameters.search_interval))
         .add("contact_searches", double(searched.searches))
         .add("contact_search_new_candidates", double(searched.new_candidates))

@@ -21,9 +21,14 @@ sliding off the end of a slab). Checks
 * the same scene with the pairs of t = 0 ('Contact search interval' = 0)
   is the known wrong answer of small sliding: the block's nodes keep
   their segments, extended past the end, and the slab still carries its
-  weight at the end (force on the block within 25 % of m g). The driver
-  checks that too, so that a change of either mode shows."""
+  weight at the end (force on the block within 25 % of m g). That run must
+  say so: its log has the warning that nodes slid off the slab's contact
+  boundary, by more than 20 % of its length (the block's last node ends
+  about 3 cm past the end of the 0.1 m slab), and summary.json's
+  largest_slide_off agrees. The driver checks all of it, so that a change
+  of either mode shows."""
 import csv
+import json
 import os
 import shlex
 import shutil
@@ -102,6 +107,17 @@ def main():
     print(f"with the pairs of t = 0 the slab carries {floating / (MASS * G):.3f}"
           f" m g at the end (the block slides on in the air)")
     ok = ok and abs(floating / (MASS * G) - 1.) <= 0.25
+    log = open(os.path.join(a.work, "once", "log")).read()
+    summary = json.load(open(os.path.join(a.work, "once", "results",
+                                          "summary.json")))
+    slide = summary["largest_slide_off"]
+    warned = "Warning: nodes slid off the other body's contact boundary" in log
+    print(f"and it warns that nodes slid off the slab: {warned}, by "
+          f"{slide:.3f} of the slab's length")
+    ok = ok and warned and slide > 0.2
+    searched = json.load(open(os.path.join(a.work, "two", "results",
+                                           "summary.json")))
+    ok = ok and searched["contact_searches"] == 299
     print("OK" if ok else "WRONG")
     return 0 if ok else 1
 

@@ -1,6 +1,7 @@
 #ifndef impactfe_contact_contact_set_h
 #define impactfe_contact_contact_set_h
 
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
@@ -62,6 +63,17 @@ namespace impactfe
     std::array<std::array<double, 3>, 3> frame{};
     double                               initial_gap          = 0.;
     double                               friction_coefficient = 0.;
+    /// Between two bodies: per tangent k (frame rows 1, 2), the range of
+    /// t_k . (x - x_c) over the bounding box of side B's contact boundary,
+    /// x_c the contact point, where the candidate was made: how far side A
+    /// may slide from the contact point before it has certainly left side
+    /// B's contact boundary (small sliding keeps the pair of t = 0, whose
+    /// side B is then extrapolated). Unbounded against an obstacle.
+    std::array<std::array<double, 2>, 2> tangential_extent{
+      {{{-std::numeric_limits<double>::infinity(),
+         std::numeric_limits<double>::infinity()}},
+       {{-std::numeric_limits<double>::infinity(),
+         std::numeric_limits<double>::infinity()}}}};
 
     bool
     against_rigid_obstacle() const
@@ -275,6 +287,13 @@ namespace impactfe
     obstacle_contact_dofs(const unsigned int n_blocks) const;
 
   private:
+    /// The last candidate's tangential_extent, side B's contact boundary
+    /// having the bounding box @p box_of_b.
+    template <int dim>
+    void
+    set_tangential_extent(const ElasticBody<dim> &B,
+                          const BoundingBox<dim> &box_of_b);
+
     struct Entry
     {
       unsigned int            block;

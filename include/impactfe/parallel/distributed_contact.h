@@ -58,6 +58,8 @@ namespace impactfe
         std::array<std::array<double, 3>, 3> frame{};
         double                               initial_gap          = 0.;
         double                               friction_coefficient = 0.;
+        /// ContactCandidate::tangential_extent (between bodies).
+        std::array<std::array<double, 2>, 2> tangential_extent{};
         /// The bodies (parts of the mesh) of sides A and B; B is
         /// numbers::invalid_unsigned_int for a rigid obstacle.
         unsigned int body_a = 0, body_b = numbers::invalid_unsigned_int;
@@ -131,6 +133,16 @@ namespace impactfe
       void
       gaps(const DistributedVector &displacement,
            std::vector<double>     &gap) const;
+      /**
+       * Small sliding keeps the pairs of the set-up: how far a node between
+       * bodies has slid off side B's contact boundary at the displacement
+       * @p u, the largest over the candidates and tangents of the distance
+       * of its slide outside ContactCandidate::tangential_extent, as a
+       * fraction of that extent's length (0 while every node stays within;
+       * obstacles do not count). Collective.
+       */
+      double
+      largest_slide_off(const DistributedVector &u) const;
       /// Per candidate, n . v (replicated).
       void
       normal_velocities(const DistributedVector &velocity,

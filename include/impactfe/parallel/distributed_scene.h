@@ -252,6 +252,9 @@ namespace impactfe
       DistributedVector                             work;
       double normal_impulse = 0., tangential_impulse = 0., balance_error = 0.,
              largest_turn = 0.;
+      /// Small sliding: DistributedContact::largest_slide_off() over the
+      /// run.
+      double largest_slide_off = 0.;
       /// Scene = impact: kinetic + elastic energy minus the loads' work,
       /// at t = 0 and at the last step, its largest increase in a step, the
       /// largest kinetic + elastic energy (the scale when the body starts
