@@ -118,7 +118,8 @@ namespace impactfe
     void
     check_not_inside(const ElasticBody<dim> &A,
                      const ElasticBody<dim> &B,
-                     const Point<dim>       &x)
+                     const Point<dim>       &x,
+                     const std::string      &how = "at t = 0")
     {
       for (const auto &cell : B.triangulation().active_cell_iterators())
         if (cell->point_inside(x))
@@ -130,7 +131,7 @@ namespace impactfe
                         ExcMessage("Contact search: the node of body '" +
                                    A.name() + "' at " + where.str() +
                                    ") lies inside body '" + B.name() +
-                                   "': the bodies overlap at t = 0."));
+                                   "': the bodies overlap " + how + "."));
           }
     }
 
@@ -365,6 +366,10 @@ namespace impactfe
     // how far a node may lie behind a side it is paired with
     const double sunk =
       max_penetration >= 0. ? max_penetration : 1e-6 * max_distance;
+    const std::string overlap_text =
+      max_penetration >= 0. ?
+        "by more than " + format_number(max_penetration) + " m" :
+        "at t = 0";
     const auto             vertices_a = side_a_vertices(bodies,
                                             body_a,
                                             boundary_a,
@@ -421,10 +426,12 @@ namespace impactfe
             const double signed_distance = (x - s.p1) * s.normal;
             // a search pairs a node only with the outer side of a segment:
             // the bodies do not overlap at the reference configuration
+            // (in a search during the run, max_penetration >= 0, a node
+            // deeper than that is checked at any depth)
             if (searching && signed_distance < -sunk)
               {
-                behind = behind || (-signed_distance <= max_distance &&
-                                    max_penetration < 0.);
+                behind = behind || -signed_distance <= max_distance ||
+                         max_penetration >= 0.;
                 continue;
               }
             const double distance = std::abs(signed_distance);
@@ -436,7 +443,7 @@ namespace impactfe
               }
           }
         if (behind)
-          check_not_inside(A, B, x);
+          check_not_inside(A, B, x, overlap_text);
         if (searching && (best == nullptr || best_distance > max_distance))
           continue;
         AssertThrow(best != nullptr,
@@ -495,6 +502,10 @@ namespace impactfe
     const bool   searching = max_distance < std::numeric_limits<double>::max();
     const double sunk =
       max_penetration >= 0. ? max_penetration : 1e-6 * max_distance;
+    const std::string overlap_text =
+      max_penetration >= 0. ?
+        "by more than " + format_number(max_penetration) + " m" :
+        "at t = 0";
     const auto             vertices_a = side_a_vertices(bodies,
                                             body_a,
                                             boundary_a,
@@ -666,8 +677,8 @@ namespace impactfe
               // a search: only the outer side of the face (as in 2D)
               if (searching && (x - y) * n < -sunk * n.norm())
                 {
-                  behind = behind || (x.distance(y) <= max_distance &&
-                                      max_penetration < 0.);
+                  behind = behind || x.distance(y) <= max_distance ||
+                           max_penetration >= 0.;
                   return;
                 }
               if (best == nullptr || x.distance(y) < best_distance)
@@ -685,7 +696,7 @@ namespace impactfe
               for (const Face &face : faces)
                 try_face(face);
             if (behind)
-              check_not_inside(A, B, Point<dim>(x));
+              check_not_inside(A, B, Point<dim>(x), overlap_text);
             if (searching && (best == nullptr || best_distance > max_distance))
               continue;
             AssertThrow(best != nullptr,

@@ -449,8 +449,8 @@ namespace impactfe
                         "body's boundary id 3), the largest distance of a "
                         "node from the other body's boundary at which it "
                         "becomes a candidate; with 'Contact search "
-                        "interval' > 0 also for the named pairs in the "
-                        "searches during the run [m].");
+                        "interval' > 0 (which needs it) also for the named "
+                        "pairs [m].");
       prm.declare_entry(
         "Contact search interval",
         "0",
@@ -569,6 +569,12 @@ namespace impactfe
         obstacle.parse_parameters(prm, dimension);
       linear_solver.parse_parameters(prm);
       box.parse_parameters(prm);
+      AssertThrow(search_interval == 0 || search_distance > 0.,
+                  ExcMessage("Bodies: 'Contact search interval' = " +
+                             std::to_string(search_interval) +
+                             " needs 'Contact search distance' > 0 (how far "
+                             "from the other body a node becomes a "
+                             "candidate)."));
       AssertThrow(search_interval == 0 ||
                     (scene.time_stepping.scheme != Scheme::newmark &&
                      !scene.discretization.mass_redistribution),
@@ -841,9 +847,13 @@ namespace impactfe
         const double mu = pair.friction_coefficient;
         // in the deformed configuration a closed contact may have sunk
         // into the other side (a corner sliding onto a segment the other
-        // body has not pressed down): pair it as long as it lies within
-        // the search distance
-        const double sunk = during_run ? distance : -1.;
+        // body has not pressed down): pair it if it lies within
+        // 'Maximum penetration' (if given; else a tenth of the search
+        // distance); a node deeper inside stops the run
+        const double bound = parameters.scene.verification.max_penetration;
+        const double sunk  = !during_run ? -1. :
+                             bound >= 0. ? std::min(bound, distance) :
+                                           0.1 * distance;
         if (parameters.discretization == "node-to-segment")
           return candidates->add_node_to_segment(
             bodies, a, pair.boundary_a, b, pair.boundary_b, mu, distance, sunk);
@@ -859,15 +869,15 @@ namespace impactfe
       const auto all = numbers::invalid_unsigned_int;
       for (const auto &pair : parameters.body_pairs)
         {
-          // a named pair: every node, which must project at t = 0; in a
-          // search during the run those within the search distance, if
-          // one is given (a node may have slid off the other body)
+          // a named pair: every node, which must project; with searches
+          // during the run those within the search distance (a node may
+          // slide off the other body, the bodies may start apart)
           if (pair.body_a != all && pair.body_b != all)
             {
               add_pair(pair,
                        pair.body_a,
                        pair.body_b,
-                       during_run && reach > 0. ?
+                       parameters.search_interval > 0 ?
                          reach :
                          std::numeric_limits<double>::infinity());
               continue;
@@ -1411,8 +1421,23 @@ namespace impactfe
       for (unsigned int step = 0; step < n_steps;)
         {
           MPI_Barrier(comm);
-          start       = Clock::now();
-          last_report = solver->do_time_step(n_steps - step);
+          start = Clock::now();
+          // searches before the step (the output of a step shows the
+          // impulses of its own candidates); a free-flight step never
+          // jumps past the next search
+          unsigned int most_substeps = n_steps - step;
+          if (parameters.search_interval > 0)
+            {
+              if (steps_since_search >= parameters.search_interval)
+                {
+                  search_contacts();
+                  steps_since_search = 0;
+                }
+              most_substeps =
+                std::min(most_substeps,
+                         parameters.search_interval - steps_since_search);
+            }
+          last_report = solver->do_time_step(most_substeps);
           step += last_report.n_substeps;
           ++n_steps_taken;
           // small sliding keeps the pairs of t = 0: watch that no node
@@ -1422,13 +1447,6 @@ namespace impactfe
               std::max(largest_slide_off,
                        contact.largest_slide_off(solver->displacement()));
           steps_since_search += last_report.n_substeps;
-          if (parameters.search_interval > 0 &&
-              steps_since_search >= parameters.search_interval &&
-              step < n_steps)
-            {
-              search_contacts();
-              steps_since_search = 0;
-            }
           MPI_Barrier(comm);
           loop_seconds +=
             std::chrono::duration<double>(Clock::now() - start).count();

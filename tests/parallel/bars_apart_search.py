@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """ctest driver of parallel/bars_apart_search: contact_mpi with Scene =
 bodies and contact searches during the run, on two bars that start apart
-(bars_apart_search.prm: bar 1 is 50 v0 h from bar 2, beyond the search
-distance, so no candidate exists at t = 0). Checks
+(bars_apart_search.prm: bar 1 is 50 v0 h = 0.57 mm from bar 2, beyond the
+search distance of 0.2 mm, so the set-up finds no candidate and the
+searches of the run must find the pair). Checks
 
 * the bars touching at t = 0 with the pair named ('1:1 against 2:0', no
   search, end time 50 h shorter) make the same history, 50 steps later:

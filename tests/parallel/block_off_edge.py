@@ -17,7 +17,13 @@ sliding off the end of a slab). Checks
   contact force to the end, the block falls freely, p_y(t) = p_y(t_1) -
   m g (t - t_1) and p_x constant, to 1e-8 of m v0 at every step; it has
   left the slab's top (its last rows have no block contact) and did so
-  after its centre passed the end (t_1 > 0.01 s);
+  after its centre passed the end (t_1 > 0.015 s: the centre, at 0.07 m,
+  reaches 0.1 m at 0.015 s, slowing by mu g). The free fall follows from
+  the impulse balance once the block's force is zero; what it adds is that
+  the force is zero there, i.e. that the block's candidates are gone. The
+  pair is one-sided (the block's nodes against the slab's top): while the
+  block tips over the edge the slab's corner is not kept out of the block's
+  lower side, which the test does not need;
 * the same scene with the pairs of t = 0 ('Contact search interval' = 0)
   is the known wrong answer of small sliding: the block's nodes keep
   their segments, extended past the end, and the slab still carries its
@@ -101,7 +107,7 @@ def main():
           f"{rows[min(free, len(rows) - 1)]['time']:.4f} s on "
           f"({len(rows) - free} steps); free fall: largest difference "
           f"{fall / scale:.2e} m v0")
-    ok = ok and left and rows[free]["time"] > 0.01 and fall <= 1e-8 * scale
+    ok = ok and left and rows[free]["time"] > 0.015 and fall <= 1e-8 * scale
 
     floating = rows_of(once)[-1]["body_2_force_y"]
     print(f"with the pairs of t = 0 the slab carries {floating / (MASS * G):.3f}"

@@ -420,8 +420,14 @@ main()
   run_case("mpi_bodies_search_interval_mass_redistribution",
            three_bars +
              "  set Contact pairs = 1:1 against 2:0\n  set Contact search "
-             "interval = 1\nend\nsubsection Discretization\n  set Mass "
-             "redistribution = true\nend\n",
+             "interval = 1\n  set Contact search distance = 1e-3\nend\n"
+             "subsection Discretization\n  set Mass redistribution = "
+             "true\nend\n",
+           mpi);
+  run_case("mpi_bodies_search_interval_without_distance",
+           three_bars +
+             "  set Contact pairs = 1:1 against 2:0\n  set Contact search "
+             "interval = 1\nend\n",
            mpi);
   run_case("mpi_search_interval_one_body",
            "set Dimension = 2\nsubsection Bodies\n  set Contact search "
