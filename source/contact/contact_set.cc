@@ -121,6 +121,9 @@ namespace impactfe
                      const Point<dim>       &x,
                      const std::string      &how = "at t = 0")
     {
+      // most nodes behind a side lie outside the other body's box
+      if (!BoundingBox<dim>(B.triangulation().get_vertices()).point_inside(x))
+        return;
       for (const auto &cell : B.triangulation().active_cell_iterators())
         if (cell->point_inside(x))
           {

@@ -202,7 +202,8 @@ namespace impactfe
       for (const unsigned int v : vertices)
         needed.emplace(v, std::nullopt);
       potential_nodes.clear();
-      for (const auto &[vertex, node] : gather_vertex_nodes(body, needed))
+      node_of_vertex = gather_vertex_nodes(body, needed);
+      for (const auto &[vertex, node] : node_of_vertex)
         potential_nodes.push_back(node);
       AssertThrow(potential_nodes.size() == needed.size(),
                   ExcMessage(
@@ -268,9 +269,19 @@ namespace impactfe
                            std::nullopt);
         }
 
-      const std::map<unsigned int, Node> nodes =
-        gather_vertex_nodes(body, needed);
-      AssertThrow(nodes.size() == needed.size(),
+      // the searches during a run pair only vertices whose nodes
+      // set_potential_contact_vertices() found: no gathering then
+      const bool known =
+        !node_of_vertex.empty() &&
+        std::all_of(needed.begin(), needed.end(), [&](const auto &entry) {
+          return node_of_vertex.count(entry.first) > 0;
+        });
+      std::map<unsigned int, Node> gathered;
+      if (!known)
+        gathered = gather_vertex_nodes(body, needed);
+      const std::map<unsigned int, Node> &nodes =
+        known ? node_of_vertex : gathered;
+      AssertThrow(known || nodes.size() == needed.size(),
                   ExcMessage(
                     "Contact: " + std::to_string(needed.size() - nodes.size()) +
                     " contact vertices have no owned DoFs."));

@@ -195,14 +195,15 @@ namespace impactfe
                  const unsigned int       direction,
                  const DistributedVector &field) const;
 
-      MPI_Comm                    communicator = MPI_COMM_SELF;
-      unsigned int                directions   = 1;
-      unsigned int                this_rank    = 0;
-      unsigned int                bodies       = 1;
-      double                      mu           = 0.;
-      std::vector<Candidate>      candidate_list;
-      std::vector<Node>           potential_nodes;
-      mutable std::vector<double> partial;
+      MPI_Comm                     communicator = MPI_COMM_SELF;
+      unsigned int                 directions   = 1;
+      unsigned int                 this_rank    = 0;
+      unsigned int                 bodies       = 1;
+      double                       mu           = 0.;
+      std::vector<Candidate>       candidate_list;
+      std::vector<Node>            potential_nodes;
+      std::map<unsigned int, Node> node_of_vertex;
+      mutable std::vector<double>  partial;
     };
   } // namespace distributed
 } // namespace impactfe
