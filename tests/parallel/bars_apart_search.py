@@ -17,8 +17,10 @@ searches of the run must find the pair). Checks
 * the momenta at the end against the exact 1D solution (bar 1 at rest,
   bar 2 at v0: bars_1d_exact.py, an independent computation) within 5 %
   of m_1 v0;
-* the searches found the five nodes of the end and dropped them after
-  the bars separated (the log's count)."""
+* the searches found the nodes of the end (5; 9 in 3D) and dropped them
+  after the bars separated (the log's count).
+With --dim 3 the same bars of square section, node-to-face (the R-tree
+search, bars_apart_search_3d)."""
 import csv
 import os
 import shlex
@@ -34,13 +36,25 @@ V0, L, H, STEP, SHIFT = 5.13588, 0.254, 0.0254, 2.226e-6, 50
 GAP = V0 * SHIFT * STEP
 
 
-def run(command, prm, make_mesh, work, touching=False):
+def in_3d(text):
+    """The 2D scene as bars of square section (node-to-face)."""
+    text = text.replace("set Dimension = 2", "set Dimension = 3")
+    text = text.replace("subsection Geometry\n  set Thickness = 0.0254\n"
+                        "end\n", "")
+    text = text.replace("5.13588, 0; 0, 0", "5.13588, 0, 0; 0, 0, 0")
+    return text.replace("  set Plane model     = plane stress\n", "")
+
+
+def run(command, prm, dim, make_mesh, work, touching=False):
     os.makedirs(work)
+    across = 4 if dim == 2 else 2
     write_meshes(make_mesh, work,
-                 {"bar_1.msh": (2, 20, 4, -L - (0 if touching else GAP), L,
-                                H),
-                  "bar_2.msh": (2, 20, 4, 0, L, H)})
+                 {"bar_1.msh": (dim, 20, across,
+                                -L - (0 if touching else GAP), L, H),
+                  "bar_2.msh": (dim, 20, across, 0, L, H)})
     text = open(prm).read()
+    if dim == 3:
+        text = in_3d(text)
     if touching:
         text = text.replace("set Contact pairs           = all:1 against "
                             "all:0", "set Contact pairs = 1:1 against 2:0")
@@ -60,11 +74,12 @@ def rows_of(history):
 
 
 def main():
-    a = bodies_arguments()
+    a = bodies_arguments(dim=True)
     mpi = shlex.split(a.mpiexec) + [a.program]
-    one = run([a.program], a.prm, a.make_mesh, os.path.join(a.work, "one"))
-    two = run(mpi, a.prm, a.make_mesh, os.path.join(a.work, "two"))
-    touching = run([a.program], a.prm, a.make_mesh,
+    one = run([a.program], a.prm, a.dim, a.make_mesh,
+              os.path.join(a.work, "one"))
+    two = run(mpi, a.prm, a.dim, a.make_mesh, os.path.join(a.work, "two"))
+    touching = run([a.program], a.prm, a.dim, a.make_mesh,
                    os.path.join(a.work, "touching"), touching=True)
     ok = os.system(f"{sys.executable} {a.compare} {one} {two}") == 0
 
@@ -111,8 +126,10 @@ def main():
     searches = [line for line in open(os.path.join(a.work, "one", "log"))
                 if "Contact searches" in line]
     print(searches[0].strip() if searches else "no search line in the log")
-    ok = ok and bool(searches) and "added 5 candidates and dropped 5" in \
-        searches[0]
+    # the nodes of a bar's end: 5 in 2D, 3 x 3 in 3D
+    n_end = 5 if a.dim == 2 else 9
+    ok = ok and bool(searches) and \
+        f"added {n_end} candidates and dropped {n_end}" in searches[0]
     print("OK" if ok else "WRONG")
     return 0 if ok else 1
 
