@@ -831,33 +831,61 @@ namespace impactfe
     AssertThrow(directions == 1 || directions == dim,
                 ExcMessage("Contact: the number of local directions must be 1 "
                            "(frictionless) or the space dimension."));
+    // frame row k . (u_A - sum_j w_j u_Bj) as entries
+    const auto frame_row = [&](const ContactCandidate &cand,
+                               const unsigned int      k) {
+      std::vector<Entry> row;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double e = cand.frame[k][d];
+          if (e == 0.)
+            continue;
+          row.push_back({cand.body_a,
+                         bodies[cand.body_a]->vertex_dof(cand.vertex_a, d),
+                         e});
+          if (cand.against_rigid_obstacle())
+            continue;
+          for (unsigned int j = 0; j < cand.n_vertices_b; ++j)
+            if (cand.weights_b[j] != 0.)
+              row.push_back(
+                {cand.body_b,
+                 bodies[cand.body_b]->vertex_dof(cand.vertices_b[j], d),
+                 -cand.weights_b[j] * e});
+        }
+      return row;
+    };
     columns.assign(n_columns(), {});
+    slide_rows.assign(2 * candidate_list.size(), {});
     for (unsigned int c = 0; c < candidate_list.size(); ++c)
       {
         const ContactCandidate &cand = candidate_list[c];
         for (unsigned int k = 0; k < directions; ++k)
-          {
-            auto &column = columns[c * directions + k];
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                const double e = cand.frame[k][d];
-                if (e == 0.)
-                  continue;
-                column.push_back(
-                  {cand.body_a,
-                   bodies[cand.body_a]->vertex_dof(cand.vertex_a, d),
-                   e});
-                if (cand.against_rigid_obstacle())
-                  continue;
-                for (unsigned int j = 0; j < cand.n_vertices_b; ++j)
-                  if (cand.weights_b[j] != 0.)
-                    column.push_back(
-                      {cand.body_b,
-                       bodies[cand.body_b]->vertex_dof(cand.vertices_b[j], d),
-                       -cand.weights_b[j] * e});
-              }
-          }
+          columns[c * directions + k] = frame_row(cand, k);
+        if (!cand.against_rigid_obstacle())
+          for (unsigned int k = 1; k < dim; ++k)
+            slide_rows[2 * c + k - 1] = frame_row(cand, k);
       }
+  }
+
+
+
+  double
+  ContactSet::largest_slide_off(const BlockVector<double> &u) const
+  {
+    double largest = 0.;
+    for (unsigned int c = 0; c < candidate_list.size(); ++c)
+      for (unsigned int k = 0; k < 2; ++k)
+        if (!slide_rows.empty() && !slide_rows[2 * c + k].empty())
+          {
+            double slide = 0.;
+            for (const Entry &e : slide_rows[2 * c + k])
+              slide += e.coefficient * u.block(e.block)(e.dof);
+            largest =
+              std::max(largest,
+                       slide_off_fraction(
+                         candidate_list[c].tangential_extent[k], slide));
+          }
+    return largest;
   }
 
 

@@ -254,6 +254,9 @@ namespace impactfe
     contacts.gaps(system.state().displacement, gaps);
     for (const double g : gaps)
       run.max_penetration = std::max(run.max_penetration, -g);
+    run.largest_slide_off =
+      std::max(run.largest_slide_off,
+               contacts.largest_slide_off(system.state().displacement));
 
     // Coulomb, with V_T^{i+1} from the new velocity.
     contacts.local_velocities(system.state().velocity, local_velocity);
@@ -514,6 +517,17 @@ namespace impactfe
           << std::endl;
     out << "  Signorini: largest penetration " << small(s.max_penetration)
         << std::endl;
+    // the pairs of t = 0 hold a node past the end of the other body's
+    // contact boundary on that boundary extended: never silently
+    std::ostringstream slide; // two digits: a warning, not a result
+    slide << std::setprecision(2) << s.largest_slide_off;
+    if (s.largest_slide_off > 0.01)
+      out << "  Warning: nodes slid off the other body's contact boundary "
+             "by up to "
+          << slide.str()
+          << " of its length; the pairs of t = 0 hold them on that boundary "
+             "extended (small sliding)."
+          << std::endl;
     if (frictional)
       out << "  Coulomb: max (|P_T| - mu P_N) / max P_N = "
           << small(s.coulomb_excess) << ", sliding nodes with a wrong "

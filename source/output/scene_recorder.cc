@@ -107,6 +107,7 @@ namespace impactfe
     JsonObject checks;
     checks.add("impulse_balance_error", s.impulse_balance_error)
       .add("max_penetration", s.max_penetration)
+      .add("largest_slide_off", s.largest_slide_off)
       .add("coulomb_excess", s.coulomb_excess)
       .add("wrong_slip_count", double(s.wrong_slip_count))
       .add("max_energy_increase", s.max_energy_increase);

@@ -431,14 +431,10 @@ namespace impactfe
       for (unsigned int c = 0; c < candidate_list.size(); ++c)
         if (candidate_list[c].body_b != numbers::invalid_unsigned_int)
           for (unsigned int k = 1; k < dim; ++k)
-            {
-              const auto  &range  = candidate_list[c].tangential_extent[k - 1];
-              const double s      = slide[c * (dim - 1) + k - 1];
-              const double length = range[1] - range[0];
-              if (length > 0. && std::isfinite(length))
-                largest = std::max(
-                  {largest, (s - range[1]) / length, (range[0] - s) / length});
-            }
+            largest = std::max(
+              largest,
+              slide_off_fraction(candidate_list[c].tangential_extent[k - 1],
+                                 slide[c * (dim - 1) + k - 1]));
       return largest;
     }
 

@@ -12,7 +12,9 @@
 #include <impactfe/bodies/elastic_body.h>
 #include <impactfe/contact/rigid_obstacle.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <string>
@@ -41,6 +43,21 @@ namespace impactfe
   template <int dim>
   std::array<std::array<double, 3>, 3>
   contact_frame(const Tensor<1, dim> &normal);
+
+  /**
+   * How far a tangential slide @p slide lies outside @p range (a
+   * ContactCandidate::tangential_extent), as a fraction of the range's
+   * length: 0 inside, and for an unbounded range.
+   */
+  inline double
+  slide_off_fraction(const std::array<double, 2> &range, const double slide)
+  {
+    const double length = range[1] - range[0];
+    if (!(length > 0.) || !std::isfinite(length))
+      return 0.;
+    return std::max(
+      {0., (slide - range[1]) / length, (range[0] - slide) / length});
+  }
 
   struct ContactCandidate
   {
@@ -244,6 +261,16 @@ namespace impactfe
     void
     build_operator(const std::vector<const ElasticBody<dim> *> &bodies);
 
+    /**
+     * Small sliding keeps the pairs of the set-up: the largest distance
+     * by which a node between bodies has slid, at the displacement @p u,
+     * outside its ContactCandidate::tangential_extent, as a fraction of
+     * that extent's length (0 while every node stays over side B's contact
+     * boundary; obstacles do not count). After build_operator().
+     */
+    double
+    largest_slide_off(const BlockVector<double> &u) const;
+
     /** g_c = g0_c + H_N,c^T u for every candidate. */
     void
     gaps(const BlockVector<double> &displacement, std::vector<double> &g) const;
@@ -305,6 +332,9 @@ namespace impactfe
     std::vector<ContactCandidate> candidate_list;
     /// Column j of H as (block, dof, coefficient) entries.
     std::vector<std::vector<Entry>> columns;
+    /// Per candidate between bodies and tangent k (2 c + k - 1), the row
+    /// t_k . (u_A - sum_j w_j u_Bj) (largest_slide_off()).
+    std::vector<std::vector<Entry>> slide_rows;
 
     template <int dim>
     void

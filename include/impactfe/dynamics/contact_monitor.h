@@ -30,6 +30,10 @@ namespace impactfe
     bool   impulse_balance_checked = true;
     /// max over steps and candidates of -g (0 if no node ever penetrated).
     double max_penetration = 0.;
+    /// max over steps of ContactSet::largest_slide_off(): how far a node
+    /// between bodies slid off the other body's contact boundary, as a
+    /// fraction of its length (small sliding keeps the pairs of t = 0).
+    double largest_slide_off = 0.;
     /// max over steps and nodes of (|P_T| - mu P_N) / max P_N (<= 0 holds).
     double coulomb_excess = 0.;
     /// Sliding nodes whose P_T is not opposite to V_T, or is below mu P_N.
