@@ -138,6 +138,23 @@ namespace impactfe
           }
     }
 
+    // What a search (a finite max_distance) pairs: a node behind a side by
+    // at most `sunk` (1e-6 max_distance at t = 0, max_penetration during a
+    // run), and how an overlap is reported.
+    struct SearchRules
+    {
+      SearchRules(const double max_distance, const double max_penetration)
+        : searching(max_distance < std::numeric_limits<double>::max())
+        , sunk(max_penetration >= 0. ? max_penetration : 1e-6 * max_distance)
+        , overlap(max_penetration >= 0. ?
+                    "by more than " + format_number(max_penetration) + " m" :
+                    "at t = 0")
+      {}
+      const bool        searching;
+      const double      sunk;
+      const std::string overlap;
+    };
+
     // The checks of every candidate set between two bodies, and the nodes
     // of side A (@p kind names the set in the messages).
     template <int dim>
@@ -365,14 +382,8 @@ namespace impactfe
     AssertThrow(dim == 2,
                 ExcMessage("Contact: node-to-segment candidates are "
                            "implemented in 2D only."));
-    const bool searching = max_distance < std::numeric_limits<double>::max();
-    // how far a node may lie behind a side it is paired with
-    const double sunk =
-      max_penetration >= 0. ? max_penetration : 1e-6 * max_distance;
-    const std::string overlap_text =
-      max_penetration >= 0. ?
-        "by more than " + format_number(max_penetration) + " m" :
-        "at t = 0";
+    const SearchRules      rules(max_distance, max_penetration);
+    const bool             searching  = rules.searching;
     const auto             vertices_a = side_a_vertices(bodies,
                                             body_a,
                                             boundary_a,
@@ -431,7 +442,7 @@ namespace impactfe
             // the bodies do not overlap at the reference configuration
             // (in a search during the run, max_penetration >= 0, a node
             // deeper than that is checked at any depth)
-            if (searching && signed_distance < -sunk)
+            if (searching && signed_distance < -rules.sunk)
               {
                 behind = behind || -signed_distance <= max_distance ||
                          max_penetration >= 0.;
@@ -446,7 +457,7 @@ namespace impactfe
               }
           }
         if (behind)
-          check_not_inside(A, B, x, overlap_text);
+          check_not_inside(A, B, x, rules.overlap);
         if (searching && (best == nullptr || best_distance > max_distance))
           continue;
         AssertThrow(best != nullptr,
@@ -502,13 +513,8 @@ namespace impactfe
     AssertThrow(dim == 3,
                 ExcMessage("Contact: node-to-face candidates are 3D only "
                            "(node-to-segment in 2D)."));
-    const bool   searching = max_distance < std::numeric_limits<double>::max();
-    const double sunk =
-      max_penetration >= 0. ? max_penetration : 1e-6 * max_distance;
-    const std::string overlap_text =
-      max_penetration >= 0. ?
-        "by more than " + format_number(max_penetration) + " m" :
-        "at t = 0";
+    const SearchRules      rules(max_distance, max_penetration);
+    const bool             searching  = rules.searching;
     const auto             vertices_a = side_a_vertices(bodies,
                                             body_a,
                                             boundary_a,
@@ -678,7 +684,7 @@ namespace impactfe
               if (on_edge && !((x - y) * n >= 0.5 * n.norm() * x.distance(y)))
                 return;
               // a search: only the outer side of the face (as in 2D)
-              if (searching && (x - y) * n < -sunk * n.norm())
+              if (searching && (x - y) * n < -rules.sunk * n.norm())
                 {
                   behind = behind || x.distance(y) <= max_distance ||
                            max_penetration >= 0.;
@@ -699,7 +705,7 @@ namespace impactfe
               for (const Face &face : faces)
                 try_face(face);
             if (behind)
-              check_not_inside(A, B, Point<dim>(x), overlap_text);
+              check_not_inside(A, B, Point<dim>(x), rules.overlap);
             if (searching && (best == nullptr || best_distance > max_distance))
               continue;
             AssertThrow(best != nullptr,

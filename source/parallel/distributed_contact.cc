@@ -201,14 +201,11 @@ namespace impactfe
       std::map<unsigned int, std::optional<Point<dim>>> needed;
       for (const unsigned int v : vertices)
         needed.emplace(v, std::nullopt);
-      potential_nodes.clear();
       node_of_vertex = gather_vertex_nodes(body, needed);
-      for (const auto &[vertex, node] : node_of_vertex)
-        potential_nodes.push_back(node);
-      AssertThrow(potential_nodes.size() == needed.size(),
+      AssertThrow(node_of_vertex.size() == needed.size(),
                   ExcMessage(
                     "Contact: " +
-                    std::to_string(needed.size() - potential_nodes.size()) +
+                    std::to_string(needed.size() - node_of_vertex.size()) +
                     " vertices of the contact boundaries have no "
                     "owned DoFs."));
     }
@@ -216,10 +213,10 @@ namespace impactfe
 
 
     template <int dim>
-    const std::vector<typename DistributedContact<dim>::Node> &
+    const std::map<unsigned int, typename DistributedContact<dim>::Node> &
     DistributedContact<dim>::potential_contact_nodes() const
     {
-      return potential_nodes;
+      return node_of_vertex;
     }
 
 

@@ -250,7 +250,7 @@ namespace impactfe
                               node.dofs.begin(),
                               node.dofs.end());
       };
-      for (const auto &node : contact.potential_contact_nodes())
+      for (const auto &[vertex, node] : contact.potential_contact_nodes())
         add_node(node);
       for (unsigned int c = 0; c < contact.n_candidates(); ++c)
         for (unsigned int i = 0; i < contact.candidate(c).n_nodes; ++i)

@@ -109,8 +109,9 @@ namespace impactfe
       void
       set_potential_contact_vertices(const DistributedElasticBody<dim> &body,
                                      const std::vector<unsigned int> &vertices);
-      /// The nodes set_potential_contact_vertices() listed (empty if none).
-      const std::vector<Node> &
+      /// The nodes set_potential_contact_vertices() listed, by vertex of
+      /// the merged mesh (empty if none).
+      const std::map<unsigned int, Node> &
       potential_contact_nodes() const;
 
       unsigned int
@@ -201,7 +202,6 @@ namespace impactfe
       unsigned int                 bodies       = 1;
       double                       mu           = 0.;
       std::vector<Candidate>       candidate_list;
-      std::vector<Node>            potential_nodes;
       std::map<unsigned int, Node> node_of_vertex;
       mutable std::vector<double>  partial;
     };
