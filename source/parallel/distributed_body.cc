@@ -75,12 +75,6 @@ namespace impactfe
       const types::material_id  part,
       const MaterialParameters &material)
     {
-      AssertThrow(material.rayleigh_mass == material_parameters.rayleigh_mass &&
-                    material.rayleigh_stiffness ==
-                      material_parameters.rayleigh_stiffness,
-                  ExcMessage("The material of part " + std::to_string(part) +
-                             " must have the body's Rayleigh coefficients "
-                             "(mass and stiffness)."));
       part_materials[part] = material;
     }
 
@@ -195,11 +189,6 @@ namespace impactfe
           fill_uniform(acceleration, gravity);
           mass.vmult(body_force, acceleration);
         }
-      // C = the law's viscous matrix + Rayleigh a M + b K (as ElasticBody).
-      if (material_parameters.rayleigh_stiffness != 0.)
-        damping.add(material_parameters.rayleigh_stiffness, stiffness);
-      if (material_parameters.rayleigh_mass != 0.)
-        damping.add(material_parameters.rayleigh_mass, mass);
 
       for (unsigned int d = 0; d < dim; ++d)
         {
@@ -322,8 +311,9 @@ namespace impactfe
       struct Law
       {
         SymmetricTensor<4, dim> elasticity, viscosity;
-        bool                    viscous = false;
-        double                  density = 0.;
+        bool                    viscous       = false;
+        double                  density       = 0.;
+        double                  rayleigh_mass = 0., rayleigh_stiffness = 0.;
       };
       const auto law_of = [](const MaterialParameters &material) {
         const auto model = create_constitutive_model<dim>(material);
@@ -332,10 +322,12 @@ namespace impactfe
                                "' is nonlinear; the distributed body needs a "
                                "linear one."));
         Law law;
-        law.elasticity = model->elasticity_tensor();
-        law.viscosity  = model->viscosity_tensor();
-        law.viscous    = law.viscosity.norm() > 0.;
-        law.density    = material.density;
+        law.elasticity         = model->elasticity_tensor();
+        law.viscosity          = model->viscosity_tensor();
+        law.viscous            = law.viscosity.norm() > 0.;
+        law.density            = material.density;
+        law.rayleigh_mass      = material.rayleigh_mass;
+        law.rayleigh_stiffness = material.rayleigh_stiffness;
         return law;
       };
       const Law                         body_law = law_of(material_parameters);
@@ -350,7 +342,8 @@ namespace impactfe
       CellOperators      cell_operators;
       cell_operators.reinit(n);
       std::vector<types::global_dof_index> local_dofs(n);
-      std::vector<bool> is_massless(GeometryInfo<dim>::vertices_per_cell);
+      std::vector<bool>   is_massless(GeometryInfo<dim>::vertices_per_cell);
+      std::vector<double> row_sums;
       for (const auto &cell : dofs.active_cell_iterators())
         if (cell->is_locally_owned())
           {
@@ -381,7 +374,29 @@ namespace impactfe
                                                    cell->material_id() + 1),
                                        cell_operators.mass);
               }
-            add(cell_operators, local_dofs, law.viscous);
+            // C = the law's viscous matrix + Rayleigh a M + b K of the
+            // cell's material (as ElasticBody, each part with its own a, b;
+            // a M with the mass as assembled, lumped or not)
+            bool viscous = law.viscous;
+            if (law.rayleigh_mass != 0. || law.rayleigh_stiffness != 0.)
+              {
+                if (!viscous)
+                  cell_operators.viscous = 0.;
+                viscous = true;
+                cell_operators.viscous.add(law.rayleigh_stiffness,
+                                           cell_operators.stiffness);
+                if (discretization_parameters.lumped_mass)
+                  {
+                    lumped_cell_mass(cell_operators.mass, row_sums);
+                    for (unsigned int i = 0; i < n; ++i)
+                      cell_operators.viscous(i, i) +=
+                        law.rayleigh_mass * row_sums[i];
+                  }
+                else
+                  cell_operators.viscous.add(law.rayleigh_mass,
+                                             cell_operators.mass);
+              }
+            add(cell_operators, local_dofs, viscous);
           }
     }
 
@@ -389,7 +404,7 @@ namespace impactfe
 
     // The sum over the ranks of these matrices is the distributed
     // a M + b K + c C: each cell is owned by one rank. C's Rayleigh terms
-    // are combinations of M and K, so they split by cells too.
+    // are each cell's a M_e + b K_e, so they split by cells too.
     template <int dim>
     void
     DistributedElasticBody<dim>::assemble_subdomain_matrix(
@@ -451,13 +466,10 @@ namespace impactfe
       pattern.copy_from(dsp);
       matrix.reinit(pattern);
 
-      const double m_factor =
-        mass_coefficient +
-        damping_coefficient * material_parameters.rayleigh_mass;
-      const double k_factor =
-        stiffness_coefficient +
-        damping_coefficient * material_parameters.rayleigh_stiffness;
-      const bool          lumped = discretization_parameters.lumped_mass;
+      // (the Rayleigh terms are in each cell's viscous matrix)
+      const double        m_factor = mass_coefficient;
+      const double        k_factor = stiffness_coefficient;
+      const bool          lumped   = discretization_parameters.lumped_mass;
       std::vector<double> row_sums;
       for_each_owned_cell([&](const CellOperators                        &cell,
                               const std::vector<types::global_dof_index> &dof,

@@ -351,12 +351,6 @@ main()
              "subsection Second body\n  set Contact discretization = "
              "node-to-face\nend\n",
            mpi);
-  run_case("mpi_second_material_with_other_rayleigh_damping",
-           bars + second_bar +
-             "subsection Second body\n  set Contact normal = -1, 0\n  set "
-             "Own material = true\nend\nsubsection Material of the second "
-             "body\n  set Rayleigh mass coefficient = 10\nend\n",
-           mpi);
   // the second bar touches the obstacle on a boundary it does not have
   run_case("mpi_two_bodies_obstacle_contact_on_missing_boundary",
            bars + second_bar +
