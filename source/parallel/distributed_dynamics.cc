@@ -146,9 +146,16 @@ namespace impactfe
 
       const IndexSet &owned = body.locally_owned_dofs();
       const MPI_Comm  comm  = body.communicator();
-      for (DistributedVector *x :
-           {&u, &v, &u_old, &v_old, &rhs, &impulse_force, &work})
+      for (DistributedVector *x : {&u,
+                                   &v,
+                                   &u_old,
+                                   &v_old,
+                                   &rhs,
+                                   &impulse_force,
+                                   &work,
+                                   &last_impulse_field})
         x->reinit(owned, comm);
+      last_body_impulses.assign(contact.n_bodies(), {{0., 0., 0.}});
       // the substructured solver's step needs neither (start_solve() and
       // finish_solve())
       if (!fine.substructured_solver)
@@ -296,12 +303,6 @@ namespace impactfe
       AssertThrow(previous.size() == contact.n_candidates(),
                   ExcMessage("candidates_changed(): one entry per candidate "
                              "is needed."));
-      AssertThrow(!newmark && owned_massless_offsets.empty() &&
-                    body.massless_dofs().empty(),
-                  ExcMessage("A contact search during the run needs a "
-                             "theta-scheme without mass redistribution: "
-                             "their impulses carry over to the next step on "
-                             "the candidates' nodes."));
       const unsigned int n  = contact.n_candidates();
       const unsigned int nd = contact.n_directions();
       const unsigned int old_nd =
@@ -852,11 +853,7 @@ namespace impactfe
       // H P^i acts in this step (zero after a step without impulses)
       if (const double carry = level.scheme->massless_impulse_carry();
           carry != 0. && last_step_had_impulses)
-        {
-          work = 0.;
-          contact.add_impulses(all_candidates, last_impulses, work);
-          rhs.add(carry, work);
-        }
+        rhs.add(carry, last_impulse_field);
       if (level.substructured_solver)
         {
           const auto start = std::chrono::steady_clock::now();
@@ -987,6 +984,8 @@ namespace impactfe
       std::fill(last_states.begin(), last_states.end(), ContactState::open);
       std::fill(local_impulses.begin(), local_impulses.end(), 0.);
       last_impulses = local_impulses;
+      last_body_impulses.assign(contact.n_bodies(), {{0., 0., 0.}});
+      last_impulse_field = 0.;
       ++stats.free_flight_steps;
       return true;
     }
@@ -1108,9 +1107,22 @@ namespace impactfe
         }
       report.tangential_impulse = tangential.norm();
       report.body_impulse       = body_impulses(local_impulses, 1.);
-      const double w            = fine.scheme->contact_force_weight();
-      report.carried_impulse    = body_impulses(last_impulses, (1. - w) / w);
-      last_impulses             = local_impulses;
+      // the last step's impulse as it acted, per body and on the DoFs: a
+      // contact search before this step may have replaced its candidates
+      const double w         = fine.scheme->contact_force_weight();
+      report.carried_impulse = last_body_impulses;
+      for (auto &impulse : report.carried_impulse)
+        for (double &component : impulse)
+          component *= (1. - w) / w;
+      last_body_impulses = report.body_impulse;
+      last_impulses      = local_impulses;
+      if (fine.scheme->massless_impulse_carry() != 0.)
+        {
+          last_impulse_field = 0.;
+          contact.add_impulses(all_candidates,
+                               local_impulses,
+                               last_impulse_field);
+        }
       last_step_had_impulses =
         std::any_of(local_impulses.begin(),
                     local_impulses.end(),

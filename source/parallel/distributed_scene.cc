@@ -464,8 +464,9 @@ namespace impactfe
         "the current configuration (the vertices at X + u): large sliding, "
         "and bodies that start apart; 0: once, at t = 0 (small sliding). A "
         "pair with 'all' must then reach, with 'Contact search distance', "
-        "what the bodies approach in this many steps. Needs a theta-scheme "
-        "without mass redistribution [-].");
+        "what the bodies approach in this many steps. With mass "
+        "redistribution every node of the named boundaries is massless "
+        "[-].");
       prm.declare_entry("Friction coefficient",
                         "0",
                         Patterns::Double(),
@@ -580,14 +581,6 @@ namespace impactfe
                              " needs 'Contact search distance' > 0 (how far "
                              "from the other body a node becomes a "
                              "candidate)."));
-      AssertThrow(search_interval == 0 ||
-                    (scene.time_stepping.scheme != Scheme::newmark &&
-                     !scene.discretization.mass_redistribution),
-                  ExcMessage("Bodies: 'Contact search interval' = " +
-                             std::to_string(search_interval) +
-                             " needs a theta-scheme without mass "
-                             "redistribution (their impulses carry over to "
-                             "the next step on the candidates' nodes)."));
       if (several_bodies)
         {
           AssertThrow(initial_velocity.empty() && !mesh.from_file(),
@@ -1160,14 +1153,19 @@ namespace impactfe
       }
       // Mass redistribution: every candidate's nodes, on both sides, lose
       // their mass (as ContactScene::redistribute_mass())
+      // (with searches during the run: every node a search may pair, so
+      // that the mass matrix stays that of the set-up)
       if (parameters.scene.discretization.mass_redistribution)
         {
           std::vector<types::global_dof_index> massless;
+          const auto                           add = [&](const auto &node) {
+            massless.insert(massless.end(), node.dofs.begin(), node.dofs.end());
+          };
+          for (const auto &[vertex, node] : contact.potential_contact_nodes())
+            add(node);
           for (unsigned int c = 0; c < contact.n_candidates(); ++c)
             for (unsigned int i = 0; i < contact.candidate(c).n_nodes; ++i)
-              massless.insert(massless.end(),
-                              contact.candidate(c).nodes[i].dofs.begin(),
-                              contact.candidate(c).nodes[i].dofs.end());
+              add(contact.candidate(c).nodes[i]);
           body.redistribute_mass(massless);
         }
       solver = std::make_unique<DistributedImpactSolver<dim>>(

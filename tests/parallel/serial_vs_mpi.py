@@ -24,10 +24,12 @@ def write_meshes(make_mesh, work, meshes):
                                    *(str(x) for x in args)], stdout=out)
 
 
-def bodies_arguments(prm_options=("--prm",), compare=True, dim=False):
+def bodies_arguments(prm_options=("--prm",), compare=True, dim=False,
+                     extra=()):
     """The parsed command line of the Scene = bodies drivers: --program,
     the parameter files @p prm_options, --make-mesh, --mpiexec, --compare
-    (if @p compare), --work (emptied here) and --dim (if @p dim)."""
+    (if @p compare), --work (emptied here), --dim (if @p dim) and the
+    (option, default) pairs of @p extra."""
     ap = argparse.ArgumentParser()
     for option in ("--program",) + tuple(prm_options) + ("--make-mesh",
                                                          "--mpiexec"):
@@ -37,6 +39,8 @@ def bodies_arguments(prm_options=("--prm",), compare=True, dim=False):
     ap.add_argument("--work", required=True)
     if dim:
         ap.add_argument("--dim", type=int, choices=(2, 3), default=2)
+    for option, default in extra:
+        ap.add_argument(option, default=default)
     a = ap.parse_args()
     shutil.rmtree(a.work, ignore_errors=True)
     return a

@@ -409,15 +409,7 @@ main()
            "/block_tower_1.msh\n  set Contact pairs = all:2 against all:3\n  "
            "set Contact search distance = 0.05\nend\n",
            mpi);
-  // searches during the run: not with mass redistribution (its impulses
-  // carry over on the candidates' nodes), not for one body
-  run_case("mpi_bodies_search_interval_mass_redistribution",
-           three_bars +
-             "  set Contact pairs = 1:1 against 2:0\n  set Contact search "
-             "interval = 1\n  set Contact search distance = 1e-3\nend\n"
-             "subsection Discretization\n  set Mass redistribution = "
-             "true\nend\n",
-           mpi);
+  // searches during the run: not without a distance, not for one body
   run_case("mpi_bodies_search_interval_without_distance",
            three_bars +
              "  set Contact pairs = 1:1 against 2:0\n  set Contact search "

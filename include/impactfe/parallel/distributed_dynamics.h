@@ -149,8 +149,9 @@ namespace impactfe
        * predecessors' contact state and impulse. Their nodes must be among
        * the set-up's candidates' nodes or
        * DistributedContact::potential_contact_nodes() (the substructured
-       * solver's factors are kept). A theta-scheme without mass
-       * redistribution only.
+       * solver's factors are kept). What the last impulse carries into
+       * the next step (mass redistribution, Newmark) is kept on the DoFs
+       * and per body, so it does not depend on the candidates.
        */
       void
       candidates_changed(const std::vector<unsigned int> &previous);
@@ -247,9 +248,14 @@ namespace impactfe
       /// with the substructured solver.
       DistributedVector u, v, u_old, v_old, v_free, rhs, correction,
         impulse_force, work;
-      double                   current_time = 0.;
-      DistributedStepReport    report;
-      DistributedRunStatistics stats;
+      /// The last step's impulse as it acted: H P on the DoFs (with
+      /// massless nodes, whose rows carry it) and per body in global
+      /// coordinates; they outlive a contact search.
+      DistributedVector                  last_impulse_field;
+      std::vector<std::array<double, 3>> last_body_impulses;
+      double                             current_time = 0.;
+      DistributedStepReport              report;
+      DistributedRunStatistics           stats;
 
       std::vector<bool>         active, in_lcp;
       std::vector<unsigned int> lcp_candidates;
