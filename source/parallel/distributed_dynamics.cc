@@ -48,6 +48,23 @@ namespace impactfe
                         "rank: the products W x are then dense, with no "
                         "solve; for a few ranks, doc/parallel.md).");
       prm.declare_entry(
+        "Contact operator",
+        "automatic",
+        Patterns::Selection("automatic|dense|sparse"),
+        "Solver = substructured: how the contact problem's products W x = "
+        "H^T M~^{-1} H x are made. dense: the Schur complement S_C of M~ on "
+        "the contact DoFs (every node of the boundaries that contacts "
+        "name) is formed and inverted once on every rank (set-up time "
+        "grows like the cube of their number, memory like its square; "
+        "each product is a dense one, and H^T S_C H preconditions the "
+        "contact problem). sparse: nothing dense on them; each product is "
+        "a forward and a backward substitution with the ranks' factors "
+        "(about one solve pair), preconditioned by H^T M~ H. automatic: "
+        "dense if the dense problem (contact DoFs and those the ranks "
+        "share) has at most 6000 DoFs, its square is at most 1000 times "
+        "the DoFs of the mesh, and its set-up needs at most 4 GiB per "
+        "rank; sparse otherwise (doc/parallel.md).");
+      prm.declare_entry(
         "Tolerance",
         "1e-12",
         Patterns::Double(0.),
@@ -69,12 +86,17 @@ namespace impactfe
     ParallelSolverParameters::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Parallel solver");
-      const std::string name = prm.get("Solver");
-      solver                 = name == "direct" ? Solver::direct :
-                               name == "amg cg" ? Solver::amg_cg :
-                                                  Solver::substructured;
-      tolerance              = prm.get_double("Tolerance");
-      max_iterations         = prm.get_integer("Maximum iterations");
+      const std::string name    = prm.get("Solver");
+      solver                    = name == "direct" ? Solver::direct :
+                                  name == "amg cg" ? Solver::amg_cg :
+                                                     Solver::substructured;
+      const std::string contact = prm.get("Contact operator");
+      contact_operator =
+        contact == "dense"  ? SubstructuredSolver::ContactOperator::dense :
+        contact == "sparse" ? SubstructuredSolver::ContactOperator::sparse :
+                              SubstructuredSolver::ContactOperator::automatic;
+      tolerance      = prm.get_double("Tolerance");
+      max_iterations = prm.get_integer("Maximum iterations");
       prm.leave_subsection();
       AssertThrow(tolerance > 0. && tolerance < 1.,
                   ExcMessage("Parallel solver: 'Tolerance' must be in (0, 1), "
@@ -352,7 +374,14 @@ namespace impactfe
                                      subdomain_matrix,
                                      local_to_global,
                                      on_interface);
+      using ContactOperator      = SubstructuredSolver::ContactOperator;
       level.substructured_solver = std::make_unique<SubstructuredSolver>();
+      // the free-flight level makes no contact product; its factors keep
+      // the contact DoFs where the fine level's do (set up first)
+      const ContactOperator contact_operator =
+        &level == &fine          ? linear_parameters.contact_operator :
+        dense_contact_operator() ? ContactOperator::factors_only :
+                                   ContactOperator::sparse;
       level.substructured_solver->initialize(body.communicator(),
                                              subdomain_matrix,
                                              local_to_global,
@@ -360,12 +389,26 @@ namespace impactfe
                                              contact_dofs,
                                              body.locally_owned_dofs(),
                                              "the step matrix",
-                                             // the free-flight level makes
-                                             // no contact product
-                                             &level == &fine);
+                                             contact_operator);
       if (&level == &fine)
-        stats.contact_schur_groups =
-          level.substructured_solver->contact_schur_complement().n_groups();
+        {
+          stats.contact_operator =
+            dense_contact_operator() ? "dense" : "sparse";
+          if (dense_contact_operator())
+            stats.contact_schur_groups =
+              level.substructured_solver->contact_schur_complement().n_groups();
+        }
+    }
+
+
+
+    template <int dim>
+    bool
+    DistributedImpactSolver<dim>::dense_contact_operator() const
+    {
+      return fine.substructured_solver &&
+             fine.substructured_solver->chosen_contact_operator() ==
+               SubstructuredSolver::ContactOperator::dense;
     }
 
 
@@ -497,29 +540,33 @@ namespace impactfe
 
     template <int dim>
     void
-    DistributedImpactSolver<dim>::dense_contact_product(
+    DistributedImpactSolver<dim>::contact_dof_product(
       const std::vector<double> &x,
       std::vector<double>       &y,
       const bool                 use_schur)
     {
       const unsigned int nd = contact.n_directions();
       impulses_on_contact_dofs(x, dense_in);
-      const DenseSchurComplement &schur =
-        fine.substructured_solver->contact_schur_complement();
       const unsigned int n_ranks =
         Utilities::MPI::n_mpi_processes(body.communicator());
-      if (n_ranks > 1)
+      if (!dense_contact_operator())
+        {
+          AssertThrow(!use_schur, ExcInternalError());
+          fine.substructured_solver->contact_solve(dense_in, dense_out);
+        }
+      else if (n_ranks > 1)
         {
           // S and S^{-1} are on every rank: each computes the part of the
           // product that an even share of their stored triangle gives, and
           // the parts are summed
           std::fill(dense_out.begin(), dense_out.end(), 0.);
-          schur.add_part_of_product(dense_in.data(),
-                                    dense_out.data(),
-                                    Utilities::MPI::this_mpi_process(
-                                      body.communicator()),
-                                    n_ranks,
-                                    !use_schur);
+          fine.substructured_solver->contact_schur_complement()
+            .add_part_of_product(dense_in.data(),
+                                 dense_out.data(),
+                                 Utilities::MPI::this_mpi_process(
+                                   body.communicator()),
+                                 n_ranks,
+                                 !use_schur);
           const int mpi_error = MPI_Allreduce(MPI_IN_PLACE,
                                               dense_out.data(),
                                               dense_out.size(),
@@ -529,9 +576,10 @@ namespace impactfe
           AssertThrowMPI(mpi_error);
         }
       else if (use_schur) // the preconditioner: single precision suffices
-        schur.vmult_single_precision(dense_in.data(), dense_out.data());
+        fine.substructured_solver->contact_schur_complement()
+          .vmult_single_precision(dense_in.data(), dense_out.data());
       else
-        schur.vmult_inverse(dense_in.data(), dense_out.data());
+        fine.substructured_solver->contact_solve(dense_in, dense_out);
       y.assign(lcp_candidates.size() * nd, 0.);
       for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
         for (unsigned int k = 0; k < nd; ++k)
@@ -656,13 +704,16 @@ namespace impactfe
         }
       Utilities::MPI::sum(lcp_penalty, body.communicator(), lcp_penalty);
 
-      // With the substructured solver, W and the preconditioner H^T S_C H
-      // are dense products, as in the serial programs.
-      const bool                 dense = fine.substructured_solver != nullptr;
+      // With the substructured solver, W x is a product on the contact
+      // DoFs, and with its dense contact operator so is the preconditioner
+      // H^T S_C H, as in the serial programs.
+      const bool substructured = fine.substructured_solver != nullptr;
+      const bool dense         = dense_contact_operator();
       const lcp::DelassusProduct product =
-        [this, dense](const std::vector<double> &x, std::vector<double> &y) {
-          if (dense)
-            dense_contact_product(x, y, false);
+        [this, substructured](const std::vector<double> &x,
+                              std::vector<double>       &y) {
+          if (substructured)
+            contact_dof_product(x, y, false);
           else
             delassus_product(x, y);
         };
@@ -670,7 +721,7 @@ namespace impactfe
         [this, dense](const std::vector<double> &x, std::vector<double> &y) {
           if (dense)
             {
-              dense_contact_product(x, y, true);
+              contact_dof_product(x, y, true);
               return;
             }
           impulse_force = 0.;
@@ -756,9 +807,10 @@ namespace impactfe
       for (unsigned int j = 0; j < n * nd; ++j)
         {
           unit[j] = 1.;
-          // with the substructured solver a column is a dense product
+          // with the substructured solver a column is a product on the
+          // contact DoFs
           if (fine.substructured_solver)
-            dense_contact_product(unit, column, false);
+            contact_dof_product(unit, column, false);
           else
             delassus_product(unit, column);
           unit[j] = 0.;
@@ -1043,11 +1095,10 @@ namespace impactfe
           solve_contact_problem();
           if (fine.substructured_solver)
             {
-              // M~^{-1} H P on the contact DoFs is S_C^{-1} (H P)
+              // M~^{-1} H P on the contact DoFs: (M~^{-1})_CC (H P)
               impulses_on_contact_dofs(lcp_P, contact_dof_values);
-              dense_out.resize(contact_dof_values.size());
-              fine.substructured_solver->contact_schur_complement()
-                .vmult_inverse(contact_dof_values.data(), dense_out.data());
+              fine.substructured_solver->contact_solve(contact_dof_values,
+                                                       dense_out);
               local_components(dense_out, all_correction);
             }
           else

@@ -1712,6 +1712,9 @@ namespace impactfe
                     std::to_string(stats.contact_schur_groups) +
                     " uncoupled blocks" :
                   std::string())
+            << (stats.contact_operator == "sparse" ?
+                  "; sparse contact operator" :
+                  std::string())
             << "\n";
       out << "Results in " << parameters.scene.output.directory
           << "/: history.csv, summary.json"
@@ -1751,6 +1754,7 @@ namespace impactfe
         .add("cg_iterations", double(stats.cg_iterations))
         .add("solve_wall_seconds", stats.solve_seconds)
         .add("contact_schur_groups", double(stats.contact_schur_groups))
+        .add("contact_operator", stats.contact_operator)
         .add("largest_slide_off", largest_slide_off)
         .add("contact_search_interval", double(parameters.search_interval))
         .add("contact_searches", double(searched.searches))

@@ -75,12 +75,29 @@ namespace impactfe
 
 
 
+    double
+    SubstructuredSolver::dense_setup_bytes(const double n_gamma,
+                                           const double n_contact,
+                                           const double n_trailing)
+    {
+      // the rank's trailing block of its factor, then either its product
+      // with itself and the sum over the ranks (summed_cholesky_factor())
+      // or, with that sum factorised, S_C's factor turned into S_C^{-1}
+      // beside S_C and S_C in single precision (compute_from_factor())
+      return 8. *
+             (n_trailing * n_trailing + n_gamma * n_gamma +
+              std::max(n_trailing * n_trailing, 2.5 * n_contact * n_contact));
+    }
+
+
+
     // @sect3{Set-up}
     // The rank's factor ordered [I, C_i, B_i]: its interior, its contact
     // DoFs that no other rank has, and its shared DoFs B_i. Eliminating
     // [I, C_i] leaves the Schur complement on B, which the solves use;
     // eliminating only I leaves it on Gamma = B u C, whose Schur
-    // complement on C is S_C.
+    // complement on C is S_C. With the sparse contact operator C_i is
+    // part of I.
     void
     SubstructuredSolver::initialize(
       const MPI_Comm                              comm,
@@ -90,8 +107,9 @@ namespace impactfe
       const std::vector<types::global_dof_index> &contact_dofs,
       const IndexSet                             &owned,
       const std::string                          &name,
-      const bool                                  with_contact_schur_complement,
-      const std::size_t                           memory_limit)
+      const ContactOperator                       requested_operator,
+      const std::size_t                           memory_limit,
+      const unsigned int                          largest_dense_interface)
     {
       communicator               = comm;
       local_to_global            = local_dofs;
@@ -109,11 +127,69 @@ namespace impactfe
                                   g);
       };
 
-      // 1. The rank's factor, [C_i, B_i] last in that order.
-      std::vector<types::global_dof_index> trailing;
+      // 1. B: every rank's shared DoFs (sorted); Gamma: B without C, then
+      // C in the given order. The dense operator's interface problem is
+      // on Gamma, the largest matrix of the set-up.
+      std::vector<types::global_dof_index> mine;
+      unsigned int                         n_local_contact = 0;
       for (unsigned int l = 0; l < n_local; ++l)
-        if (!on_interface[l] && is_contact(local_to_global[l]))
-          trailing.push_back(l);
+        if (on_interface[l])
+          mine.push_back(local_to_global[l]);
+        else if (is_contact(local_to_global[l]))
+          ++n_local_contact;
+      std::vector<types::global_dof_index> shared;
+      for (const auto &part : Utilities::MPI::all_gather(communicator, mine))
+        shared.insert(shared.end(), part.begin(), part.end());
+      std::sort(shared.begin(), shared.end());
+      shared.erase(std::unique(shared.begin(), shared.end()), shared.end());
+      std::size_t n_b_outside_c = 0;
+      for (const auto g : shared)
+        n_b_outside_c += is_contact(g) ? 0 : 1;
+      const std::size_t n_gamma = n_b_outside_c + contact_dofs.size();
+      const double      dense_bytes =
+        Utilities::MPI::max(dense_setup_bytes(n_gamma,
+                                              contact_dofs.size(),
+                                              n_local_contact + mine.size()),
+                            communicator);
+      contact_operator = requested_operator;
+      // a dense product costs 2 |C|^2 flops, a sparse one about a solve
+      // pair, 4 nnz(L); with the iterations each needs, the dense
+      // operator paid on the block on a slab of doc/parallel.md up to
+      // |Gamma|^2 about 1000 times the DoFs (measured: 700 dense faster,
+      // 1400 sparse)
+      if (contact_operator == ContactOperator::automatic)
+        contact_operator = (n_gamma <= largest_dense_interface &&
+                            double(n_gamma) * n_gamma <= 1000. * owned.size() &&
+                            dense_bytes <= memory_limit) ?
+                             ContactOperator::dense :
+                             ContactOperator::sparse;
+      if (contact_operator == ContactOperator::dense)
+        {
+          DenseSchurComplement::check_dense_size(n_gamma, name);
+          AssertThrow(
+            dense_bytes <= memory_limit,
+            ExcMessage(
+              "Substructured solve of " + name +
+              ": the dense contact operator's interface problem has " +
+              std::to_string(n_gamma) + " DoFs (" +
+              std::to_string(shared.size()) + " shared by ranks, " +
+              std::to_string(contact_dofs.size()) +
+              " contact DoFs), and its set-up would need " +
+              format_number(dense_bytes / (1 << 30)) +
+              " GiB on a rank, more than the limit of " +
+              format_number(double(memory_limit) / (1 << 30)) +
+              " GiB. Use 'Parallel solver/Contact operator = sparse' (or "
+              "automatic), or fewer ranks."));
+        }
+      const bool contacts_last = contact_operator != ContactOperator::sparse;
+
+      // 2. The rank's factor, [C_i, B_i] last in that order ([B_i] with
+      // the sparse operator).
+      std::vector<types::global_dof_index> trailing;
+      if (contacts_last)
+        for (unsigned int l = 0; l < n_local; ++l)
+          if (!on_interface[l] && is_contact(local_to_global[l]))
+            trailing.push_back(l);
       const unsigned int n_own_contact = trailing.size();
       for (unsigned int l = 0; l < n_local; ++l)
         if (on_interface[l])
@@ -129,9 +205,10 @@ namespace impactfe
                                "the shared DoFs among its last unknowns."));
       const unsigned int n_trailing = trailing.size();
       const unsigned int n_shared   = n_trailing - n_own_contact;
-      n_leading                     = n_local - n_shared;
-      n_interior                    = n_leading - n_own_contact;
-      const int *perm               = factor.permutation();
+      AssertThrow(n_shared == mine.size(), ExcInternalError());
+      n_leading       = n_local - n_shared;
+      n_interior      = n_leading - n_own_contact;
+      const int *perm = factor.permutation();
       owned_offset.resize(n_leading);
       for (unsigned int k = 0; k < n_leading; ++k)
         {
@@ -142,45 +219,16 @@ namespace impactfe
                                  "have is owned by another rank."));
           owned_offset[k] = owned.index_within_set(g);
         }
-
-      // 2. B: every rank's shared DoFs; Gamma: B without C, then C in the
-      // given order.
-      std::vector<types::global_dof_index> mine;
-      for (unsigned int j = n_own_contact; j < n_trailing; ++j)
-        mine.push_back(local_to_global[trailing[j]]);
-      std::vector<types::global_dof_index> shared;
-      for (const auto &part : Utilities::MPI::all_gather(communicator, mine))
-        shared.insert(shared.end(), part.begin(), part.end());
-      std::sort(shared.begin(), shared.end());
-      shared.erase(std::unique(shared.begin(), shared.end()), shared.end());
-      // Gamma's dense matrix is the largest of the set-up (B's alone
-      // without S_C)
       std::vector<types::global_dof_index> gamma;
       for (const auto g : shared)
-        if (!with_contact_schur_complement || !is_contact(g))
+        if (!is_contact(g))
           gamma.push_back(g);
-      const std::size_t n_b_outside_c = gamma.size();
-      if (with_contact_schur_complement)
-        gamma.insert(gamma.end(), contact_dofs.begin(), contact_dofs.end());
-      const std::size_t n_gamma = gamma.size();
-      DenseSchurComplement::check_dense_size(n_gamma, name);
-      AssertThrow(n_gamma * n_gamma * sizeof(double) <= memory_limit,
-                  ExcMessage(
-                    "Substructured solve of " + name +
-                    ": the interface problem has " + std::to_string(n_gamma) +
-                    " DoFs (" + std::to_string(shared.size()) +
-                    " shared by ranks, " +
-                    std::to_string(
-                      with_contact_schur_complement ? contact_dofs.size() : 0) +
-                    " contact DoFs), and its dense matrix would need " +
-                    format_number(n_gamma * n_gamma * 8. / (1 << 30)) +
-                    " GiB on every rank. Use fewer ranks, or 'Parallel "
-                    "solver/Solver = direct' or 'amg cg'."));
+      gamma.insert(gamma.end(), contact_dofs.begin(), contact_dofs.end());
 
       // 3. S_C: the trailing block of the factor of S on Gamma, the sum of
       // the ranks' L_t L_t^T; S itself is not kept.
-      has_contact_schur = with_contact_schur_complement;
-      if (has_contact_schur)
+      contact_schur = DenseSchurComplement();
+      if (contact_operator == ContactOperator::dense)
         {
           // the position in Gamma of each of the factor's trailing rows
           // (C is not sorted: by a sorted copy)
@@ -267,15 +315,24 @@ namespace impactfe
                                   std::make_pair(g, 0u))
             ->second;
         };
-        for (unsigned int j = 0; j < n_own_contact; ++j)
-          own_contacts.emplace_back(contact_index(local_to_global[trailing[j]]),
-                                    n_interior + j);
+        if (contacts_last)
+          for (unsigned int j = 0; j < n_own_contact; ++j)
+            own_contacts.emplace_back(
+              contact_index(local_to_global[trailing[j]]), n_interior + j);
+        else
+          for (unsigned int k = 0; k < n_leading; ++k)
+            if (is_contact(local_to_global[perm[k]]))
+              own_contacts.emplace_back(contact_index(local_to_global[perm[k]]),
+                                        k);
         for (unsigned int i = 0; i < shared.size(); ++i)
           if (is_contact(shared[i]))
             shared_contacts.emplace_back(contact_index(shared[i]), i);
       }
       n_contact_dofs = contact_dofs.size();
       first_rank     = Utilities::MPI::this_mpi_process(communicator) == 0;
+      first_contact_position = n_leading;
+      for (const auto &[i, k] : own_contacts)
+        first_contact_position = std::min(first_contact_position, k);
 
       // The first substitutions of a run cost some 0.2 s more than the
       // later ones (measured: 15 times a forward substitution at 2.5e5
@@ -396,9 +453,11 @@ namespace impactfe
       // on a copy of z: the forward substitution of b is kept for
       // finish_solve()
       double *w = local_work.data();
-      std::copy(z + n_interior, z + local_to_global.size(), w + n_interior);
+      std::copy(z + first_contact_position,
+                z + local_to_global.size(),
+                w + first_contact_position);
       solve_interface(w, started_shared.data(), interface_work.data());
-      factor.solve_lower(w, true, n_leading, n_interior);
+      factor.solve_lower(w, true, n_leading, first_contact_position);
       x_contact.assign(n_contact_dofs, 0.);
       for (const auto &[i, k] : own_contacts)
         x_contact[i] = w[k];
@@ -422,7 +481,7 @@ namespace impactfe
         w[k] = c[i];
       factor.solve_lower(w, false, n_leading);
       double *z = started.data();
-      for (unsigned int k = n_interior; k < n_local; ++k)
+      for (unsigned int k = first_contact_position; k < n_local; ++k)
         z[k] += w[k];
       // c on the shared contact DoFs: once in the sum over the ranks
       if (first_rank)
@@ -438,10 +497,58 @@ namespace impactfe
     const DenseSchurComplement &
     SubstructuredSolver::contact_schur_complement() const
     {
-      AssertThrow(has_contact_schur,
+      AssertThrow(contact_operator == ContactOperator::dense,
                   ExcMessage("Substructured solve: the contact Schur "
                              "complement was not built (initialize())."));
       return contact_schur;
+    }
+
+
+
+    SubstructuredSolver::ContactOperator
+    SubstructuredSolver::chosen_contact_operator() const
+    {
+      return contact_operator;
+    }
+
+
+
+    // (A^{-1} c)_C: with the sparse operator, the forward substitution of
+    // c (zero before the first contact DoF: skipped), the interface solve
+    // and the backward substitution down to the first contact DoF only.
+    void
+    SubstructuredSolver::contact_solve(const std::vector<double> &c,
+                                       std::vector<double> &x_contact) const
+    {
+      AssertDimension(c.size(), n_contact_dofs);
+      if (contact_operator == ContactOperator::dense)
+        {
+          x_contact.resize(n_contact_dofs);
+          contact_schur.vmult_inverse(c.data(), x_contact.data());
+          return;
+        }
+      AssertThrow(contact_operator == ContactOperator::sparse,
+                  ExcMessage("Substructured solve: this level makes no "
+                             "contact products (initialize())."));
+      double *w = local_work.data();
+      std::fill(w, w + local_to_global.size(), 0.);
+      for (const auto &[i, k] : own_contacts)
+        w[k] = c[i];
+      factor.solve_lower(w, false, n_leading);
+      // c on the shared contact DoFs: once in the sum over the ranks
+      std::fill(shared_rhs.begin(), shared_rhs.end(), 0.);
+      if (first_rank)
+        for (const auto &[i, j] : shared_contacts)
+          shared_rhs[j] = c[i];
+      solve_interface(w, shared_rhs.data(), interface_work.data());
+      factor.solve_lower(w, true, n_leading, first_contact_position);
+      x_contact.assign(n_contact_dofs, 0.);
+      for (const auto &[i, k] : own_contacts)
+        x_contact[i] = w[k];
+      if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+        Utilities::MPI::sum(x_contact, communicator, x_contact);
+      for (const auto &[i, j] : shared_contacts)
+        x_contact[i] = interface_work[j];
     }
 
 

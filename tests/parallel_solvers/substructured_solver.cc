@@ -11,7 +11,10 @@
 //   ranks that split the dense products) sum to the products;
 // - a solve in two halves (start_solve(), finish_solve() with c on C, a
 //   solve() in between) equals solve() with b + c, and its first half's
-//   values on C are those of A^{-1} b.
+//   values on C are those of A^{-1} b;
+// - without S_C, and with the sparse contact operator (no dense matrix on
+//   C): the same solves and halves, and (A^{-1} c)_C by partial
+//   substitutions equal to a full solve; the automatic choice.
 
 #include <deal.II/base/mpi.h>
 
@@ -25,6 +28,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -231,7 +235,7 @@ main(int argc, char **argv)
                            contact_dofs,
                            owned,
                            "A",
-                           false);
+                           SubstructuredSolver::ContactOperator::factors_only);
   for (const auto i : owned)
     b(i) = std::sin(0.37 * i + 1.);
   b.compress(VectorOperation::insert);
@@ -259,6 +263,116 @@ main(int argc, char **argv)
       refused = true;
     }
   check(refused, "without S_C: contact_schur_complement() throws");
+
+  // 6. The sparse contact operator (C in the factors' fill-reducing
+  // order, no S_C): A x = b; its contact_solve() equals a full solve with
+  // the first solver on C; its two halves equal the first solver's.
+  using ContactOperator = SubstructuredSolver::ContactOperator;
+  SubstructuredSolver sparse;
+  sparse.initialize(comm,
+                    subdomain,
+                    local_to_global,
+                    on_interface,
+                    contact_dofs,
+                    owned,
+                    "A",
+                    ContactOperator::sparse);
+  check(sparse.chosen_contact_operator() == ContactOperator::sparse,
+        "sparse: chosen as asked");
+  for (const auto i : owned)
+    b(i) = std::sin(0.37 * i + 1.);
+  b.compress(VectorOperation::insert);
+  sparse.solve(b, x);
+  A.vmult(r, x);
+  r -= b;
+  check(r.l2_norm() < 1e-12 * b.l2_norm(),
+        "sparse: A x = b with the subdomain factors");
+  b = 0.;
+  for (unsigned int i = 0; i < n_c; ++i)
+    if (owned.is_element(contact_dofs[i]))
+      b(contact_dofs[i]) = c[i];
+  b.compress(VectorOperation::insert);
+  solver.solve(b, x);
+  std::vector<double> on_c(n_c, 0.), sparse_on_c;
+  for (unsigned int i = 0; i < n_c; ++i)
+    if (owned.is_element(contact_dofs[i]))
+      on_c[i] = x(contact_dofs[i]);
+  Utilities::MPI::sum(on_c, comm, on_c);
+  sparse.contact_solve(c, sparse_on_c);
+  double sparse_error = 0., sparse_scale = 0.;
+  for (unsigned int i = 0; i < n_c; ++i)
+    {
+      sparse_error = std::max(sparse_error, std::abs(sparse_on_c[i] - on_c[i]));
+      sparse_scale = std::max(sparse_scale, std::abs(on_c[i]));
+    }
+  check(sparse_scale > 0. && sparse_error <= 1e-12 * sparse_scale,
+        "sparse: contact_solve() gives (A^{-1} c) on the contact DoFs");
+  for (const auto i : owned)
+    b(i) = std::sin(0.37 * i + 1.);
+  b.compress(VectorOperation::insert);
+  std::vector<double> sparse_start;
+  sparse.start_solve(b, sparse_start);
+  solver.start_solve(b, x_contact);
+  start_difference = 0.;
+  for (unsigned int i = 0; i < n_c; ++i)
+    start_difference =
+      std::max(start_difference, std::abs(sparse_start[i] - x_contact[i]));
+  DistributedVector sparse_halves(owned, comm);
+  sparse.contact_solve(c, sparse_on_c); // in between, as products do
+  sparse.finish_solve(c, sparse_halves);
+  solver.finish_solve(c, two_halves);
+  sparse_halves -= two_halves;
+  check(start_difference <= 1e-12 * contact_scale &&
+          sparse_halves.linfty_norm() <= 1e-12 * two_halves.linfty_norm(),
+        "sparse: the same start_solve() and finish_solve()");
+
+  // 7. The choice: automatic takes the dense operator for this small
+  // problem, and the sparse one if the dense set-up would exceed the
+  // memory limit, where an explicit dense operator is refused.
+  SubstructuredSolver automatic;
+  automatic.initialize(comm,
+                       subdomain,
+                       local_to_global,
+                       on_interface,
+                       contact_dofs,
+                       owned,
+                       "A",
+                       ContactOperator::automatic);
+  check(automatic.chosen_contact_operator() == ContactOperator::dense,
+        "automatic: dense for " + std::to_string(n_c) + " contact DoFs");
+  automatic.initialize(comm,
+                       subdomain,
+                       local_to_global,
+                       on_interface,
+                       contact_dofs,
+                       owned,
+                       "A",
+                       ContactOperator::automatic,
+                       1000);
+  check(automatic.chosen_contact_operator() == ContactOperator::sparse,
+        "automatic: sparse beyond the memory limit");
+  std::string message;
+  try
+    {
+      SubstructuredSolver dense;
+      dense.initialize(comm,
+                       subdomain,
+                       local_to_global,
+                       on_interface,
+                       contact_dofs,
+                       owned,
+                       "A",
+                       ContactOperator::dense,
+                       1000);
+    }
+  catch (const ExceptionBase &e)
+    {
+      std::ostringstream what;
+      e.print_info(what);
+      message = what.str();
+    }
+  check(message.find("Contact operator = sparse") != std::string::npos,
+        "dense beyond the memory limit: refused, naming the remedy");
 
   if (root)
     deallog << "failed checks: " << impactfe_tests::n_failed_checks

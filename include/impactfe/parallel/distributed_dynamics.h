@@ -71,6 +71,9 @@ namespace impactfe
       /// dense contact Schur complement does not couple (one per body
       /// with contacts, DenseSchurComplement::n_groups()).
       unsigned int contact_schur_groups = 0;
+      /// The substructured solver's contact operator: "dense", "sparse"
+      /// (SubstructuredSolver::ContactOperator), empty with the others.
+      std::string contact_operator;
     };
 
     /**
@@ -91,6 +94,9 @@ namespace impactfe
         substructured
       };
       Solver solver = Solver::substructured;
+      /// The substructured solver's contact operator (never factors_only).
+      SubstructuredSolver::ContactOperator contact_operator =
+        SubstructuredSolver::ContactOperator::automatic;
       /// Relative residual of each CG solve with M~.
       double       tolerance      = 1e-12;
       unsigned int max_iterations = 1000;
@@ -329,10 +335,17 @@ namespace impactfe
       frame_component(const unsigned int         c,
                       const unsigned int         direction,
                       const std::vector<double> &on_dofs) const;
+      /// The substructured path's products on the contact DoFs: y = W x
+      /// for lcp_candidates (S_C^{-1} dense, or partial substitutions with
+      /// the sparse contact operator), or with @p use_schur the
+      /// preconditioner H^T S_C H (dense operator only).
       void
-      dense_contact_product(const std::vector<double> &x,
-                            std::vector<double>       &y,
-                            const bool                 use_schur);
+      contact_dof_product(const std::vector<double> &x,
+                          std::vector<double>       &y,
+                          const bool                 use_schur);
+      /// Whether the substructured solver forms S_C densely.
+      bool
+      dense_contact_operator() const;
       /// Per body, the impulses of @p local (per candidate and
       /// direction) in global coordinates, times @p factor.
       std::vector<std::array<double, 3>>

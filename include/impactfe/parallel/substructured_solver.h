@@ -49,33 +49,73 @@ namespace impactfe
      *
      * The interface problems are dense: |Gamma|^2 numbers on every rank
      * during the set-up, |B|^2 kept. That suits a few ranks (2D: |B| of the
-     * order of the cut lines' DoFs); initialize() refuses a Gamma whose
-     * matrix would be larger than @p memory_limit.
+     * order of the cut lines' DoFs) and a few thousand contact DoFs. With
+     * more contact DoFs (ContactOperator::sparse) C stays in the factors'
+     * fill-reducing order, no S_C is formed, and a product with (A^{-1})_CC
+     * is a pair of partial substitutions (contact_solve()).
      */
     class SubstructuredSolver
     {
     public:
       /**
+       * What the contact DoFs C get in the factors, and how contact_solve()
+       * applies (A^{-1})_CC.
+       */
+      enum class ContactOperator
+      {
+        /// C last in the factors; S_C and S_C^{-1} formed densely on every
+        /// rank (set-up O(|Gamma|^3), |Gamma|^2 numbers; a product costs
+        /// 2 |C|^2 flops, no communication).
+        dense,
+        /// C last in the factors, no S_C: a level that makes no contact
+        /// product (the free-flight steps of a dense run).
+        factors_only,
+        /// C in the factors' fill-reducing order, no dense matrix on C: a
+        /// contact_solve() is a forward and a backward substitution from
+        /// the first contact DoF on, with the interface solve between
+        /// (about one solve pair, two all-reduces). For many contacts.
+        sparse,
+        /// dense if its set-up is cheap and fits @p memory_limit, else
+        /// sparse (initialize(); chosen_contact_operator() says which).
+        automatic
+      };
+
+      /// Bytes the dense set-up needs at its peak on every rank, for an
+      /// interface Gamma of @p n_gamma DoFs of which @p n_contact are
+      /// contact DoFs and @p n_trailing this rank's trailing unknowns.
+      static double
+      dense_setup_bytes(const double n_gamma,
+                        const double n_contact,
+                        const double n_trailing);
+
+      /**
        * @p subdomain_matrix, @p local_to_global and @p on_interface as
        * DistributedElasticBody::assemble_subdomain_matrix() gives them;
        * @p contact_dofs: the global DoFs C (the same list on every rank);
        * @p owned: the DoFs of the distributed vectors this rank owns.
-       * @p name names the matrix in messages. Without
-       * @p with_contact_schur_complement, S_C is not built (the dense
-       * problem on B u C and its inverse on C, set-up time and memory):
-       * start_solve() and finish_solve() do not need it, only
-       * contact_schur_complement() does.
+       * @p name names the matrix in messages. @p contact_operator: see
+       * ContactOperator; with `automatic` the dense operator is chosen if
+       * |Gamma| <= @p largest_dense_interface, |Gamma|^2 <= 1000 times the
+       * DoFs (beyond, sparse products were faster) and its set-up fits
+       * @p memory_limit on every rank. An explicit `dense` beyond
+       * @p memory_limit is refused with a message.
        */
       void
-      initialize(const MPI_Comm                              communicator,
-                 const SparseMatrix<double>                 &subdomain_matrix,
-                 const std::vector<types::global_dof_index> &local_to_global,
-                 const std::vector<bool>                    &on_interface,
-                 const std::vector<types::global_dof_index> &contact_dofs,
-                 const IndexSet                             &owned,
-                 const std::string                          &name,
-                 const bool        with_contact_schur_complement = true,
-                 const std::size_t memory_limit = std::size_t(4) << 30);
+      initialize(
+        const MPI_Comm                              communicator,
+        const SparseMatrix<double>                 &subdomain_matrix,
+        const std::vector<types::global_dof_index> &local_to_global,
+        const std::vector<bool>                    &on_interface,
+        const std::vector<types::global_dof_index> &contact_dofs,
+        const IndexSet                             &owned,
+        const std::string                          &name,
+        const ContactOperator contact_operator        = ContactOperator::dense,
+        const std::size_t     memory_limit            = std::size_t(4) << 30,
+        const unsigned int    largest_dense_interface = 6000);
+
+      /// The contact operator initialize() chose (never `automatic`).
+      ContactOperator
+      chosen_contact_operator() const;
 
       /// x = A^{-1} b.
       void
@@ -105,9 +145,19 @@ namespace impactfe
       finish_solve(const std::vector<double> &c, DistributedVector &x) const;
 
       /// S_C and S_C^{-1} on the contact DoFs (the same on every rank);
-      /// throws if initialize() was told not to build them.
+      /// throws unless the contact operator is dense.
       const DenseSchurComplement &
       contact_schur_complement() const;
+
+      /**
+       * @p x_contact = (A^{-1} c) on the contact DoFs, for @p c on them
+       * (both in the order given to initialize(), the same on every rank):
+       * S_C^{-1} c with the dense operator, partial substitutions with the
+       * factors with the sparse one. Not with `factors_only`.
+       */
+      void
+      contact_solve(const std::vector<double> &c,
+                    std::vector<double>       &x_contact) const;
 
       /// |B|, the DoFs the ranks share (none on one rank).
       unsigned int
@@ -133,7 +183,8 @@ namespace impactfe
       bool     first_rank   = true;
       /// A_i's factor, ordered [I, C_i, B_i]: the rank's interior DoFs,
       /// its contact DoFs that no other rank has (n_leading of them in
-      /// all), then those it shares.
+      /// all), then those it shares; with the sparse contact operator
+      /// C_i is among I, in the fill-reducing order.
       SparseCholesky                       factor;
       std::vector<types::global_dof_index> local_to_global;
       unsigned int                         n_leading = 0, n_interior = 0;
@@ -149,7 +200,11 @@ namespace impactfe
       /// The positions in B of the DoFs this rank owns, and their offsets.
       std::vector<std::pair<unsigned int, unsigned int>> owned_interface;
       DenseSchurComplement                               contact_schur;
-      bool has_contact_schur = false;
+      ContactOperator contact_operator = ContactOperator::factors_only;
+      /// The first factor position of a contact DoF of this rank's own
+      /// (n_leading if it has none): the substitutions for the contact
+      /// DoFs start there.
+      unsigned int first_contact_position = 0;
       /// The contact DoFs (their index in the order of initialize()) that
       /// only this rank has, with their factor position, and those in B,
       /// with their position there.
