@@ -237,6 +237,11 @@ namespace impactfe
       /// and each node's first slot among them (by its first DoF).
       std::vector<types::global_dof_index>            contact_dofs;
       std::map<types::global_dof_index, unsigned int> slot_of_node;
+      /// With the sparse contact operator: M~'s block on the contact DoFs
+      /// (compressed rows, on every rank), for the preconditioner H^T M~ H
+      /// with no distributed product.
+      std::vector<unsigned int> contact_block_start, contact_block_column;
+      std::vector<double>       contact_block_value;
       /// Mass redistribution: the offsets in this rank's part of the
       /// vectors of the massless DoFs it owns; every candidate (for the
       /// last impulse's carry, H P^i).
@@ -338,7 +343,7 @@ namespace impactfe
       /// The substructured path's products on the contact DoFs: y = W x
       /// for lcp_candidates (S_C^{-1} dense, or partial substitutions with
       /// the sparse contact operator), or with @p use_schur the
-      /// preconditioner H^T S_C H (dense operator only).
+      /// preconditioner: H^T S_C H (dense operator) or H^T M~ H (sparse).
       void
       contact_dof_product(const std::vector<double> &x,
                           std::vector<double>       &y,
@@ -346,6 +351,10 @@ namespace impactfe
       /// Whether the substructured solver forms S_C densely.
       bool
       dense_contact_operator() const;
+      /// contact_block_*: M~'s rows of the contact DoFs this rank owns,
+      /// restricted to the contact DoFs, gathered on every rank.
+      void
+      setup_contact_block();
       /// Per body, the impulses of @p local (per candidate and
       /// direction) in global coordinates, times @p factor.
       std::vector<std::array<double, 3>>
