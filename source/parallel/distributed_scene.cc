@@ -1700,7 +1700,8 @@ namespace impactfe
       if (parameters.scene.output.print_performance)
         out << "  Wall seconds: set-up " << setup_seconds << ", time loop "
             << loop_seconds << " (" << loop_seconds / n_steps_taken
-            << " per step taken); " << stats.products << " products W x, "
+            << " per step taken); " << stats.active_set_iterations
+            << " active set iterations, " << stats.products << " products W x, "
             << stats.cg_iterations << " CG iterations; solves with M~ "
             << stats.solve_seconds << " s (rank 0)"
             << (searched.searches > 0 ?
@@ -1751,6 +1752,7 @@ namespace impactfe
         .add("contact_problems", double(stats.contact_problems))
         .add("fallbacks", double(stats.fallbacks))
         .add("products", double(stats.products))
+        .add("active_set_iterations", double(stats.active_set_iterations))
         .add("cg_iterations", double(stats.cg_iterations))
         .add("solve_wall_seconds", stats.solve_seconds)
         .add("contact_schur_groups", double(stats.contact_schur_groups))
