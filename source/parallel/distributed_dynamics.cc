@@ -17,6 +17,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <set>
 
 namespace impactfe
 {
@@ -68,6 +69,19 @@ namespace impactfe
         "the DoFs of the mesh, and its set-up needs at most 4 GiB per "
         "rank; sparse otherwise (doc/parallel.md).");
       prm.declare_entry(
+        "Contact preconditioner",
+        "automatic",
+        Patterns::Selection("automatic|contact block|Schur complement"),
+        "Contact operator = sparse: the contact problem's preconditioner "
+        "H^T X H. contact block: X = M~'s block on the contact DoFs (no "
+        "solve). Schur complement: X = S_C, the dense operator's "
+        "preconditioner, applied by a solve with M~ pinned on the contact "
+        "DoFs (a second factorisation; each application costs about a "
+        "solve pair, and the GMRES iterations are fewer: 10 times fewer "
+        "on a 3D slab sliding with the exact cone, 1.5 times in 2D). "
+        "automatic: Schur complement in 3D with friction, contact block "
+        "otherwise.");
+      prm.declare_entry(
         "Tolerance",
         "1e-12",
         Patterns::Double(0.),
@@ -98,8 +112,14 @@ namespace impactfe
         contact == "dense"  ? SubstructuredSolver::ContactOperator::dense :
         contact == "sparse" ? SubstructuredSolver::ContactOperator::sparse :
                               SubstructuredSolver::ContactOperator::automatic;
-      tolerance      = prm.get_double("Tolerance");
-      max_iterations = prm.get_integer("Maximum iterations");
+      const std::string preconditioner = prm.get("Contact preconditioner");
+      contact_preconditioner           = preconditioner == "contact block" ?
+                                           ContactPreconditioner::contact_block :
+                                         preconditioner == "Schur complement" ?
+                                           ContactPreconditioner::schur_complement :
+                                           ContactPreconditioner::automatic;
+      tolerance                        = prm.get_double("Tolerance");
+      max_iterations                   = prm.get_integer("Maximum iterations");
       prm.leave_subsection();
       AssertThrow(tolerance > 0. && tolerance < 1.,
                   ExcMessage("Parallel solver: 'Tolerance' must be in (0, 1), "
@@ -395,6 +415,56 @@ namespace impactfe
                                              body.locally_owned_dofs(),
                                              "the step matrix",
                                              contact_operator);
+      if (&level == &fine && !dense_contact_operator())
+        {
+          using Preconditioner =
+            ParallelSolverParameters::ContactPreconditioner;
+          const bool schur = linear_parameters.contact_preconditioner ==
+                               Preconditioner::schur_complement ||
+                             (linear_parameters.contact_preconditioner ==
+                                Preconditioner::automatic &&
+                              dim == 3 && contact.n_directions() == 3);
+          stats.contact_preconditioner =
+            schur ? "Schur complement" : "contact block";
+          if (schur)
+            {
+              // M~ with the contact DoFs' rows and columns those of the
+              // identity (1 / n_ranks on each rank that has them, so that
+              // the sum over the ranks is 1)
+              std::vector<bool> pinned(subdomain_matrix.m(), false);
+              const std::set<types::global_dof_index> contact_set(
+                contact_dofs.begin(), contact_dofs.end());
+              for (unsigned int l = 0; l < subdomain_matrix.m(); ++l)
+                pinned[l] = contact_set.count(local_to_global[l]) > 0;
+              const double share =
+                1. / Utilities::MPI::n_mpi_processes(body.communicator());
+              for (unsigned int l = 0; l < subdomain_matrix.m(); ++l)
+                for (auto entry = subdomain_matrix.begin(l);
+                     entry != subdomain_matrix.end(l);
+                     ++entry)
+                  if (pinned[l] || pinned[entry->column()])
+                    entry->value() =
+                      (pinned[l] && entry->column() == l) ? share : 0.;
+              pinned_solver = std::make_unique<SubstructuredSolver>();
+              pinned_solver->initialize(body.communicator(),
+                                        subdomain_matrix,
+                                        local_to_global,
+                                        on_interface,
+                                        {},
+                                        body.locally_owned_dofs(),
+                                        "the step matrix pinned on the "
+                                        "contact DoFs",
+                                        ContactOperator::sparse);
+              owned_contact_dofs.clear();
+              const IndexSet &owned = body.locally_owned_dofs();
+              for (unsigned int k = 0; k < contact_dofs.size(); ++k)
+                if (owned.is_element(contact_dofs[k]))
+                  owned_contact_dofs.emplace_back(
+                    k, owned.index_within_set(contact_dofs[k]));
+              schur_in.reinit(owned, body.communicator());
+              schur_out.reinit(owned, body.communicator());
+            }
+        }
       if (&level == &fine)
         {
           stats.contact_operator =
@@ -456,6 +526,32 @@ namespace impactfe
         }
       for (unsigned int k = 0; k < contact_dofs.size(); ++k)
         contact_block_start[k + 1] += contact_block_start[k];
+    }
+
+
+
+    // S_C y = A_CC y - A_CI A_II^{-1} A_IC y for y on the contact DoFs C,
+    // I the others: with b = A y, b_C = 0, and z = A_II^{-1} b_I (the
+    // pinned solve, z_C = 0), S_C y = (A (y - z))_C, as (A (y - z))_I = 0.
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::schur_complement_product(
+      const std::vector<double> &x,
+      std::vector<double>       &y)
+    {
+      schur_in = 0.;
+      for (const auto &[k, offset] : owned_contact_dofs)
+        schur_in.begin()[offset] = x[k];
+      fine.step_matrix.vmult(schur_out, schur_in);
+      for (const auto &[k, offset] : owned_contact_dofs)
+        schur_out.begin()[offset] = 0.;
+      pinned_solver->solve(schur_out, work);
+      schur_in -= work;
+      fine.step_matrix.vmult(schur_out, schur_in);
+      y.assign(n_contact_dofs, 0.);
+      for (const auto &[k, offset] : owned_contact_dofs)
+        y[k] = schur_out.begin()[offset];
+      Utilities::MPI::sum(y, body.communicator(), y);
     }
 
 
@@ -607,7 +703,9 @@ namespace impactfe
       impulses_on_contact_dofs(x, dense_in);
       const unsigned int n_ranks =
         Utilities::MPI::n_mpi_processes(body.communicator());
-      if (!dense_contact_operator() && use_schur)
+      if (pinned_solver && use_schur)
+        schur_complement_product(dense_in, dense_out);
+      else if (!dense_contact_operator() && use_schur)
         {
           // H^T M~ H: M~'s block on the contact DoFs
           dense_out.assign(n_contact_dofs, 0.);

@@ -1714,7 +1714,8 @@ namespace impactfe
                     " uncoupled blocks" :
                   std::string())
             << (stats.contact_operator == "sparse" ?
-                  "; sparse contact operator" :
+                  "; sparse contact operator, preconditioned by its " +
+                    stats.contact_preconditioner :
                   std::string())
             << "\n";
       out << "Results in " << parameters.scene.output.directory
@@ -1757,6 +1758,7 @@ namespace impactfe
         .add("solve_wall_seconds", stats.solve_seconds)
         .add("contact_schur_groups", double(stats.contact_schur_groups))
         .add("contact_operator", stats.contact_operator)
+        .add("contact_preconditioner", stats.contact_preconditioner)
         .add("largest_slide_off", largest_slide_off)
         .add("contact_search_interval", double(parameters.search_interval))
         .add("contact_searches", double(searched.searches))

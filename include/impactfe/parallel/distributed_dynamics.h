@@ -74,6 +74,9 @@ namespace impactfe
       /// The substructured solver's contact operator: "dense", "sparse"
       /// (SubstructuredSolver::ContactOperator), empty with the others.
       std::string contact_operator;
+      /// The sparse operator's preconditioner: "Schur complement" (by
+      /// solves with M~ pinned on the contact DoFs) or "contact block".
+      std::string contact_preconditioner;
     };
 
     /**
@@ -97,6 +100,18 @@ namespace impactfe
       /// The substructured solver's contact operator (never factors_only).
       SubstructuredSolver::ContactOperator contact_operator =
         SubstructuredSolver::ContactOperator::automatic;
+      /// With the sparse contact operator, the contact problem's
+      /// preconditioner H^T X H: X = M~'s block on the contact DoFs, or
+      /// their Schur complement S_C applied by a solve with M~ pinned on
+      /// them; automatic: S_C in 3D with friction.
+      enum class ContactPreconditioner
+      {
+        automatic,
+        contact_block,
+        schur_complement
+      };
+      ContactPreconditioner contact_preconditioner =
+        ContactPreconditioner::automatic;
       /// Relative residual of each CG solve with M~.
       double       tolerance      = 1e-12;
       unsigned int max_iterations = 1000;
@@ -242,6 +257,14 @@ namespace impactfe
       /// with no distributed product.
       std::vector<unsigned int> contact_block_start, contact_block_column;
       std::vector<double>       contact_block_value;
+      /// With the sparse contact operator and its Schur complement
+      /// preconditioner: the solver of M~ with the contact DoFs pinned
+      /// (their rows and columns those of the identity), the contact DoFs
+      /// this rank owns (index in contact_dofs, offset in the vectors),
+      /// and the preconditioner's vectors.
+      std::unique_ptr<SubstructuredSolver>               pinned_solver;
+      std::vector<std::pair<unsigned int, unsigned int>> owned_contact_dofs;
+      DistributedVector                                  schur_in, schur_out;
       /// Mass redistribution: the offsets in this rank's part of the
       /// vectors of the massless DoFs it owns; every candidate (for the
       /// last impulse's carry, H P^i).
@@ -355,6 +378,11 @@ namespace impactfe
       /// restricted to the contact DoFs, gathered on every rank.
       void
       setup_contact_block();
+      /// y = S_C x on the contact DoFs (replicated vectors): b = M~ x with
+      /// b_C = 0, z = the pinned solve of b, y = (M~ (x - z))_C.
+      void
+      schur_complement_product(const std::vector<double> &x,
+                               std::vector<double>       &y);
       /// Per body, the impulses of @p local (per candidate and
       /// direction) in global coordinates, times @p factor.
       std::vector<std::array<double, 3>>
