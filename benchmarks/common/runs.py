@@ -29,6 +29,20 @@ def run(build, program, base_prm, out_dir, overrides=""):
         return json.load(f)
 
 
+def mpiexec(ranks):
+    """The command prefix that runs a program on @p ranks MPI ranks (none
+    for one rank); Open MPI is told to run as root, oversubscribe the
+    cores and bind each rank to one."""
+    if ranks == 1:
+        return []
+    cmd = ["mpiexec", "-np", str(ranks)]
+    version = subprocess.run(["mpiexec", "--version"], capture_output=True,
+                             text=True).stdout
+    if "Open MPI" in version or "OpenRTE" in version:
+        cmd += ["--allow-run-as-root", "--oversubscribe", "--bind-to", "core"]
+    return cmd
+
+
 def read_columns(path):
     """A CSV file as {column: [float, ...]}."""
     with open(path, newline="") as f:

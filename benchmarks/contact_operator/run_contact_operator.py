@@ -38,20 +38,9 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(ROOT, "benchmarks", "common"))
-from runs import fit_exponent, machine_and_commit  # noqa: E402
+from runs import fit_exponent, machine_and_commit, mpiexec  # noqa: E402
 
 MAKE_MESH = os.path.join(ROOT, "tests", "two_bars_2d", "make_bar_msh.py")
-
-
-def mpiexec(ranks):
-    if ranks == 1:
-        return []
-    cmd = ["mpiexec", "-np", str(ranks)]
-    version = subprocess.run(["mpiexec", "--version"], capture_output=True,
-                             text=True).stdout
-    if "Open MPI" in version or "OpenRTE" in version:
-        cmd += ["--allow-run-as-root", "--oversubscribe", "--bind-to", "core"]
-    return cmd
 
 
 def write_scene(out, n, steps, solver, operator):

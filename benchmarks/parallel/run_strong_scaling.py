@@ -31,6 +31,8 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(ROOT, "benchmarks", "common"))
+from runs import mpiexec  # noqa: E402
 
 # the parts of the scene's file that both dimensions share
 TIME_STEPPING = """subsection Time stepping
@@ -103,15 +105,6 @@ end
   set Friction cone = exact
 end
 {parallel_and_output}"""
-
-
-def mpiexec(ranks):
-    cmd = ["mpiexec", "-np", str(ranks)]
-    version = subprocess.run(["mpiexec", "--version"], capture_output=True,
-                             text=True).stdout
-    if "Open MPI" in version or "OpenRTE" in version:
-        cmd += ["--allow-run-as-root", "--oversubscribe", "--bind-to", "core"]
-    return cmd
 
 
 def run(build, work, n, ranks, steps, solver, dim):

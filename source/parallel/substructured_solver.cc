@@ -402,6 +402,24 @@ namespace impactfe
 
 
 
+    // The contact DoFs' values on every rank: the rank's own ones from the
+    // backward substitution in w (summed over the ranks: each has its
+    // own), the shared ones from x_B in interface_work.
+    void
+    SubstructuredSolver::contact_values(const double        *w,
+                                        std::vector<double> &x_contact) const
+    {
+      x_contact.assign(n_contact_dofs, 0.);
+      for (const auto &[i, k] : own_contacts)
+        x_contact[i] = w[k];
+      if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+        Utilities::MPI::sum(x_contact, communicator, x_contact);
+      for (const auto &[i, j] : shared_contacts)
+        x_contact[i] = interface_work[j];
+    }
+
+
+
     void
     SubstructuredSolver::store(const double      *z,
                                const double      *g,
@@ -462,13 +480,7 @@ namespace impactfe
                 w + first_contact_position);
       solve_interface(w, started_shared.data(), interface_work.data());
       factor.solve_lower(w, true, n_leading, first_contact_position);
-      x_contact.assign(n_contact_dofs, 0.);
-      for (const auto &[i, k] : own_contacts)
-        x_contact[i] = w[k];
-      if (Utilities::MPI::n_mpi_processes(communicator) > 1)
-        Utilities::MPI::sum(x_contact, communicator, x_contact);
-      for (const auto &[i, j] : shared_contacts)
-        x_contact[i] = interface_work[j];
+      contact_values(w, x_contact);
     }
 
 
@@ -546,13 +558,7 @@ namespace impactfe
           shared_rhs[j] = c[i];
       solve_interface(w, shared_rhs.data(), interface_work.data());
       factor.solve_lower(w, true, n_leading, first_contact_position);
-      x_contact.assign(n_contact_dofs, 0.);
-      for (const auto &[i, k] : own_contacts)
-        x_contact[i] = w[k];
-      if (Utilities::MPI::n_mpi_processes(communicator) > 1)
-        Utilities::MPI::sum(x_contact, communicator, x_contact);
-      for (const auto &[i, j] : shared_contacts)
-        x_contact[i] = interface_work[j];
+      contact_values(w, x_contact);
     }
 
 

@@ -175,6 +175,10 @@ namespace impactfe
       /// into g and into z's shared part.
       void
       solve_interface(double *z, const double *b_shared, double *g) const;
+      /// The contact DoFs' values from a backward substitution in @p w
+      /// and from x_B (interface_work), on every rank.
+      void
+      contact_values(const double *w, std::vector<double> &x_contact) const;
       /// x from the leading part of z and from x_B in g.
       void
       store(const double *z, const double *g, DistributedVector &x) const;
