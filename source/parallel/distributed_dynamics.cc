@@ -188,7 +188,10 @@ namespace impactfe
       setup_operators(fine);
       if (coarse)
         setup_operators(*coarse);
-      if (fine.substructured_solver && !dense_contact_operator())
+      // the contact block preconditions the sparse operator unless the
+      // pinned solves do
+      if (fine.substructured_solver && !dense_contact_operator() &&
+          !pinned_solver)
         setup_contact_block();
 
       const IndexSet &owned = body.locally_owned_dofs();
@@ -429,8 +432,9 @@ namespace impactfe
           if (schur)
             {
               // M~ with the contact DoFs' rows and columns those of the
-              // identity (1 / n_ranks on each rank that has them, so that
-              // the sum over the ranks is 1)
+              // identity, up to a positive diagonal (1 / n_ranks on each
+              // rank that has them): they are decoupled, and their right-
+              // hand side is zero, so their solution is zero whatever it is
               std::vector<bool> pinned(subdomain_matrix.m(), false);
               const std::set<types::global_dof_index> contact_set(
                 contact_dofs.begin(), contact_dofs.end());
@@ -951,8 +955,8 @@ namespace impactfe
 
 
 
-    // W of the candidates column by column (n n_d solves, or dense
-    // products with the substructured solver), then Lemke's
+    // W of the candidates column by column (n n_d solves, or products on
+    // the contact DoFs with the substructured solver), then Lemke's
     // method on the contact LCP (the exact cone by re-aligned facets in 3D,
     // or the facet form), verified as in the serial programs.
     template <int dim>

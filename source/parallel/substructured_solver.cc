@@ -167,7 +167,6 @@ namespace impactfe
                              ContactOperator::sparse;
       if (contact_operator == ContactOperator::dense)
         {
-          DenseSchurComplement::check_dense_size(n_gamma, name);
           AssertThrow(
             dense_bytes <= memory_limit,
             ExcMessage(
@@ -184,8 +183,30 @@ namespace impactfe
               "automatic)" +
               (shared.empty() ? std::string(".") :
                                 std::string(", or fewer ranks."))));
+          DenseSchurComplement::check_dense_size(n_gamma, name);
         }
       const bool contacts_last = contact_operator != ContactOperator::sparse;
+      // every operator keeps S_B, dense on every rank: the rank's block
+      // of its factor on B_i (and C_i, last with it), its product with
+      // itself, and their sum over the ranks
+      const double own_trailing =
+        mine.size() + (contacts_last ? n_local_contact : 0.);
+      const double interface_bytes =
+        Utilities::MPI::max(8. * (own_trailing * own_trailing +
+                                  double(mine.size()) * mine.size() +
+                                  double(shared.size()) * shared.size()),
+                            communicator);
+      AssertThrow(shared.size() < 46340 && interface_bytes <= memory_limit,
+                  ExcMessage(
+                    "Substructured solve of " + name + ": the ranks share " +
+                    std::to_string(shared.size()) +
+                    " DoFs, and the dense interface problem on them would "
+                    "need " +
+                    format_number(interface_bytes / (1 << 30)) +
+                    " GiB on a rank (the limit: " +
+                    format_number(double(memory_limit) / (1 << 30)) +
+                    " GiB, and 46340 DoFs). Use fewer ranks, or 'Parallel "
+                    "solver/Solver = direct' or 'amg cg'."));
 
       // 2. The rank's factor, [C_i, B_i] last in that order ([B_i] with
       // the sparse operator).
@@ -454,6 +475,10 @@ namespace impactfe
 
 
     // @sect3{A solve in two halves}
+    // (With the sparse contact operator the contact DoFs are spread
+    // through the factor's order, so the partial substitutions from
+    // first_contact_position are nearly whole ones: a step costs up to two
+    // solve pairs there.)
     // start_solve(): the forward substitution of b (kept), x_B, and the
     // contact DoFs' values: the rank's own ones by the backward
     // substitution through their columns only (the interior's are not

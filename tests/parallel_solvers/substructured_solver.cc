@@ -328,7 +328,9 @@ main(int argc, char **argv)
 
   // 7. The choice: automatic takes the dense operator for this small
   // problem, and the sparse one if the dense set-up would exceed the
-  // memory limit, where an explicit dense operator is refused.
+  // memory limit (20 kB: S_C's set-up needs more than 100 kB, the
+  // interface problem on the DoFs two ranks share about 5 kB), where an
+  // explicit dense operator is refused.
   SubstructuredSolver automatic;
   automatic.initialize(comm,
                        subdomain,
@@ -348,7 +350,7 @@ main(int argc, char **argv)
                        owned,
                        "A",
                        ContactOperator::automatic,
-                       1000);
+                       20000);
   check(automatic.chosen_contact_operator() == ContactOperator::sparse,
         "automatic: sparse beyond the memory limit");
   std::string message;
@@ -363,7 +365,7 @@ main(int argc, char **argv)
                        owned,
                        "A",
                        ContactOperator::dense,
-                       1000);
+                       20000);
     }
   catch (const ExceptionBase &e)
     {
@@ -373,6 +375,34 @@ main(int argc, char **argv)
     }
   check(message.find("Contact operator = sparse") != std::string::npos,
         "dense beyond the memory limit: refused, naming the remedy");
+
+  // 8. Every operator keeps the dense interface problem on the DoFs the
+  // ranks share: beyond the memory limit (100 bytes) it is refused with
+  // its own message on two ranks; one rank shares none.
+  message.clear();
+  try
+    {
+      SubstructuredSolver tiny;
+      tiny.initialize(comm,
+                      subdomain,
+                      local_to_global,
+                      on_interface,
+                      contact_dofs,
+                      owned,
+                      "A",
+                      ContactOperator::sparse,
+                      100);
+    }
+  catch (const ExceptionBase &e)
+    {
+      std::ostringstream what;
+      e.print_info(what);
+      message = what.str();
+    }
+  check((message.find("Use fewer ranks") != std::string::npos) ==
+          (Utilities::MPI::n_mpi_processes(comm) > 1),
+        "the shared DoFs' problem beyond the memory limit: refused if "
+        "there are several ranks");
 
   if (root)
     deallog << "failed checks: " << impactfe_tests::n_failed_checks
