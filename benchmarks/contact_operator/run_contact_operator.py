@@ -60,11 +60,11 @@ def write_scene(out, n, steps, solver, operator):
     return prm
 
 
-def run(build, work, n, ranks, steps, variant):
-    solver, operator = (("direct", "automatic") if variant == "direct" else
-                        ("substructured", variant))
-    out = os.path.join(work, f"n{n}_r{ranks}_{variant}")
-    prm = write_scene(out, n, steps, solver, operator)
+def run_contact_mpi(build, prm, out, ranks, what):
+    """contact_mpi on @p prm in @p out on @p ranks ranks (one rank under GNU
+    time); stops the script with its output if it fails. Returns its
+    RESULT line's values, summary.json and, on one rank, the peak resident
+    set in GiB (nan on several)."""
     time_file = os.path.join(out, "time.txt")
     command = (mpiexec(ranks) if ranks > 1 else
                ["/usr/bin/time", "-f", "%M", "-o", time_file])
@@ -72,15 +72,24 @@ def run(build, work, n, ranks, steps, variant):
                                                   "contact_mpi"), prm],
                           capture_output=True, text=True, cwd=out)
     if proc.returncode != 0:
-        sys.exit(f"contact_mpi failed (n = {n}, {ranks} ranks, {variant}):\n"
+        sys.exit(f"contact_mpi failed ({what}, {ranks} ranks):\n"
                  + proc.stdout[-2000:] + proc.stderr[-2000:])
     line = [l for l in proc.stdout.splitlines()
             if l.startswith("RESULT ")][-1]
     values = dict(kv.split("=", 1) for kv in line.split()[1:])
     summary = json.load(open(os.path.join(out, "summary.json")))
-    peak = float("nan")
-    if ranks == 1:
-        peak = float(open(time_file).read().split()[-1]) / 2**20  # GiB
+    peak = (float(open(time_file).read().split()[-1]) / 2**20
+            if ranks == 1 else float("nan"))
+    return values, summary, peak
+
+
+def run(build, work, n, ranks, steps, variant):
+    solver, operator = (("direct", "automatic") if variant == "direct" else
+                        ("substructured", variant))
+    out = os.path.join(work, f"n{n}_r{ranks}_{variant}")
+    prm = write_scene(out, n, steps, solver, operator)
+    values, summary, peak = run_contact_mpi(build, prm, out, ranks,
+                                            f"n = {n}, {variant}")
     return {"variant": variant, "n": n, "ranks": ranks,
             "dofs": int(values["dofs"]),
             "contacts": int(values["contacts"]),

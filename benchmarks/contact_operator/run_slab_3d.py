@@ -24,7 +24,6 @@ import argparse
 import csv
 import json
 import os
-import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -32,7 +31,7 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(ROOT, "benchmarks", "common"))
 sys.path.insert(0, HERE)
 from runs import fit_exponent, machine_and_commit, mpiexec  # noqa: E402
-from run_contact_operator import largest_difference  # noqa: E402
+from run_contact_operator import largest_difference, run_contact_mpi  # noqa: E402,E501
 
 BASE = os.path.join(ROOT, "parameter_files", "block_sliding_3d.prm")
 VARIANTS = {"schur": ("sparse", "Schur complement"),
@@ -72,21 +71,8 @@ subsection Output
   set Print performance data = true
 end
 """)
-    time_file = os.path.join(out, "time.txt")
-    command = (mpiexec(ranks) if ranks > 1 else
-               ["/usr/bin/time", "-f", "%M", "-o", time_file])
-    proc = subprocess.run(command + [os.path.join(build, "bin",
-                                                  "contact_mpi"), prm],
-                          capture_output=True, text=True, cwd=out)
-    if proc.returncode != 0:
-        sys.exit(f"contact_mpi failed (n = {n}, {ranks} ranks, {variant}):\n"
-                 + proc.stdout[-2000:] + proc.stderr[-2000:])
-    line = [l for l in proc.stdout.splitlines()
-            if l.startswith("RESULT ")][-1]
-    values = dict(kv.split("=", 1) for kv in line.split()[1:])
-    summary = json.load(open(os.path.join(out, "summary.json")))
-    peak = (float(open(time_file).read().split()[-1]) / 2**20
-            if ranks == 1 else float("nan"))
+    values, summary, peak = run_contact_mpi(build, prm, out, ranks,
+                                            f"n = {n}, {variant}")
     return {"variant": variant, "n": n, "ranks": ranks,
             "dofs": int(values["dofs"]),
             "contacts": int(values["contacts"]),

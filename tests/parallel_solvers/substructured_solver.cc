@@ -353,54 +353,39 @@ main(int argc, char **argv)
                        20000);
   check(automatic.chosen_contact_operator() == ContactOperator::sparse,
         "automatic: sparse beyond the memory limit");
-  std::string message;
-  try
-    {
-      SubstructuredSolver dense;
-      dense.initialize(comm,
-                       subdomain,
-                       local_to_global,
-                       on_interface,
-                       contact_dofs,
-                       owned,
-                       "A",
-                       ContactOperator::dense,
-                       20000);
-    }
-  catch (const ExceptionBase &e)
-    {
-      std::ostringstream what;
-      e.print_info(what);
-      message = what.str();
-    }
-  check(message.find("Contact operator = sparse") != std::string::npos,
+  // The message of a set-up under @p limit bytes, empty if none.
+  const auto refusal = [&](const ContactOperator contact_operator,
+                           const std::size_t     limit) {
+    try
+      {
+        SubstructuredSolver limited;
+        limited.initialize(comm,
+                           subdomain,
+                           local_to_global,
+                           on_interface,
+                           contact_dofs,
+                           owned,
+                           "A",
+                           contact_operator,
+                           limit);
+      }
+    catch (const ExceptionBase &e)
+      {
+        std::ostringstream what;
+        e.print_info(what);
+        return what.str();
+      }
+    return std::string();
+  };
+  check(refusal(ContactOperator::dense, 20000)
+            .find("Contact operator = sparse") != std::string::npos,
         "dense beyond the memory limit: refused, naming the remedy");
 
   // 8. Every operator keeps the dense interface problem on the DoFs the
   // ranks share: beyond the memory limit (100 bytes) it is refused with
   // its own message on two ranks; one rank shares none.
-  message.clear();
-  try
-    {
-      SubstructuredSolver tiny;
-      tiny.initialize(comm,
-                      subdomain,
-                      local_to_global,
-                      on_interface,
-                      contact_dofs,
-                      owned,
-                      "A",
-                      ContactOperator::sparse,
-                      100);
-    }
-  catch (const ExceptionBase &e)
-    {
-      std::ostringstream what;
-      e.print_info(what);
-      message = what.str();
-    }
-  check((message.find("Use fewer ranks") != std::string::npos) ==
-          (Utilities::MPI::n_mpi_processes(comm) > 1),
+  check((refusal(ContactOperator::sparse, 100).find("Use fewer ranks") !=
+         std::string::npos) == (Utilities::MPI::n_mpi_processes(comm) > 1),
         "the shared DoFs' problem beyond the memory limit: refused if "
         "there are several ranks");
 
