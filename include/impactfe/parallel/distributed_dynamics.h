@@ -259,8 +259,8 @@ namespace impactfe
       std::vector<double>       contact_block_value;
       /// With the sparse contact operator and its Schur complement
       /// preconditioner: the solver of M~ with the contact DoFs pinned
-      /// (their rows and columns those of the identity), the contact DoFs
-      /// this rank owns (index in contact_dofs, offset in the vectors),
+      /// (their rows and columns zero but a positive diagonal), the contact
+      /// DoFs this rank owns (index in contact_dofs, offset in the vectors),
       /// and the preconditioner's vectors.
       std::unique_ptr<SubstructuredSolver>               pinned_solver;
       std::vector<std::pair<unsigned int, unsigned int>> owned_contact_dofs;
@@ -366,7 +366,8 @@ namespace impactfe
       /// The substructured path's products on the contact DoFs: y = W x
       /// for lcp_candidates (S_C^{-1} dense, or partial substitutions with
       /// the sparse contact operator), or with @p use_schur the
-      /// preconditioner: H^T S_C H (dense operator) or H^T M~ H (sparse).
+      /// preconditioner: H^T S_C H (the dense operator's S_C, or by pinned
+      /// solves) or H^T M~ H (the contact block).
       void
       contact_dof_product(const std::vector<double> &x,
                           std::vector<double>       &y,
