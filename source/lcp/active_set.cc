@@ -888,15 +888,36 @@ namespace impactfe
           direction = new_direction;
           beta      = new_beta;
         }
+      // The margin of the state changes after an inexact solve: its error
+      // in impulse units, max_k c_k |r_k| of its final residual r (as the
+      // refinement measures it), and at least 1e2 times its tolerance
+      // relative to the impulses. The free scale c |q| stands in only
+      // before there are impulses: it can exceed them by orders of
+      // magnitude (a body sliding at 1 m/s, pressed by gravity alone),
+      // which made the inexact solves blind to every change and left a
+      // stick-slip front that moves one node per iteration to the tight
+      // solves.
+      auto inexact_margin = [&](const double p_max) {
+        if (!(p_max > 0.) || unknowns.empty())
+          return 1e2 * options.inexact_linear_tolerance *
+                 std::max(p_max, impulse_scale_free);
+        double impulse_error = 0.;
+        for (std::size_t k = 0; k < unknowns.size(); ++k)
+          impulse_error =
+            std::max(impulse_error, c[unknowns[k]] * std::abs(residual[k]));
+        return std::max(1e2 * options.inexact_linear_tolerance * p_max,
+                        impulse_error);
+      };
       // New states and slip directions from (P, V); returns how far the
       // directions of the contacts that keep sliding moved (3D circular
       // cone; in 2D they are the states' signs) and sets @p same if no
       // state changed. The directions are taken over.
       auto update_and_turn = [&](const bool after_tight_solve, bool &same) {
         // after an inexact solve, only changes well above its error
-        update_states(
-          (after_tight_solve ? 1e-10 : 1e2 * options.inexact_linear_tolerance) *
-          std::max(max_abs(P), impulse_scale_free));
+        const double p_max = max_abs(P);
+        update_states(after_tight_solve ?
+                        1e-10 * std::max(p_max, impulse_scale_free) :
+                        inexact_margin(p_max));
         if (new_state != state || new_feature != feature)
           damp_cycles();
         double turn = 0.;
@@ -919,10 +940,14 @@ namespace impactfe
 
       // Inexact Newton: while the states change, the linear systems are
       // solved to inexact_linear_tolerance only; once they settle, once
-      // more to linear_tolerance (at once from a warm start, which is
-      // often right), and from then on always to linear_tolerance, so that
-      // the inexact solves cannot make the states cycle.
-      bool tight = state_guess.size() == n, settled_once = false;
+      // more to linear_tolerance, and from then on always to
+      // linear_tolerance, so that the inexact solves cannot make the
+      // states cycle. A warm start begins inexact too: a tight first solve
+      // from right states saved little, and from states that still change
+      // (a stick-slip zone that moves with a block) it was spent. Measured:
+      // thin 3D slab at 10^4 contacts, 83 -> 75 products in 5 steps; 2D
+      // block on a slab, 24 003 candidates, 1 400 -> 1 296.
+      bool tight = false, settled_once = false;
 
       for (unsigned int iteration = 1; iteration <= options.max_iterations;
            ++iteration)
