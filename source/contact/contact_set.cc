@@ -401,7 +401,8 @@ namespace impactfe
       Point<dim>     p1, p2;
       Tensor<1, dim> normal;
     };
-    std::vector<Segment> segments;
+    std::vector<Segment>                                   segments;
+    std::vector<std::pair<BoundingBox<dim>, unsigned int>> boxes;
     for (const auto &cell : B.triangulation().active_cell_iterators())
       for (const unsigned int f : cell->face_indices())
         if (cell->face(f)->at_boundary() &&
@@ -417,12 +418,40 @@ namespace impactfe
               s.normal = Tensor<1, dim>({-t[1], t[0]}) / t.norm();
             if ((cell->center() - s.p1) * s.normal > 0.)
               s.normal *= -1.;
+            boxes.emplace_back(BoundingBox<dim>(
+                                 std::vector<Point<dim>>{{s.p1, s.p2}}),
+                               segments.size());
             segments.push_back(s);
           }
     AssertThrow(searching || !segments.empty(),
                 ExcMessage("Contact: body '" + B.name() +
                            "' has no boundary segment with id " +
                            std::to_string(boundary_b) + "."));
+    if (segments.empty())
+      return 0;
+    // The segments' boxes in an R-tree: a node is compared with the
+    // segments whose boxes come within a distance of it, not with all of
+    // them (the search was O(nodes x segments): 0.29 s per search with
+    // 8 000 nodes against 16 000 segments).
+    const auto tree = pack_rtree(boxes);
+    std::vector<std::pair<BoundingBox<dim>, unsigned int>> near;
+    const auto segments_within = [&](const Point<dim> &x, const double r) {
+      Point<dim> lower = x, upper = x;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          lower[d] -= r;
+          upper[d] += r;
+        }
+      near.clear();
+      tree.query(boost::geometry::index::intersects(
+                   BoundingBox<dim>(std::make_pair(lower, upper))),
+                 std::back_inserter(near));
+      // the order of the loop over all segments, so that ties go the same
+      std::sort(near.begin(), near.end(), [](const auto &a, const auto &b) {
+        return a.second < b.second;
+      });
+    };
+    const BoundingBox<dim> box_of_b_cells(B.triangulation().get_vertices());
 
     unsigned int n_added = 0;
     for (const unsigned int va : vertices_a)
@@ -431,34 +460,60 @@ namespace impactfe
         const Segment   *best    = nullptr;
         double           best_xi = 0., best_distance = 0.;
         bool             behind = false;
-        for (const Segment &s : segments)
+        // Every segment closer than r has its box within r of x. A search
+        // needs those within its distance; a pairing without one the
+        // closest at any distance: r is the distance to the farther end of
+        // the segment whose box is nearest, which bounds the closest one's.
+        double r = max_distance;
+        if (!searching)
           {
-            const Tensor<1, dim> t  = s.p2 - s.p1;
-            const double         xi = ((x - s.p1) * t) / t.norm_square();
-            if (xi < -1e-8 || xi > 1. + 1e-8)
-              continue;
-            const double signed_distance = (x - s.p1) * s.normal;
-            // a search pairs a node only with the outer side of a segment:
-            // the bodies do not overlap at the reference configuration
-            // (in a search during the run, max_penetration >= 0, a node
-            // deeper than that is checked at any depth)
-            if (searching && signed_distance < -rules.sunk)
-              {
-                behind = behind || -signed_distance <= max_distance ||
-                         max_penetration >= 0.;
-                continue;
-              }
-            const double distance = std::abs(signed_distance);
-            if (best == nullptr || distance < best_distance)
-              {
-                best          = &s;
-                best_xi       = std::clamp(xi, 0., 1.);
-                best_distance = distance;
-              }
+            std::vector<std::pair<BoundingBox<dim>, unsigned int>> nearest;
+            tree.query(boost::geometry::index::nearest(x, 1),
+                       std::back_inserter(nearest));
+            const Segment &s = segments[nearest.front().second];
+            r                = std::max(x.distance(s.p1), x.distance(s.p2));
           }
-        if (behind)
+        segments_within(x, r);
+        const auto try_segment = [&](const Segment &s) {
+          const Tensor<1, dim> t  = s.p2 - s.p1;
+          const double         xi = ((x - s.p1) * t) / t.norm_square();
+          if (xi < -1e-8 || xi > 1. + 1e-8)
+            return;
+          const double signed_distance = (x - s.p1) * s.normal;
+          // a search pairs a node only with the outer side of a segment:
+          // the bodies do not overlap at the reference configuration
+          // (in a search during the run, max_penetration >= 0, a node
+          // deeper than that is checked at any depth)
+          if (searching && signed_distance < -rules.sunk)
+            {
+              behind = behind || -signed_distance <= max_distance ||
+                       max_penetration >= 0.;
+              return;
+            }
+          const double distance = std::abs(signed_distance);
+          if (best == nullptr || distance < best_distance)
+            {
+              best          = &s;
+              best_xi       = std::clamp(xi, 0., 1.);
+              best_distance = distance;
+            }
+        };
+        for (const auto &hit : near)
+          try_segment(segments[hit.second]);
+        // No segment within r that x projects on (x beyond a corner of
+        // the nearest one): all of them, as before.
+        if (best == nullptr && !searching)
+          for (const Segment &s : segments)
+            try_segment(s);
+        const bool paired =
+          best != nullptr && (!searching || best_distance <= max_distance);
+        // Behind a segment farther than the search distance (a run's
+        // max_penetration >= 0 checks at any depth): inside B's box, the
+        // point-in-cell test decides.
+        if (behind || (searching && max_penetration >= 0. && !paired &&
+                       box_of_b_cells.point_inside(x)))
           check_not_inside(A, B, x, rules.overlap);
-        if (searching && (best == nullptr || best_distance > max_distance))
+        if (searching && !paired)
           continue;
         AssertThrow(best != nullptr,
                     ExcMessage(
