@@ -501,10 +501,15 @@ namespace impactfe
         for (const auto &hit : near)
           try_segment(segments[hit.second]);
         // No segment within r that x projects on (x beyond a corner of
-        // the nearest one): all of them, as before.
-        if (best == nullptr && !searching)
-          for (const Segment &s : segments)
-            try_segment(s);
+        // the nearest one), or only farther ones, which a segment outside
+        // the boxes might beat: all of them, as before.
+        if (!searching && (best == nullptr || best_distance > r))
+          {
+            best   = nullptr;
+            behind = false;
+            for (const Segment &s : segments)
+              try_segment(s);
+          }
         const bool paired =
           best != nullptr && (!searching || best_distance <= max_distance);
         // Behind a segment farther than the search distance (a run's

@@ -167,7 +167,12 @@ namespace impactfe
      * @p boundary_b; the normal is that segment's, pointing from B towards
      * A, and the relative motion of the projection point interpolates the
      * segment's two nodes linearly. A is the "slave" side, B the "master".
-     * Throws if a node projects on no segment.
+     * Throws if a node projects on no segment. The segments come from an
+     * R-tree of their bounding boxes (deal.II's pack_rtree): a node is
+     * compared with those within its search distance, or within the
+     * distance of the nearest box's segment, and with all of them only if
+     * none of those is at least as close; ties go to the segment met first
+     * in B's cell order, as in a loop over all of them.
      *
      * With a finite @p max_distance (a contact search between bodies that
      * may not face each other): only the nodes within @p max_distance of
