@@ -337,6 +337,25 @@ namespace impactfe
             for (unsigned int d = 0; d < dim; ++d)
               contact_slots[c][i][d] = slot->second + d;
           }
+      const unsigned int nd = contact.n_directions();
+      h_row_start.assign(1, 0);
+      h_slot.clear();
+      h_value.clear();
+      for (unsigned int c = 0; c < contact.n_candidates(); ++c)
+        {
+          const auto &candidate = contact.candidate(c);
+          for (unsigned int k = 0; k < nd; ++k)
+            {
+              for (unsigned int i = 0; i < candidate.n_nodes; ++i)
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    h_slot.push_back(contact_slots[c][i][d]);
+                    h_value.push_back(candidate.nodes[i].weight *
+                                      candidate.frame[k][d]);
+                  }
+              h_row_start.push_back(h_slot.size());
+            }
+        }
     }
 
 
@@ -771,16 +790,14 @@ namespace impactfe
       const unsigned int nd = contact.n_directions();
       on_dofs.assign(n_contact_dofs, 0.);
       for (unsigned int a = 0; a < lcp_candidates.size(); ++a)
-        {
-          const unsigned int c         = lcp_candidates[a];
-          const auto        &candidate = contact.candidate(c);
-          for (unsigned int i = 0; i < candidate.n_nodes; ++i)
-            for (unsigned int k = 0; k < nd; ++k)
-              for (unsigned int d = 0; d < dim; ++d)
-                on_dofs[contact_slots[c][i][d]] += candidate.nodes[i].weight *
-                                                   candidate.frame[k][d] *
-                                                   x[a * nd + k];
-        }
+        for (unsigned int k = 0; k < nd; ++k)
+          {
+            const unsigned int row = lcp_candidates[a] * nd + k;
+            const double       xk  = x[a * nd + k];
+            for (unsigned int p = h_row_start[row]; p < h_row_start[row + 1];
+                 ++p)
+              on_dofs[h_slot[p]] += h_value[p] * xk;
+          }
     }
 
 
@@ -807,12 +824,10 @@ namespace impactfe
       const unsigned int         direction,
       const std::vector<double> &on_dofs) const
     {
-      const auto &candidate = contact.candidate(c);
-      double      value     = 0.;
-      for (unsigned int i = 0; i < candidate.n_nodes; ++i)
-        for (unsigned int d = 0; d < dim; ++d)
-          value += candidate.nodes[i].weight * candidate.frame[direction][d] *
-                   on_dofs[contact_slots[c][i][d]];
+      const unsigned int row   = c * contact.n_directions() + direction;
+      double             value = 0.;
+      for (unsigned int p = h_row_start[row]; p < h_row_start[row + 1]; ++p)
+        value += h_value[p] * on_dofs[h_slot[p]];
       return value;
     }
 

@@ -275,9 +275,15 @@ namespace impactfe
       /// once); and that product's vectors.
       std::vector<std::array<std::array<unsigned int, dim>,
                              DistributedContact<dim>::max_nodes>>
-                          contact_slots;
-      unsigned int        n_contact_dofs = 0;
-      std::vector<double> dense_in, dense_out, contact_dof_values;
+        contact_slots;
+      /// H on the contact DoFs as rows (candidate c, direction k) of
+      /// (slot, node weight x frame component) pairs, from contact_slots:
+      /// the products' H x and H^T y walk these arrays instead of the
+      /// candidates' records (which are ten times larger).
+      std::vector<unsigned int> h_row_start, h_slot;
+      std::vector<double>       h_value;
+      unsigned int              n_contact_dofs = 0;
+      std::vector<double>       dense_in, dense_out, contact_dof_values;
       /// v_free and correction (M~^{-1} H P) are not used (nor sized)
       /// with the substructured solver.
       DistributedVector u, v, u_old, v_old, v_free, rhs, correction,
