@@ -230,8 +230,7 @@ main()
     {
       const std::string message = e.what();
       check(message.find("'ring'") != std::string::npos &&
-              message.find("inside body 'shifted disc'") !=
-                std::string::npos,
+              message.find("inside body 'shifted disc'") != std::string::npos,
             "a search through overlapping bodies stops, naming the node",
             message);
     }
