@@ -452,6 +452,42 @@ namespace impactfe
       });
     };
     const BoundingBox<dim> box_of_b_cells(B.triangulation().get_vertices());
+    // A search during a run (max_penetration >= 0) stops at a node that
+    // lies inside B deeper than max_penetration, however far from the
+    // sides it is behind. The loop over all segments saw every side it was
+    // behind; here B's cells, in an R-tree, say whether it is inside B, and
+    // the segments within max_penetration whether it is deeper.
+    std::vector<typename Triangulation<dim>::active_cell_iterator> b_cells;
+    std::vector<std::pair<BoundingBox<dim>, unsigned int>>         cell_boxes;
+    if (searching && max_penetration >= 0.)
+      for (const auto &cell : B.triangulation().active_cell_iterators())
+        {
+          cell_boxes.emplace_back(cell->bounding_box(), b_cells.size());
+          b_cells.push_back(cell);
+        }
+    const auto cell_tree   = pack_rtree(cell_boxes);
+    const auto sunk_deeper = [&](const Point<dim> &x) {
+      if (cell_boxes.empty() || !box_of_b_cells.point_inside(x))
+        return false;
+      segments_within(x, max_penetration);
+      for (const auto &hit : near)
+        {
+          const Segment       &s = segments[hit.second];
+          const Tensor<1, dim> t = s.p2 - s.p1;
+          const double         xi =
+            std::clamp(((x - s.p1) * t) / t.norm_square(), 0., 1.);
+          if (x.distance(s.p1 + xi * t) <= max_penetration)
+            return false;
+        }
+      std::vector<std::pair<BoundingBox<dim>, unsigned int>> cells_at_x;
+      cell_tree.query(boost::geometry::index::intersects(
+                        BoundingBox<dim>(std::make_pair(x, x))),
+                      std::back_inserter(cells_at_x));
+      for (const auto &hit : cells_at_x)
+        if (b_cells[hit.second]->point_inside(x))
+          return true;
+      return false;
+    };
 
     unsigned int n_added = 0;
     for (const unsigned int va : vertices_a)
@@ -483,7 +519,7 @@ namespace impactfe
           // a search pairs a node only with the outer side of a segment:
           // the bodies do not overlap at the reference configuration
           // (in a search during the run, max_penetration >= 0, a node
-          // deeper than that is checked at any depth)
+          // deeper than that is checked; see sunk_deeper too)
           if (searching && signed_distance < -rules.sunk)
             {
               behind = behind || -signed_distance <= max_distance ||
@@ -512,11 +548,11 @@ namespace impactfe
           }
         const bool paired =
           best != nullptr && (!searching || best_distance <= max_distance);
-        // Behind a segment farther than the search distance (a run's
-        // max_penetration >= 0 checks at any depth): inside B's box, the
-        // point-in-cell test decides.
-        if (behind || (searching && max_penetration >= 0. && !paired &&
-                       box_of_b_cells.point_inside(x)))
+        // Behind a side within the search distance, or (a run's search)
+        // unpaired and inside B deeper than max_penetration: an overlap if
+        // x is inside B. A node that sank into B by less, beyond the end
+        // of the sides it projects on (a reflex corner), is skipped.
+        if (behind || (!paired && sunk_deeper(x)))
           check_not_inside(A, B, x, rules.overlap);
         if (searching && !paired)
           continue;

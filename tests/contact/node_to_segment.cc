@@ -12,7 +12,7 @@
 //   the normal the segment's outward unit normal;
 // - with a search distance of 0.022 m: exactly the nodes the loop finds
 //   within 0.022 m (some of them: the polygon's corners lie on the circle,
-//   its edges' middles 0.98 inside it), with the same pairs;
+//   its edges' middles 0.995 from the centre), with the same pairs;
 // - the same search through a disc shifted into the ring (it overlaps A):
 //   a node of A lies inside B and the search stops with a message naming
 //   it.
@@ -23,6 +23,7 @@
 #include <impactfe/bodies/elastic_body.h>
 #include <impactfe/contact/contact_set.h>
 
+#include <cctype>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -106,6 +107,19 @@ namespace
           best = {static_cast<int>(k), xi, distance};
       }
     return best;
+  }
+
+  // An exception's text with deal.II's line wrapping undone.
+  std::string
+  one_line(const std::exception &e)
+  {
+    std::string text;
+    for (const char ch : std::string(e.what()))
+      if (!std::isspace(static_cast<unsigned char>(ch)))
+        text += ch;
+      else if (!text.empty() && text.back() != ' ')
+        text += ' ';
+    return text;
   }
 
   // Each candidate against the loop; returns the largest deviation.
@@ -228,10 +242,69 @@ main()
     }
   catch (const std::exception &e)
     {
-      const std::string message = e.what();
+      const std::string message = one_line(e);
       check(message.find("'ring'") != std::string::npos &&
-              message.find("inside body 'shifted disc'") != std::string::npos,
+              message.find("lies inside body 'shifted disc'") !=
+                std::string::npos,
             "a search through overlapping bodies stops, naming the node",
+            message);
+    }
+
+  // A search during a run (max_penetration = 1e-3 m, distance 0.05 m)
+  // against the two sides of the reflex corner of an L (deal.II's hyper_L,
+  // [-1, 1]^2 without (0, 1]^2; id 5 on the sides x = 0, y > 0 and y = 0,
+  // x > 0). A square [-1e-4, 0.1]^2: its corners (0.1, -1e-4) and
+  // (-1e-4, 0.1) sank 1e-4 into one side each (paired at g0 = -1e-4);
+  // (-1e-4, -1e-4) sank into the corner, past the end of both sides
+  // (skipped); (0.1, 0.1) is 0.1 from both (skipped). The same square
+  // 0.01 lower has a corner 0.01 deep behind the side y = 0: an overlap.
+  auto ell = make_body("L");
+  GridGenerator::hyper_L(ell->triangulation());
+  ell->triangulation().refine_global(2);
+  for (const auto &cell : ell->triangulation().active_cell_iterators())
+    for (const unsigned int f : cell->face_indices())
+      if (cell->face(f)->at_boundary())
+        {
+          const Point<2> c = cell->face(f)->center();
+          if ((c[0] > 0. && std::abs(c[1]) < 1e-12) ||
+              (c[1] > 0. && std::abs(c[0]) < 1e-12))
+            cell->face(f)->set_boundary_id(5);
+        }
+  ell->setup();
+  const auto square = [&](const double low) {
+    auto body = make_body("square");
+    GridGenerator::hyper_rectangle(body->triangulation(),
+                                   Point<2>(-1e-4, low),
+                                   Point<2>(0.1, low + 0.1 + 1e-4));
+    body->setup();
+    return body;
+  };
+  auto               sunk = square(-1e-4);
+  ContactSet         run_search(2);
+  const unsigned int n_sunk = run_search.add_node_to_segment<2>(
+    {sunk.get(), ell.get()}, 0, 0, 1, 5, 0., 0.05, 1e-3);
+  double worst_gap = 0.;
+  for (const ContactCandidate &c : run_search.candidates())
+    worst_gap = std::max(worst_gap, std::abs(c.initial_gap + 1e-4));
+  check(n_sunk == 2 && worst_gap < 1e-15,
+        "a run's search pairs the two nodes sunk 1e-4 m into a side, at "
+        "g0 = -1e-4 m, and skips the one in the reflex corner",
+        std::to_string(n_sunk) + " candidates, gap error " +
+          std::to_string(worst_gap));
+  auto deep = square(-0.01);
+  try
+    {
+      ContactSet deep_search(2);
+      deep_search.add_node_to_segment<2>(
+        {deep.get(), ell.get()}, 0, 0, 1, 5, 0., 0.05, 1e-3);
+      check(false, "a node 0.01 m inside the L stops a run's search");
+    }
+  catch (const std::exception &e)
+    {
+      const std::string message = one_line(e);
+      check(message.find("lies inside body 'L': the bodies overlap by more "
+                         "than 0.001 m") != std::string::npos,
+            "a node 0.01 m inside the L stops a run's search, naming it",
             message);
     }
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;

@@ -184,7 +184,11 @@ namespace impactfe
      * A @p max_penetration >= 0 replaces that 1e-6 max_distance: a search
      * in a deformed configuration (during a run) pairs a node that has
      * sunk into a side by up to @p max_penetration with it, at a negative
-     * gap, and skips nodes deeper than that without a message.
+     * gap; a node that lies inside body B and farther than
+     * @p max_penetration from every side of @p boundary_b throws, naming
+     * it (the 3D node-to-face search checks only nodes behind a face
+     * within @p max_distance). A node that sank by less past the end of
+     * the sides it could project on (into a reflex corner) is skipped.
      * Returns the number of candidates added.
      */
     template <int dim>

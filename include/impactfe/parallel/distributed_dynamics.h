@@ -316,7 +316,8 @@ namespace impactfe
       /// The contact DoFs and each candidate's slots among them.
       void
       setup_contact_slots();
-      /// Each candidate's slots among the contact DoFs.
+      /// Each candidate's slots among the contact DoFs, and the rows of H
+      /// on them (h_row_start, h_slot, h_value).
       void
       find_contact_slots();
       /// The substructured solver of the level's M~.
