@@ -138,6 +138,51 @@ namespace impactfe
           }
     }
 
+    // Whether a point lies inside body B, from B's cells in an R-tree of
+    // their boxes. A search during a run (max_penetration >= 0) stops at a
+    // node that nothing pairs and that lies inside B farther than
+    // max_penetration from every side of the searched boundary, however
+    // far from them: the bodies overlap. Made only for such searches.
+    template <int dim>
+    class CellsOfBody
+    {
+    public:
+      CellsOfBody(const ElasticBody<dim> &B, const bool needed)
+        : box(B.triangulation().get_vertices())
+      {
+        if (!needed)
+          return;
+        std::vector<std::pair<BoundingBox<dim>, unsigned int>> boxes;
+        for (const auto &cell : B.triangulation().active_cell_iterators())
+          {
+            boxes.emplace_back(cell->bounding_box(), cells.size());
+            cells.push_back(cell);
+          }
+        tree = pack_rtree(boxes);
+      }
+
+      // Inside a cell of B (false if not made).
+      bool
+      contains(const Point<dim> &x) const
+      {
+        if (cells.empty() || !box.point_inside(x))
+          return false;
+        std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
+        tree.query(boost::geometry::index::intersects(
+                     BoundingBox<dim>(std::make_pair(x, x))),
+                   std::back_inserter(hits));
+        for (const auto &hit : hits)
+          if (cells[hit.second]->point_inside(x))
+            return true;
+        return false;
+      }
+
+    private:
+      BoundingBox<dim>                                               box;
+      std::vector<typename Triangulation<dim>::active_cell_iterator> cells;
+      RTree<std::pair<BoundingBox<dim>, unsigned int>>               tree;
+    };
+
     // What a search (a finite max_distance) pairs: a node behind a side by
     // at most `sunk` (1e-6 max_distance at t = 0, max_penetration during a
     // run), and how an overlap is reported.
@@ -451,23 +496,10 @@ namespace impactfe
         return a.second < b.second;
       });
     };
-    const BoundingBox<dim> box_of_b_cells(B.triangulation().get_vertices());
-    // A search during a run (max_penetration >= 0) stops at a node that
-    // lies inside B deeper than max_penetration, however far from the
-    // sides it is behind. The loop over all segments saw every side it was
-    // behind; here B's cells, in an R-tree, say whether it is inside B, and
-    // the segments within max_penetration whether it is deeper.
-    std::vector<typename Triangulation<dim>::active_cell_iterator> b_cells;
-    std::vector<std::pair<BoundingBox<dim>, unsigned int>>         cell_boxes;
-    if (searching && max_penetration >= 0.)
-      for (const auto &cell : B.triangulation().active_cell_iterators())
-        {
-          cell_boxes.emplace_back(cell->bounding_box(), b_cells.size());
-          b_cells.push_back(cell);
-        }
-    const auto cell_tree   = pack_rtree(cell_boxes);
+    const CellsOfBody<dim> cells_of_b(B, searching && max_penetration >= 0.);
+    // unpaired x inside B, farther than max_penetration from every segment
     const auto sunk_deeper = [&](const Point<dim> &x) {
-      if (cell_boxes.empty() || !box_of_b_cells.point_inside(x))
+      if (!cells_of_b.contains(x))
         return false;
       segments_within(x, max_penetration);
       for (const auto &hit : near)
@@ -479,14 +511,7 @@ namespace impactfe
           if (x.distance(s.p1 + xi * t) <= max_penetration)
             return false;
         }
-      std::vector<std::pair<BoundingBox<dim>, unsigned int>> cells_at_x;
-      cell_tree.query(boost::geometry::index::intersects(
-                        BoundingBox<dim>(std::make_pair(x, x))),
-                      std::back_inserter(cells_at_x));
-      for (const auto &hit : cells_at_x)
-        if (b_cells[hit.second]->point_inside(x))
-          return true;
-      return false;
+      return true;
     };
 
     unsigned int n_added = 0;
@@ -753,6 +778,32 @@ namespace impactfe
           return best_w;
         };
 
+        // unpaired x inside B, farther than max_penetration from every
+        // face (as in 2D)
+        const CellsOfBody<3> cells_of_b(B, searching && max_penetration >= 0.);
+        const auto           sunk_deeper = [&](const Point<3> &x) {
+          if (!cells_of_b.contains(x))
+            return false;
+          std::vector<std::pair<BoundingBox<3>, unsigned int>> close;
+          tree.query(
+            boost::geometry::index::intersects(BoundingBox<3>(std::make_pair(
+              x +
+                Point<3>(-max_penetration, -max_penetration, -max_penetration),
+              x +
+                Point<3>(max_penetration, max_penetration, max_penetration)))),
+            std::back_inserter(close));
+          for (const auto &hit : close)
+            {
+              const Face &face = faces[hit.second];
+              auto        w    = project(face, x);
+              if (!w)
+                w = closest_edge_point(face, x);
+              if (x.distance(interpolate(face, *w).first) <= max_penetration)
+                return false;
+            }
+          return true;
+        };
+
         for (const unsigned int va : vertices_a)
           {
             const Point<3> x = vertex_position(A, va);
@@ -800,9 +851,11 @@ namespace impactfe
             if (best == nullptr && !searching)
               for (const Face &face : faces)
                 try_face(face);
-            if (behind)
+            const bool paired =
+              best != nullptr && (!searching || best_distance <= max_distance);
+            if (behind || (!paired && sunk_deeper(x)))
               check_not_inside(A, B, Point<dim>(x), rules.overlap);
-            if (searching && (best == nullptr || best_distance > max_distance))
+            if (searching && !paired)
               continue;
             AssertThrow(best != nullptr,
                         ExcMessage("Contact: the node of body '" + A.name() +

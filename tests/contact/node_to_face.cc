@@ -12,13 +12,15 @@
 // - the frame is orthonormal and its normal points from B to A, the gap
 //   g0 = (x - y) . n is positive, and n is the bilinear interpolation of
 //   unit nodal normals (so |n| = 1 after normalisation and n_z > 0.9 here).
-// A body beside B (no face under its nodes) gets a message naming it.
+// A body beside B (no face under its nodes) gets a message naming it, and
+// a run's search stops at a node deep inside B.
 
 #include <deal.II/grid/grid_generator.h>
 
 #include <impactfe/bodies/elastic_body.h>
 #include <impactfe/contact/contact_set.h>
 
+#include <cctype>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -151,6 +153,36 @@ main()
               message.find("'lower'") != std::string::npos &&
               message.find("projects on no") != std::string::npos,
             "a node beside B is refused with a message naming the bodies");
+    }
+
+  // A search during a run (distance 0.05 m, max_penetration 1e-3 m) from
+  // a small block whose nodes lie 2.4-2.5 m deep inside a block 5 m tall:
+  // farther from B's top than its faces' widened boxes reach, so no face
+  // is near; they lie inside B, and the search stops, naming a node.
+  auto tall = make_block("tall", Point<3>(0., 0., 0.), Point<3>(1., 1., 5.), 2);
+  tall->setup();
+  auto sunk =
+    make_block("sunk", Point<3>(0.3, 0.3, 2.5), Point<3>(0.4, 0.4, 2.6), 1);
+  sunk->setup();
+  try
+    {
+      ContactSet search(3);
+      search.add_node_to_face<3>(
+        {sunk.get(), tall.get()}, 0, 4, 1, 5, 0., 0.05, 1e-3);
+      check(false, "a node deep inside B stops a run's search");
+    }
+  catch (const std::exception &e)
+    {
+      std::string message;
+      for (const char ch : std::string(e.what()))
+        if (!std::isspace(static_cast<unsigned char>(ch)))
+          message += ch;
+        else if (!message.empty() && message.back() != ' ')
+          message += ' ';
+      check(message.find("'sunk'") != std::string::npos &&
+              message.find("lies inside body 'tall'") != std::string::npos,
+            "a node deep inside B stops a run's search, naming it",
+            message);
     }
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
 }

@@ -186,9 +186,9 @@ namespace impactfe
      * sunk into a side by up to @p max_penetration with it, at a negative
      * gap; a node that lies inside body B and farther than
      * @p max_penetration from every side of @p boundary_b throws, naming
-     * it (the 3D node-to-face search checks only nodes behind a face
-     * within @p max_distance). A node that sank by less past the end of
-     * the sides it could project on (into a reflex corner) is skipped.
+     * it (add_node_to_face() likewise). A node that sank by less past the
+     * end of the sides it could project on (into a reflex corner) is
+     * skipped.
      * Returns the number of candidates added.
      */
     template <int dim>
