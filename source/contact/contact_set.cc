@@ -142,31 +142,38 @@ namespace impactfe
     // their boxes. A search during a run (max_penetration >= 0) stops at a
     // node that nothing pairs and that lies inside B farther than
     // max_penetration from every side of the searched boundary, however
-    // far from them: the bodies overlap. Made only for such searches.
+    // far from them: the bodies overlap. Used only by such searches, and
+    // made at the first point in B's box (most searches never ask).
     template <int dim>
     class CellsOfBody
     {
     public:
       CellsOfBody(const ElasticBody<dim> &B, const bool needed)
-        : box(B.triangulation().get_vertices())
-      {
-        if (!needed)
-          return;
-        std::vector<std::pair<BoundingBox<dim>, unsigned int>> boxes;
-        for (const auto &cell : B.triangulation().active_cell_iterators())
-          {
-            boxes.emplace_back(cell->bounding_box(), cells.size());
-            cells.push_back(cell);
-          }
-        tree = pack_rtree(boxes);
-      }
+        : body(B)
+        , needed(needed)
+      {}
 
-      // Inside a cell of B (false if not made).
+      // Inside a cell of B (false if not needed).
       bool
       contains(const Point<dim> &x) const
       {
-        if (cells.empty() || !box.point_inside(x))
+        if (!needed)
           return false;
+        if (!box)
+          box.emplace(body.triangulation().get_vertices());
+        if (!box->point_inside(x))
+          return false;
+        if (cells.empty())
+          {
+            std::vector<std::pair<BoundingBox<dim>, unsigned int>> boxes;
+            for (const auto &cell :
+                 body.triangulation().active_cell_iterators())
+              {
+                boxes.emplace_back(cell->bounding_box(), cells.size());
+                cells.push_back(cell);
+              }
+            tree = pack_rtree(boxes);
+          }
         std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
         tree.query(boost::geometry::index::intersects(
                      BoundingBox<dim>(std::make_pair(x, x))),
@@ -178,9 +185,12 @@ namespace impactfe
       }
 
     private:
-      BoundingBox<dim>                                               box;
-      std::vector<typename Triangulation<dim>::active_cell_iterator> cells;
-      RTree<std::pair<BoundingBox<dim>, unsigned int>>               tree;
+      const ElasticBody<dim>                 &body;
+      const bool                              needed;
+      mutable std::optional<BoundingBox<dim>> box;
+      mutable std::vector<typename Triangulation<dim>::active_cell_iterator>
+                                                               cells;
+      mutable RTree<std::pair<BoundingBox<dim>, unsigned int>> tree;
     };
 
     // What a search (a finite max_distance) pairs: a node behind a side by
