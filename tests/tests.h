@@ -9,7 +9,9 @@
 
 #include <deal.II/base/logstream.h>
 
+#include <cctype>
 #include <cmath>
+#include <exception>
 #include <fstream>
 #include <iomanip>
 #include <string>
@@ -46,6 +48,21 @@ namespace impactfe_tests
   // Print "name: OK" or "name: FAILED (detail)" and remember the failure so
   // that the test can also fail on its own via the exit code.
   inline int n_failed_checks = 0;
+
+  // An exception's text on one line: deal.II wraps its messages, so a
+  // phrase a test looks for may be split between lines.
+  inline std::string
+  one_line(const std::exception &e)
+  {
+    std::string text;
+    for (const char ch : std::string(e.what()))
+      if (!std::isspace(static_cast<unsigned char>(ch)))
+        text += ch;
+      else if (!text.empty() && text.back() != ' ')
+        text += ' ';
+    return text;
+  }
+
   inline void
   check(const bool ok, const std::string &name, const std::string &detail = "")
   {

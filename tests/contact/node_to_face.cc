@@ -20,7 +20,6 @@
 #include <impactfe/bodies/elastic_body.h>
 #include <impactfe/contact/contact_set.h>
 
-#include <cctype>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -173,12 +172,7 @@ main()
     }
   catch (const std::exception &e)
     {
-      std::string message;
-      for (const char ch : std::string(e.what()))
-        if (!std::isspace(static_cast<unsigned char>(ch)))
-          message += ch;
-        else if (!message.empty() && message.back() != ' ')
-          message += ' ';
+      const std::string message = impactfe_tests::one_line(e);
       check(message.find("'sunk'") != std::string::npos &&
               message.find("lies inside body 'tall'") != std::string::npos,
             "a node deep inside B stops a run's search, naming it",

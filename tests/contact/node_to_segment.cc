@@ -23,7 +23,6 @@
 #include <impactfe/bodies/elastic_body.h>
 #include <impactfe/contact/contact_set.h>
 
-#include <cctype>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -107,19 +106,6 @@ namespace
           best = {static_cast<int>(k), xi, distance};
       }
     return best;
-  }
-
-  // An exception's text with deal.II's line wrapping undone.
-  std::string
-  one_line(const std::exception &e)
-  {
-    std::string text;
-    for (const char ch : std::string(e.what()))
-      if (!std::isspace(static_cast<unsigned char>(ch)))
-        text += ch;
-      else if (!text.empty() && text.back() != ' ')
-        text += ' ';
-    return text;
   }
 
   // Each candidate against the loop; returns the largest deviation.
@@ -242,7 +228,7 @@ main()
     }
   catch (const std::exception &e)
     {
-      const std::string message = one_line(e);
+      const std::string message = impactfe_tests::one_line(e);
       check(message.find("'ring'") != std::string::npos &&
               message.find("lies inside body 'shifted disc'") !=
                 std::string::npos,
@@ -301,7 +287,7 @@ main()
     }
   catch (const std::exception &e)
     {
-      const std::string message = one_line(e);
+      const std::string message = impactfe_tests::one_line(e);
       check(message.find("lies inside body 'L': the bodies overlap by more "
                          "than 0.001 m") != std::string::npos,
             "a node 0.01 m inside the L stops a run's search, naming it",
