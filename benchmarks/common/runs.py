@@ -172,3 +172,15 @@ def fit_exponent(points):
     my = sum(p[1] for p in pts) / len(pts)
     sxx = sum((p[0] - mx) ** 2 for p in pts)
     return sum((p[0] - mx) * (p[1] - my) for p in pts) / sxx
+
+
+def result_checks(rows):
+    """The end of a contact benchmark's RESULT line: the largest
+    difference between runs of one size, the largest verification
+    violation and the number of fallbacks over @p rows (dicts with
+    largest_difference, largest_violation and fallbacks)."""
+    return (f"largest_difference="
+            f"{max(r['largest_difference'] for r in rows):.2g} "
+            f"lcp_relative_error="
+            f"{max(r['largest_violation'] for r in rows):.2g} "
+            f"fallbacks={sum(r['fallbacks'] for r in rows)}")

@@ -30,7 +30,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(ROOT, "benchmarks", "common"))
 sys.path.insert(0, HERE)
-from runs import fit_exponent, machine_and_commit, mpiexec  # noqa: E402
+from runs import (fit_exponent, machine_and_commit, mpiexec,  # noqa: E402
+                  result_checks)
 from run_contact_operator import largest_difference, run_contact_mpi  # noqa: E402,E501
 
 BASE = os.path.join(ROOT, "parameter_files", "block_sliding_3d.prm")
@@ -179,11 +180,7 @@ def main():
           f"seconds_per_step={top['seconds_per_step']:.4g} "
           f"speedup={one['seconds_per_step'] / top['seconds_per_step']:.3g} "
           f"exponent_schur={exponent:.3g} "
-          f"largest_difference="
-          f"{max(r['largest_difference'] for r in rows):.2g} "
-          f"lcp_relative_error="
-          f"{max(r['largest_violation'] for r in rows):.2g} "
-          f"fallbacks={sum(r['fallbacks'] for r in rows)}")
+          + result_checks(rows))
     # the largest sizes' per-step forces on two ranks differ from one
     # rank's by up to 2e-8 (round-off through W's condition); the tests
     # hold smaller scenes to 1e-8
