@@ -25,6 +25,12 @@
 // 5. A solve that cannot converge (1 iteration from a wrong guess) says so.
 // 6. verify_contact_velocities() with V = q + W P and ||W||_inf gives
 //    verify_contact_solution()'s numbers.
+// 7. A contact that must slide, guessed sticking, its stick impulse 5e-7
+//    outside the cone, beside an open contact whose W_jj is 1e-4 (so that
+//    c |q| = 1e4 is far above the impulses, 1): the answer slides, equals
+//    the exact one and passes the verification. (The state-change margin
+//    after a tight solve, 1e-10 c |q| = 1e-6, kept the stick state, and
+//    the answer failed the verification.)
 // No iteration counts are printed.
 #include <impactfe/lcp/active_set.h>
 #include <impactfe/lcp/contact_problem.h>
@@ -274,6 +280,41 @@ main()
             dense.n_sliding == free.n_sliding &&
             dense.n_sticking == free.n_sticking,
           "6. verify_contact_velocities() = verify_contact_solution()");
+  }
+
+  // 7. A state change below c |q| but above the verification's tolerance.
+  {
+    ContactProblem p;
+    p.n_directions = 2;
+    p.n_contacts   = 2;
+    p.W            = DenseMatrix(4, 4);
+    p.W(0, 0) = p.W(1, 1) = 1e-4;
+    p.W(2, 2) = p.W(3, 3) = 1.;
+    p.free_velocity       = {1., 0., -1., -0.5 * (1. + 1e-6)};
+    p.gap_term            = {0., 0.};
+    p.mu                  = {0.5, 0.5};
+    const DenseOperators   ops(p);
+    ActiveSetSolver        solver;
+    const ActiveSetReport &report =
+      solver.solve(ops.product,
+                   ops.jacobi,
+                   ops.penalty,
+                   2,
+                   p.free_velocity,
+                   p.gap_term,
+                   p.mu,
+                   {ContactState::open, ContactState::stick},
+                   {});
+    // exact: contact 1 open; contact 2 closed (P_N = 1) and sliding with
+    // V_T = -5e-7 < 0, so P_T = mu P_N = 0.5
+    const std::vector<double> exact = {0., 0., 1., 0.5};
+    double                    error = 0.;
+    for (unsigned int i = 0; i < 4; ++i)
+      error = std::max(error, std::abs(solver.impulses()[i] - exact[i]));
+    check(report.converged && is_sliding(solver.states()[1]) && error < 1e-12 &&
+            verify_contact_solution(p, solver.impulses()).ok,
+          "7. a slip 5e-7 outside the cone, c |q| = 1e4 times the "
+          "impulses: slides, exact (1e-12), verified");
   }
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
 }
