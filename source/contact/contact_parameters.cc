@@ -48,7 +48,17 @@ namespace impactfe
                       "50",
                       Patterns::Integer(1),
                       "Active set (Newton) iterations of one contact solve "
-                      "before it falls back to Lemke's method [-].");
+                      "before it falls back to Lemke's method, unless a "
+                      "front moves (Active set front iterations) [-].");
+    prm.declare_entry(
+      "Active set front iterations",
+      "100000",
+      Patterns::Integer(0),
+      "Iterations of one contact solve allowed past 'Active set "
+      "iterations' while a lift-off or stick-slip front moves: each "
+      "iteration changes at most sqrt(contacts) contacts, each to a state "
+      "it has not had in the solve. At most one per contact in any case; "
+      "0: none, the first limit is a hard one [-].");
     prm.declare_entry(
       "Exact normal rows after",
       "40",
@@ -130,11 +140,13 @@ namespace impactfe
                                                                   Method::automatic;
     active_set_threshold          = prm.get_integer("Active set threshold");
     active_set_iterations         = prm.get_integer("Active set iterations");
-    exact_normal_rows_after       = prm.get_integer("Exact normal rows after");
-    dense_schur_complement        = prm.get_bool("Dense Schur complement");
-    largest_lemke_fallback        = prm.get_integer("Largest Lemke fallback");
-    warm_start                    = prm.get_bool("Warm start");
-    dump_step                     = prm.get_integer("Dump LCP of step");
+    active_set_front_iterations =
+      prm.get_integer("Active set front iterations");
+    exact_normal_rows_after = prm.get_integer("Exact normal rows after");
+    dense_schur_complement  = prm.get_bool("Dense Schur complement");
+    largest_lemke_fallback  = prm.get_integer("Largest Lemke fallback");
+    warm_start              = prm.get_bool("Warm start");
+    dump_step               = prm.get_integer("Dump LCP of step");
     friction_cone = lcp::cone_model_from_string(prm.get("Friction cone"));
     const int k   = prm.get_integer("Number of facets");
     exact_cone_tolerance = prm.get_double("Exact cone tolerance");

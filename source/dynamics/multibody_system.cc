@@ -611,7 +611,9 @@ namespace impactfe
     const unsigned int singular_before =
       active_set_stats.singular_state_matrices;
     lcp::ActiveSetOptions options;
-    options.max_iterations          = solver_parameters.active_set_iterations;
+    options.max_iterations = solver_parameters.active_set_iterations;
+    options.max_front_iterations =
+      solver_parameters.active_set_front_iterations;
     options.exact_normal_rows       = exact_normal_rows;
     options.exact_normal_rows_after = solver_parameters.exact_normal_rows_after;
     if (nd == 3 && solver_parameters.friction_cone == lcp::ConeModel::facets)

@@ -917,6 +917,8 @@ namespace impactfe
       // tolerance sets (times the condition of M~, modest at small steps)
       lcp::ActiveSetOptions options;
       options.max_iterations = solver_parameters.active_set_iterations;
+      options.max_front_iterations =
+        solver_parameters.active_set_front_iterations;
       if (!fine.direct_solver)
         options.linear_tolerance =
           std::max(options.linear_tolerance, 1e2 * linear_parameters.tolerance);

@@ -31,6 +31,13 @@
 //    the exact one and passes the verification. (The state-change margin
 //    after a tight solve, 1e-10 c |q| = 1e-6, kept the stick state, and
 //    the answer failed the verification.)
+// 8. A lift-off front: 100 frictionless contacts, W_ij = 0.95^|i-j| (its
+//    inverse is tridiagonal), q_i = -1 + 0.02 i. From P = 0 the first 50
+//    close; the last closed one then pulls (P < 0), opens, and so on, one
+//    contact per iteration, until |q| at the end of the closed set
+//    exceeds 0.95 * 0.02 / 0.05 = 0.38: some 18 iterations. With 5
+//    iterations allowed, the method goes on while the front moves, and
+//    its answer equals Lemke's.
 // No iteration counts are printed.
 #include <impactfe/lcp/active_set.h>
 #include <impactfe/lcp/contact_problem.h>
@@ -315,6 +322,50 @@ main()
             verify_contact_solution(p, solver.impulses()).ok,
           "7. a slip 5e-7 outside the cone, c |q| = 1e4 times the "
           "impulses: slides, exact (1e-12), verified");
+  }
+
+  // 8. A front that needs more iterations than max_iterations.
+  {
+    const unsigned int n = 100;
+    ContactProblem     p;
+    p.n_directions = 1;
+    p.n_contacts   = n;
+    p.W            = DenseMatrix(n, n);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        p.W(i, j) = std::pow(0.95, std::abs(int(i) - int(j)));
+    p.free_velocity.resize(n);
+    for (unsigned int i = 0; i < n; ++i)
+      p.free_velocity[i] = -1. + 0.02 * i;
+    p.gap_term.assign(n, 0.);
+    const DenseOperators ops(p);
+    ActiveSetOptions     options;
+    options.max_iterations = 5;
+    ActiveSetSolver        solver;
+    const ActiveSetReport &report = solver.solve(ops.product,
+                                                 ops.jacobi,
+                                                 ops.penalty,
+                                                 1,
+                                                 p.free_velocity,
+                                                 p.gap_term,
+                                                 {},
+                                                 {},
+                                                 {},
+                                                 options);
+    const ContactSolution  lemke  = solve_contact_problem(p);
+    double                 error = 0., scale = 0.;
+    unsigned int           closed = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        error = std::max(error, std::abs(solver.impulses()[i] - lemke.P[i]));
+        scale = std::max(scale, std::abs(lemke.P[i]));
+        closed += lemke.P[i] > 0. ? 1 : 0;
+      }
+    check(report.converged && report.iterations > options.max_iterations &&
+            error < 1e-10 * scale,
+          "8. a lift-off front past max_iterations = 5: converged, equal "
+          "to Lemke's P (1e-10)");
+    log << "   closed contacts: " << closed << " of " << n << std::endl;
   }
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
 }

@@ -9,6 +9,7 @@
 #include <impactfe/lcp/contact_state.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -36,8 +37,13 @@ namespace impactfe
     /// Options of ActiveSetSolver::solve().
     struct ActiveSetOptions
     {
-      /// Active-set (Newton) iterations before giving up.
-      unsigned int max_iterations = 50;
+      /// Active-set (Newton) iterations before giving up; past them, the
+      /// method goes on, for at most min(n_contacts, max_front_iterations)
+      /// more, only while a front moves: each iteration changes at most
+      /// sqrt(n_contacts) contacts, each to a state it has not had in the
+      /// solve.
+      unsigned int max_iterations       = 50;
+      unsigned int max_front_iterations = 100000;
       /// Relative residual of the linear solve (GMRES) at the final states,
       /// and of the solves while the states still change (inexact Newton).
       double linear_tolerance         = 1e-12;
@@ -210,6 +216,11 @@ namespace impactfe
       std::vector<std::size_t>  seen;
       std::vector<unsigned int> changed;
       unsigned int              cycles = 0;
+      /// Per contact, the states (and cone features) it has had in this
+      /// solve, one bit each; whether the last update was a moving front
+      /// (solve(), past max_iterations).
+      std::vector<std::uint64_t> visited;
+      bool                       moving_front = false;
       /// Unknown k is local row unknowns[k]; position[row] is k or -1.
       std::vector<unsigned int> unknowns;
       std::vector<int>          position;
