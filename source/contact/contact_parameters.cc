@@ -52,13 +52,13 @@ namespace impactfe
                       "front moves (Active set front iterations) [-].");
     prm.declare_entry(
       "Active set front iterations",
-      "100000",
+      "1000",
       Patterns::Integer(0),
       "Iterations of one contact solve allowed past 'Active set "
       "iterations' while a lift-off or stick-slip front moves: each "
-      "iteration changes at most sqrt(contacts) contacts, each to a state "
-      "it has not had in the solve. At most one per contact in any case; "
-      "0: none, the first limit is a hard one [-].");
+      "iteration changes some contacts, but at most sqrt(contacts), and "
+      "none that the iteration before changed. At most one per contact in "
+      "any case; 0: none, the first limit is a hard one [-].");
     prm.declare_entry(
       "Exact normal rows after",
       "40",

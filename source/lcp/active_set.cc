@@ -23,16 +23,6 @@ namespace impactfe
         return s;
       }
 
-      // One bit per contact state and, on the polygonal cone, per feature
-      // (2 j: vertex j, 2 j + 1: edge j; features beyond 59 share a bit).
-      std::uint64_t
-      state_bit(const ContactState state, const int feature)
-      {
-        return (std::uint64_t(1) << static_cast<unsigned int>(state)) |
-               (feature >= 0 ? std::uint64_t(1) << (4 + std::min(feature, 59)) :
-                               std::uint64_t(0));
-      }
-
       double
       max_abs(const std::vector<double> &a)
       {
@@ -667,6 +657,8 @@ namespace impactfe
       seen.clear();
       cycles       = 0;
       moving_front = false;
+      last_update.assign(b.size(), 0);
+      n_updates = 0;
       P.assign(n_rows, 0.);
       V = q;
       work.assign(n_rows, 0.);
@@ -899,10 +891,6 @@ namespace impactfe
           direction = new_direction;
           beta      = new_beta;
         }
-      visited.resize(n);
-      for (unsigned int a = 0; a < n; ++a)
-        visited[a] = state_bit(state[a], feature[a]);
-
       // The margin of the state changes after an inexact solve: its error
       // in impulse units, max_k c_k |r_k| of its final residual r (as the
       // refinement measures it), and at least 1e2 times its tolerance
@@ -940,20 +928,19 @@ namespace impactfe
                               inexact_margin(p_max));
         if (new_state != state || new_feature != feature)
           damp_cycles();
-        // a front: a few changes, each taking its contact to a state (and
-        // cone feature) it has not had in this solve
-        bool         all_new   = true;
+        // a front: a few changes (at most sqrt(n), a front line of a 3D
+        // contact zone), none undoing one of the last update
         unsigned int n_changes = 0;
+        bool         reversal  = false;
+        ++n_updates;
         for (unsigned int a = 0; a < n; ++a)
           if (new_state[a] != state[a] || new_feature[a] != feature[a])
             {
               ++n_changes;
-              const std::uint64_t mask =
-                state_bit(new_state[a], new_feature[a]);
-              all_new = all_new && (visited[a] & mask) != mask;
-              visited[a] |= mask;
+              reversal       = reversal || last_update[a] + 1 == n_updates;
+              last_update[a] = n_updates;
             }
-        moving_front = n_changes > 0 && all_new &&
+        moving_front = n_changes > 0 && !reversal &&
                        n_changes <= std::ceil(std::sqrt(double(n)));
         double turn = 0.;
         for (unsigned int a = 0; a < n && nd == 3 && n_facets == 0; ++a)
@@ -986,19 +973,20 @@ namespace impactfe
       bool tight = false, settled_once = false;
 
       // Past max_iterations the method goes on only while a front moves:
-      // the last iteration changed some contacts, at most sqrt(n) (a front
-      // line of a 3D contact zone), each to a state it has not had in this
-      // solve (or the states just settled, and the tight solve that
-      // confirms them is due). A lift-off or stick-slip front moves by
-      // one node or a few per iteration, since a node's condition is
-      // violated only once its neighbour has changed, so the iterations it
-      // needs grow like the nodes it crosses, like 1/h: the 1 m slab of
-      // benchmarks/scaling at 30 001 contacts, in its 7th step, opened 17
-      // nodes one per iteration past 50 iterations, and stopped. Each such
-      // iteration is one inexact solve of 1 or 2 GMRES iterations. A
-      // method that does not converge (contacts that flip back and forth)
-      // still stops at max_iterations; a moving front stops after at most
-      // n more.
+      // the last iteration changed some contacts, but at most sqrt(n), and
+      // none that the one before had changed (or the states just settled,
+      // and the tight solve that confirms them is due). A lift-off or
+      // stick-slip front moves by one node or a few per iteration, since a
+      // node's condition is violated only once its neighbour has changed, so
+      // the iterations it needs grow like the nodes it crosses, like 1/h: the 1
+      // m slab of benchmarks/scaling at 30 001 contacts, in its 7th step,
+      // opened 17 nodes one per iteration past 50 iterations, and stopped. Such
+      // iterations are cheap: a solve from the last answer, changed in a few
+      // rows, takes 1 to 3 GMRES iterations. A method that does not converge
+      // flips many contacts per iteration (at mu = 5 and 10^4 contacts, 100 to
+      // 750: doc/lcp.md) or flips some back at once, and still stops at
+      // max_iterations; and a front stops after at most
+      // min(n, max_front_iterations) more.
       for (unsigned int iteration = 1;; ++iteration)
         {
           if (iteration > options.max_iterations &&

@@ -34,7 +34,7 @@ namespace impactfe
     unsigned int active_set_iterations = 50;
     /// Iterations past active_set_iterations while a front moves
     /// (lcp::ActiveSetOptions::max_front_iterations).
-    unsigned int active_set_front_iterations = 100000;
+    unsigned int active_set_front_iterations = 1000;
     /// GMRES iterations of one linear solve after which the normal rows'
     /// preconditioner inverts them exactly at the contact states (0: from
     /// the first solve).

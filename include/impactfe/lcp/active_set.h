@@ -9,7 +9,6 @@
 #include <impactfe/lcp/contact_state.h>
 
 #include <cstddef>
-#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -39,11 +38,11 @@ namespace impactfe
     {
       /// Active-set (Newton) iterations before giving up; past them, the
       /// method goes on, for at most min(n_contacts, max_front_iterations)
-      /// more, only while a front moves: each iteration changes at most
-      /// sqrt(n_contacts) contacts, each to a state it has not had in the
-      /// solve.
+      /// more, only while a front moves: each iteration changes some
+      /// contacts, but at most sqrt(n_contacts), and none that the
+      /// iteration before changed.
       unsigned int max_iterations       = 50;
-      unsigned int max_front_iterations = 100000;
+      unsigned int max_front_iterations = 1000;
       /// Relative residual of the linear solve (GMRES) at the final states,
       /// and of the solves while the states still change (inexact Newton).
       double linear_tolerance         = 1e-12;
@@ -216,11 +215,13 @@ namespace impactfe
       std::vector<std::size_t>  seen;
       std::vector<unsigned int> changed;
       unsigned int              cycles = 0;
-      /// Per contact, the states (and cone features) it has had in this
-      /// solve, one bit each; whether the last update was a moving front
-      /// (solve(), past max_iterations).
-      std::vector<std::uint64_t> visited;
-      bool                       moving_front = false;
+      /// Whether the last state update changed some contacts, but at most
+      /// sqrt(n), none changed by the update before: a moving front
+      /// (solve(), past max_iterations); per contact, the update that last
+      /// changed it (0: none), and the updates so far.
+      bool                      moving_front = false;
+      std::vector<unsigned int> last_update;
+      unsigned int              n_updates = 0;
       /// Unknown k is local row unknowns[k]; position[row] is k or -1.
       std::vector<unsigned int> unknowns;
       std::vector<int>          position;
