@@ -47,15 +47,15 @@ FIELDS = ["cells_per_edge", "cone", "dofs", "contacts", "steps",
           "wrong_slip_count", "returncode"]
 
 
-def overrides(n, cone):
-    return run_performance.overrides(n, STEPS, False, cone, height=0.002,
+def overrides(n, cone, steps=STEPS):
+    return run_performance.overrides(n, steps, False, cone, height=0.002,
                                      cells_up=1)
 
 
-def measure(build, n, cone):
+def measure(build, n, cone, steps=STEPS):
     out_dir = os.path.join("results", "contact_scaling_3d", f"n{n}_{cone}")
     r = runs.run_measured(build, "block_sliding_3d", os.path.abspath(PRM),
-                          out_dir, overrides(n, cone))
+                          out_dir, overrides(n, cone, steps))
     s = r["summary"]
     if s is None:
         sys.exit(f"n = {n}, {cone}: block_sliding_3d failed: {r['message']}")
@@ -116,10 +116,12 @@ def main():
     parser.add_argument("--build", default="build")
     parser.add_argument("--out", default="doc")
     parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--steps", type=int, default=STEPS,
+                        help="time steps per run (doc/'s table: 5)")
     args = parser.parse_args()
 
     sizes = [10, 31, 56] if args.quick else [10, 31, 56, 100, 173]
-    rows = [measure(args.build, n, cone)
+    rows = [measure(args.build, n, cone, args.steps)
             for n in sizes for cone in ("exact", "facets")]
 
     os.makedirs(args.out, exist_ok=True)

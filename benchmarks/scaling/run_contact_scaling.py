@@ -38,9 +38,9 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "common"))
 from runs import fit_exponent as fit, machine_and_commit  # noqa: E402
 
 
-def run(build, nx, method, sweep):
+def run(build, nx, method, sweep, steps=3):
     cmd = [os.path.join(build, "bin", "block_scaling"), "--nx", str(nx),
-           "--ny", "4", "--steps", "3", "--method", method]
+           "--ny", "4", "--steps", str(steps), "--method", method]
     if sweep == "cell 1 mm":
         cmd += ["--cell-size", "1e-3"]
     out = subprocess.run(cmd, check=True, capture_output=True,
@@ -63,15 +63,20 @@ def main():
     parser.add_argument("--build", default="build")
     parser.add_argument("--quick", action="store_true",
                         help="up to 3001 contacts (about 20 s)")
+    parser.add_argument("--steps", type=int, default=3,
+                        help="time steps per run (the tables of doc/ are "
+                        "3-step runs; 20 shows the fronts of longer runs, "
+                        "doc/lcp.md 'Longer runs')")
     args = parser.parse_args()
 
     active_sizes = [100, 300, 1000, 3000] + ([] if args.quick else
                                              [10000, 30000])
     lemke_sizes = [100, 300] + ([] if args.quick else [1000])
-    rows = [run(args.build, nx, "lemke", "cell 1 mm") for nx in lemke_sizes]
-    rows += [run(args.build, nx, "active-set", "cell 1 mm")
+    rows = [run(args.build, nx, "lemke", "cell 1 mm", args.steps)
+            for nx in lemke_sizes]
+    rows += [run(args.build, nx, "active-set", "cell 1 mm", args.steps)
              for nx in active_sizes]
-    rows += [run(args.build, nx, "active-set", "width 1 m")
+    rows += [run(args.build, nx, "active-set", "width 1 m", args.steps)
              for nx in active_sizes if nx > 1000]
 
     # Where both ran, the answers must agree (the scene's last normal force
