@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "text.h"
 
@@ -566,7 +568,8 @@ namespace impactfe
           worst = std::max(worst, c[unknowns[k]] * std::abs(residual[k]));
         return worst / std::max(max_abs(P), 1e-300);
       };
-      double error = impulse_residual();
+      double       error  = impulse_residual();
+      unsigned int passes = 0;
       for (unsigned int pass = 0; pass < options.max_refinements &&
                                   error > options.refinement_tolerance;
            ++pass)
@@ -597,6 +600,7 @@ namespace impactfe
           saved_rhs.swap(rhs);
           const double new_error = relative_to_impulses();
           ++last_report.refinements;
+          ++passes;
           if (!(new_error < error)) // no gain: keep the x before the pass
             {
               x.swap(saved_x);
@@ -613,7 +617,7 @@ namespace impactfe
         }
       // The caller may use the last product's by-products (the time loop's
       // M~^{-1} H P, the velocity correction): make it one with the final P.
-      if (last_report.refinements > 0)
+      if (passes > 0)
         error = impulse_residual();
       for (std::size_t i = 0; i < V.size(); ++i)
         V[i] = q[i] + work[i];
@@ -658,7 +662,12 @@ namespace impactfe
       cycles       = 0;
       moving_front = false;
       last_update.assign(b.size(), 0);
-      n_updates = 0;
+      n_updates                    = 0;
+      double             last_turn = std::numeric_limits<double>::max();
+      const unsigned int front_width =
+        static_cast<unsigned int>(std::ceil(std::sqrt(double(b.size()))));
+      unsigned int verification_updates = 0;
+      std::string  verification_failure;
       P.assign(n_rows, 0.);
       V = q;
       work.assign(n_rows, 0.);
@@ -926,10 +935,12 @@ namespace impactfe
           margin >= 0.      ? margin :
           after_tight_solve ? 1e-10 * std::max(p_max, impulse_scale_free) :
                               inexact_margin(p_max));
+        const unsigned int cycles_before = cycles;
         if (new_state != state || new_feature != feature)
           damp_cycles();
         // a front: a few changes (at most sqrt(n), a front line of a 3D
-        // contact zone), none undoing one of the last update
+        // contact zone), none undoing one of the update before, and not
+        // the part of a cycle that its damping kept
         unsigned int n_changes = 0;
         bool         reversal  = false;
         ++n_updates;
@@ -937,11 +948,10 @@ namespace impactfe
           if (new_state[a] != state[a] || new_feature[a] != feature[a])
             {
               ++n_changes;
-              reversal       = reversal || last_update[a] + 1 == n_updates;
+              reversal       = reversal || (last_update[a] != 0 &&
+                                      last_update[a] + 1 == n_updates);
               last_update[a] = n_updates;
             }
-        moving_front = n_changes > 0 && !reversal &&
-                       n_changes <= std::ceil(std::sqrt(double(n)));
         double turn = 0.;
         for (unsigned int a = 0; a < n && nd == 3 && n_facets == 0; ++a)
           if (is_sliding(state[a]) && is_sliding(new_state[a]))
@@ -950,6 +960,11 @@ namespace impactfe
                                        new_direction[2 * a + 1] -
                                          direction[2 * a + 1]));
         same = new_state == state && new_feature == feature;
+        // with no change: the 3D slip directions still converging
+        moving_front = n_changes > 0 ? !reversal && cycles == cycles_before &&
+                                         n_changes <= front_width :
+                                       turn > 0. && turn < last_turn;
+        last_turn    = turn;
         for (unsigned int a = 0; a < n; ++a)
           if (is_sliding(new_state[a]))
             {
@@ -973,20 +988,22 @@ namespace impactfe
       bool tight = false, settled_once = false;
 
       // Past max_iterations the method goes on only while a front moves:
-      // the last iteration changed some contacts, but at most sqrt(n), and
-      // none that the one before had changed (or the states just settled,
-      // and the tight solve that confirms them is due). A lift-off or
-      // stick-slip front moves by one node or a few per iteration, since a
-      // node's condition is violated only once its neighbour has changed, so
-      // the iterations it needs grow like the nodes it crosses, like 1/h: the 1
-      // m slab of benchmarks/scaling at 30 001 contacts, in its 7th step,
-      // opened 17 nodes one per iteration past 50 iterations, and stopped. Such
-      // iterations are cheap: a solve from the last answer, changed in a few
-      // rows, takes 1 to 3 GMRES iterations. A method that does not converge
-      // flips many contacts per iteration (at mu = 5 and 10^4 contacts, 100 to
-      // 750: doc/lcp.md) or flips some back at once, and still stops at
-      // max_iterations; and a front stops after at most
-      // min(n, max_front_iterations) more.
+      // the last state update changed some contacts, at most sqrt(n), none
+      // that the update before had changed, and it was not a damped cycle
+      // (or it changed none but the 3D slip directions still converge, or
+      // the states just settled and the tight solve that confirms them is
+      // due). A lift-off or stick-slip front moves by one node or a few
+      // per iteration, since a node's condition is violated only once its
+      // neighbour has changed, so the iterations it needs grow like the
+      // nodes it crosses, like 1/h: the run of the 1 m slab of
+      // benchmarks/scaling at 30 001 contacts stopped in its 7th step,
+      // where 17 nodes opened one per iteration past 50 iterations. Such
+      // iterations are cheap in the serial programs (a solve from the last
+      // answer, changed in a few rows: 1 to 3 GMRES iterations). A method
+      // that does not converge flips many contacts per iteration (at mu =
+      // 5 and 10^4 contacts, 100 to 750: doc/lcp.md), flips some back at
+      // once, or cycles, and stops at max_iterations; a front stops after
+      // at most min(n, max_front_iterations) more.
       for (unsigned int iteration = 1;; ++iteration)
         {
           if (iteration > options.max_iterations &&
@@ -1120,22 +1137,38 @@ namespace impactfe
               // thin meshes. A sticking contact just outside the cone then
               // kept its state, and the answer failed the verification (2D
               // block on a slab, 12 003 candidates, 12th step: cone excess
-              // 5.2e-8 of s_P). Such a failure is one more Newton step: the
-              // states again, with a margin of 1e-2 of the verification's
-              // tolerance on its scale.
-              if (!last_report.converged)
+              // 5.2e-8 of s_P). Such a failure is one more Newton step, at
+              // most twice per solve: the states again, with a margin of
+              // 1e-2 of the verification's tolerance on its scale, but not
+              // below ten times the refined answer's own error (changes
+              // within it would be noise).
+              if (!last_report.converged && verification_updates < 2)
                 {
                   const double free_scale =
-                    (max_abs(q) + max_abs(b)) / std::max(norm_W, 1e-300);
+                    norm_W > 0. ? (max_abs(q) + max_abs(b)) / norm_W : 0.;
                   update_and_turn(true,
                                   same,
-                                  1e-2 * options.tolerance *
-                                    std::max(p_max, free_scale));
+                                  std::max(1e-2 * options.tolerance *
+                                             std::max(p_max, free_scale),
+                                           10. * last_report.linear_residual *
+                                             p_max));
                   if (!same)
                     {
-                      state   = new_state;
-                      feature = new_feature;
-                      tight   = true;
+                      ++verification_updates;
+                      verification_failure.clear();
+                      internal::append_text(
+                        verification_failure,
+                        "the contact states settled but (P, V) failed the "
+                        "verification (Signorini %g, cone %g, sliding %g), "
+                        "and the states that it changed did not lead to a "
+                        "verified answer",
+                        last_report.verification.max_signorini_violation,
+                        last_report.verification.max_cone_violation,
+                        last_report.verification.max_sliding_violation);
+                      state        = new_state;
+                      feature      = new_feature;
+                      tight        = true;
+                      settled_once = true;
                       continue;
                     }
                 }
@@ -1155,6 +1188,11 @@ namespace impactfe
           // tight only after that, warm starts included)
           tight = settled_once;
         }
+      if (!last_report.converged && last_report.message.empty() &&
+          !verification_failure.empty())
+        last_report.message = verification_failure + " in " +
+                              std::to_string(last_report.iterations) +
+                              " active-set iterations";
       if (!last_report.converged && last_report.message.empty())
         last_report.message = "the contact states did not settle in " +
                               std::to_string(last_report.iterations) +

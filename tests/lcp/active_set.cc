@@ -32,12 +32,12 @@
 //    after a tight solve, 1e-10 c |q| = 1e-6, kept the stick state, and
 //    the answer failed the verification.)
 // 8. A lift-off front: 100 frictionless contacts, W_ij = 0.95^|i-j| (its
-//    inverse is tridiagonal), q_i = -1 + 0.02 i. From P = 0 the first 50
-//    close; the last closed one then pulls (P < 0), opens, and so on, one
-//    contact per iteration, until |q| at the end of the closed set
-//    exceeds 0.95 * 0.02 / 0.05 = 0.38: some 18 iterations. With 5
-//    iterations allowed, the method goes on while the front moves, and
-//    its answer equals Lemke's.
+//    inverse is tridiagonal), q_i = -0.99 + 0.02 i. From P = 0 the first
+//    50 close; the last closed one then pulls (P < 0), opens, and so on,
+//    one contact per iteration, until |q| at the end of the closed set
+//    exceeds 0.95 * 0.02 / 0.05 = 0.38 (contact 30, q = -0.39): 19
+//    contacts open one by one. With 5 iterations allowed, the method goes
+//    on while the front moves, and its answer equals Lemke's.
 // No iteration counts are printed.
 #include <impactfe/lcp/active_set.h>
 #include <impactfe/lcp/contact_problem.h>
@@ -251,7 +251,8 @@ main()
     const ContactProblem p = random_problem(rng, 40, 2, 0.2, true);
     const DenseOperators ops(p);
     ActiveSetOptions     options;
-    options.max_iterations = 1;
+    options.max_iterations       = 1;
+    options.max_front_iterations = 0;
     ActiveSetSolver        solver;
     const ActiveSetReport &report =
       solver.solve(ops.product,
@@ -336,7 +337,7 @@ main()
         p.W(i, j) = std::pow(0.95, std::abs(int(i) - int(j)));
     p.free_velocity.resize(n);
     for (unsigned int i = 0; i < n; ++i)
-      p.free_velocity[i] = -1. + 0.02 * i;
+      p.free_velocity[i] = -0.99 + 0.02 * i;
     p.gap_term.assign(n, 0.);
     const DenseOperators ops(p);
     ActiveSetOptions     options;

@@ -160,6 +160,7 @@ main()
   run_case("block_3d_fallback_lcp_too_large",
            with("Contact solver",
                 "Method = active set\n  set Active set iterations = 1\n"
+                "  set Active set front iterations = 0\n"
                 "  set Largest Lemke fallback = 100"),
            BLOCK_SLIDING_3D_EXECUTABLE);
 
@@ -208,6 +209,7 @@ main()
   run_case("block_active_set_without_fallback",
            with("Contact solver",
                 "Method = active set\n  set Active set iterations = 1\n"
+                "  set Active set front iterations = 0\n"
                 "  set Largest Lemke fallback = 0"),
            block);
   run_case("block_final_phase_after_end",

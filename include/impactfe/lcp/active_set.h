@@ -38,9 +38,11 @@ namespace impactfe
     {
       /// Active-set (Newton) iterations before giving up; past them, the
       /// method goes on, for at most min(n_contacts, max_front_iterations)
-      /// more, only while a front moves: each iteration changes some
-      /// contacts, but at most sqrt(n_contacts), and none that the
-      /// iteration before changed.
+      /// more, only while a front moves: each state update changes some
+      /// contacts, at most sqrt(n_contacts), none that the update before
+      /// changed, and is not a damped cycle (or changes none while the 3D
+      /// slip directions still converge, or is followed by the tight solve
+      /// that confirms settled states).
       unsigned int max_iterations       = 50;
       unsigned int max_front_iterations = 1000;
       /// Relative residual of the linear solve (GMRES) at the final states,
@@ -142,9 +144,14 @@ namespace impactfe
      *
      * The answer is accepted only if it passes verify_contact_velocities()
      * with V computed by a product with the final P; the last product the
-     * solver makes is that one. Otherwise (no settling within
-     * max_iterations, a linear solve that stalls) converged is false and
-     * the caller falls back to Lemke's method.
+     * solver makes is that one. An answer that fails it has its states
+     * updated again, at most twice per solve, with a margin of 1e-2 of the
+     * verification's tolerance on its impulse scale (at least ten times
+     * the answer's linear residual), and the iteration goes on if any
+     * changes. Otherwise (no settling within max_iterations and the front
+     * iterations, settled states that fail the verification, a linear
+     * solve that stalls) converged is false and the caller falls back to
+     * Lemke's method.
      */
     class ActiveSetSolver
     {
@@ -215,10 +222,10 @@ namespace impactfe
       std::vector<std::size_t>  seen;
       std::vector<unsigned int> changed;
       unsigned int              cycles = 0;
-      /// Whether the last state update changed some contacts, but at most
-      /// sqrt(n), none changed by the update before: a moving front
-      /// (solve(), past max_iterations); per contact, the update that last
-      /// changed it (0: none), and the updates so far.
+      /// Whether the last state update was that of a moving front
+      /// (ActiveSetOptions::max_iterations; the confirming tight solve is
+      /// counted as one); per contact, the update that last changed it (0:
+      /// none), and the updates so far.
       bool                      moving_front = false;
       std::vector<unsigned int> last_update;
       unsigned int              n_updates = 0;
