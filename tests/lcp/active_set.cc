@@ -100,6 +100,25 @@ namespace
           y[i] = penalty[i] * x[i];
       };
     }
+    /// solver.solve() of @p p with these operators.
+    const ActiveSetReport &
+    solve(ActiveSetSolver                 &solver,
+          const ContactProblem            &p,
+          const std::vector<ContactState> &state_guess   = {},
+          const std::vector<double>       &impulse_guess = {},
+          const ActiveSetOptions          &options       = {}) const
+    {
+      return solver.solve(product,
+                          jacobi,
+                          penalty,
+                          p.n_directions,
+                          p.free_velocity,
+                          p.gap_term,
+                          p.mu,
+                          state_guess,
+                          impulse_guess,
+                          options);
+    }
     std::vector<double> penalty;
     DelassusProduct     product, jacobi;
   };
@@ -153,17 +172,9 @@ namespace
           }
         const DenseOperators ops(p);
         ActiveSetOptions     options;
-        options.n_facets              = n_facets;
-        const ActiveSetReport &report = solver.solve(ops.product,
-                                                     ops.jacobi,
-                                                     ops.penalty,
-                                                     nd,
-                                                     p.free_velocity,
-                                                     p.gap_term,
-                                                     p.mu,
-                                                     state_guess,
-                                                     impulse_guess,
-                                                     options);
+        options.n_facets = n_facets;
+        const ActiveSetReport &report =
+          ops.solve(solver, p, state_guess, impulse_guess, options);
         if (!report.converged)
           {
             dealii::deallog << "  not converged (" << nc
@@ -228,17 +239,7 @@ main()
         const ContactProblem p =
           random_problem(rng, 20 + rng.integer(61), 2, 1., false);
         const DenseOperators ops(p);
-        if (solver
-              .solve(ops.product,
-                     ops.jacobi,
-                     ops.penalty,
-                     2,
-                     p.free_velocity,
-                     p.gap_term,
-                     p.mu,
-                     {},
-                     {})
-              .converged)
+        if (ops.solve(solver, p).converged)
           all_verified =
             all_verified && verify_contact_solution(p, solver.impulses()).ok;
       }
@@ -255,16 +256,11 @@ main()
     options.max_front_iterations = 0;
     ActiveSetSolver        solver;
     const ActiveSetReport &report =
-      solver.solve(ops.product,
-                   ops.jacobi,
-                   ops.penalty,
-                   2,
-                   p.free_velocity,
-                   p.gap_term,
-                   p.mu,
-                   std::vector<ContactState>(40, ContactState::slip_positive),
-                   {},
-                   options);
+      ops.solve(solver,
+                p,
+                std::vector<ContactState>(40, ContactState::slip_positive),
+                {},
+                options);
     check(!report.converged,
           "5. one iteration from a wrong guess: not converged");
     log << "   message: " << report.message << std::endl;
@@ -304,15 +300,7 @@ main()
     const DenseOperators   ops(p);
     ActiveSetSolver        solver;
     const ActiveSetReport &report =
-      solver.solve(ops.product,
-                   ops.jacobi,
-                   ops.penalty,
-                   2,
-                   p.free_velocity,
-                   p.gap_term,
-                   p.mu,
-                   {ContactState::open, ContactState::stick},
-                   {});
+      ops.solve(solver, p, {ContactState::open, ContactState::stick});
     // exact: contact 1 open; contact 2 closed (P_N = 1) and sliding with
     // V_T = -5e-7 < 0, so P_T = mu P_N = 0.5
     const std::vector<double> exact = {0., 0., 1., 0.5};
@@ -343,16 +331,7 @@ main()
     ActiveSetOptions     options;
     options.max_iterations = 5;
     ActiveSetSolver        solver;
-    const ActiveSetReport &report = solver.solve(ops.product,
-                                                 ops.jacobi,
-                                                 ops.penalty,
-                                                 1,
-                                                 p.free_velocity,
-                                                 p.gap_term,
-                                                 {},
-                                                 {},
-                                                 {},
-                                                 options);
+    const ActiveSetReport &report = ops.solve(solver, p, {}, {}, options);
     const ContactSolution  lemke  = solve_contact_problem(p);
     double                 error = 0., scale = 0.;
     unsigned int           closed = 0;
