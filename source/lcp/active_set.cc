@@ -1141,7 +1141,9 @@ namespace impactfe
               // most twice per solve: the states again, with a margin of
               // 1e-2 of the verification's tolerance on its scale, but not
               // below ten times the refined answer's own error (changes
-              // within it would be noise).
+              // within it would be noise). The tight margin itself stays:
+              // before refine(), a tight solve is accurate only to 1e-12 of
+              // its right-hand side, which is 1e-12 c |q| in impulse units.
               if (!last_report.converged && verification_updates < 2)
                 {
                   const double free_scale =
