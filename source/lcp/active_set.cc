@@ -659,10 +659,10 @@ namespace impactfe
       exact_normal_rows_after       = options.exact_normal_rows_after;
       last_report.exact_normal_rows = exact_normal_rows;
       seen.clear();
-      cycles       = 0;
-      moving_front = false;
+      cycles            = 0;
+      bool moving_front = false;
       last_update.assign(b.size(), 0);
-      n_updates                    = 0;
+      unsigned int       n_updates = 0;
       double             last_turn = std::numeric_limits<double>::max();
       const unsigned int front_width =
         static_cast<unsigned int>(std::ceil(std::sqrt(double(b.size()))));
@@ -1144,6 +1144,15 @@ namespace impactfe
               // within it would be noise). The tight margin itself stays:
               // before refine(), a tight solve is accurate only to 1e-12 of
               // its right-hand side, which is 1e-12 c |q| in impulse units.
+              std::string failure;
+              if (!last_report.converged)
+                internal::append_text(
+                  failure,
+                  "the contact states settled but (P, V) failed the "
+                  "verification (Signorini %g, cone %g, sliding %g)",
+                  last_report.verification.max_signorini_violation,
+                  last_report.verification.max_cone_violation,
+                  last_report.verification.max_sliding_violation);
               if (!last_report.converged && verification_updates < 2)
                 {
                   const double free_scale =
@@ -1157,16 +1166,9 @@ namespace impactfe
                   if (!same)
                     {
                       ++verification_updates;
-                      verification_failure.clear();
-                      internal::append_text(
-                        verification_failure,
-                        "the contact states settled but (P, V) failed the "
-                        "verification (Signorini %g, cone %g, sliding %g), "
-                        "and the states that it changed did not lead to a "
-                        "verified answer",
-                        last_report.verification.max_signorini_violation,
-                        last_report.verification.max_cone_violation,
-                        last_report.verification.max_sliding_violation);
+                      verification_failure =
+                        failure + ", and the states that it changed did not "
+                                  "lead to a verified answer";
                       state        = new_state;
                       feature      = new_feature;
                       tight        = true;
@@ -1174,14 +1176,7 @@ namespace impactfe
                       continue;
                     }
                 }
-              if (!last_report.converged)
-                internal::append_text(
-                  last_report.message,
-                  "the contact states settled but (P, V) failed the "
-                  "verification (Signorini %g, cone %g, sliding %g)",
-                  last_report.verification.max_signorini_violation,
-                  last_report.verification.max_cone_violation,
-                  last_report.verification.max_sliding_violation);
+              last_report.message += failure;
               break;
             }
           state   = new_state;

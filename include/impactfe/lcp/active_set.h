@@ -222,13 +222,10 @@ namespace impactfe
       std::vector<std::size_t>  seen;
       std::vector<unsigned int> changed;
       unsigned int              cycles = 0;
-      /// Whether the last state update was that of a moving front
-      /// (ActiveSetOptions::max_iterations; the confirming tight solve is
-      /// counted as one); per contact, the update that last changed it (0:
-      /// none), and the updates so far.
-      bool                      moving_front = false;
+      /// Per contact, the state update of solve() that last changed it
+      /// (0: none), to tell a moving front (ActiveSetOptions::
+      /// max_iterations).
       std::vector<unsigned int> last_update;
-      unsigned int              n_updates = 0;
       /// Unknown k is local row unknowns[k]; position[row] is k or -1.
       std::vector<unsigned int> unknowns;
       std::vector<int>          position;
