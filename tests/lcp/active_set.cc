@@ -135,9 +135,10 @@ namespace
                      const unsigned int  max_contacts = 200,
                      const unsigned int  n_facets     = 0)
   {
-    lcp_test::Rng      rng(seed);
-    ActiveSetSolver    solver;
-    unsigned int       converged = 0, verified = 0, agree = 0, lemke_solved = 0;
+    lcp_test::Rng   rng(seed);
+    ActiveSetSolver solver;
+    unsigned int    converged = 0, verified = 0, agree = 0, lemke_solved = 0,
+                 last_product     = 0;
     const unsigned int n_problems = 50;
     for (unsigned int k = 0; k < n_problems; ++k)
       {
@@ -170,8 +171,15 @@ namespace
             for (double &v : impulse_guess)
               v *= 1. + 0.1 * rng.uniform(-1., 1.);
           }
-        const DenseOperators ops(p);
-        ActiveSetOptions     options;
+        // the caller's W: it keeps the impulses of its last product
+        DenseOperators      ops(p);
+        std::vector<double> last_product_P;
+        ops.product = [&p, &last_product_P](const std::vector<double> &x,
+                                            std::vector<double>       &y) {
+          last_product_P = x;
+          p.W.vmult(y, x);
+        };
+        ActiveSetOptions options;
         options.n_facets = n_facets;
         const ActiveSetReport &report =
           ops.solve(solver, p, state_guess, impulse_guess, options);
@@ -200,11 +208,24 @@ namespace
         if (lcp_test::relative_difference(p, solver.impulses(), lemke.P) <=
             1e-8)
           ++agree;
+        // the solver's last product was with its answer (the time loop
+        // uses that product's by-products), and its V is q + W P of it
+        double v_error = 0., v_scale = 0.;
+        for (unsigned int i = 0; i < V.size(); ++i)
+          {
+            v_error =
+              std::max(v_error, std::abs(V[i] - solver.velocities()[i]));
+            v_scale = std::max(v_scale, std::abs(V[i]));
+          }
+        if (last_product_P == solver.impulses() && v_error <= 1e-12 * v_scale)
+          ++last_product;
       }
     dealii::deallog << title << ": Lemke solved " << lemke_solved << " of "
                     << n_problems << "; active set converged " << converged
                     << ", verified " << verified
-                    << ", equal to Lemke's P (1e-8) " << agree << std::endl;
+                    << ", equal to Lemke's P (1e-8) " << agree
+                    << ", last product W P with that P " << last_product
+                    << std::endl;
   }
 } // namespace
 

@@ -240,9 +240,18 @@ namespace impactfe
       std::vector<double> hessenberg, givens_cos, givens_sin, g, y_small;
       /// The P of the last product W P, if work still holds that product:
       /// a product of the same P (after the slip directions moved, or to
-      /// start a refinement) is then not made again.
+      /// start a refinement) is then not made again. After a GMRES cycle
+      /// work is W P by recurrence (product_from_recurrence): good for the
+      /// next solve's residual, but not the product the caller's W made
+      /// last, nor a measured residual, so refine() makes that one anew.
       std::vector<double> product_P;
-      bool                product_valid = false;
+      bool                product_valid           = false;
+      bool                product_from_recurrence = false;
+      /// GMRES: W P of its starting x, and W E z_j of each preconditioned
+      /// basis vector z_j of the first cycle (full length), so that the
+      /// cycle's W P and true residual need no product.
+      std::vector<double>              start_product;
+      std::vector<std::vector<double>> basis_products;
 
       void
       expand(const std::vector<double> &x_unknowns,
@@ -267,12 +276,18 @@ namespace impactfe
       double
       slip_rhs(const unsigned int row, const std::vector<double> &q) const;
       /// out = K in: the Newton system's operator on the unknowns (leaves
-      /// P = E in and work = W P).
+      /// P = E in and work = W P). With @p fresh, work comes from a product
+      /// of W even if it holds W P by recurrence.
       void
       apply_newton_operator(const DelassusProduct     &W,
                             const std::vector<double> &mu,
                             const std::vector<double> &in,
-                            std::vector<double>       &out);
+                            std::vector<double>       &out,
+                            const bool                 fresh = false);
+      /// out = K x from P = E x and work = W P.
+      void
+      newton_rows(const std::vector<double> &mu,
+                  std::vector<double>       &out) const;
       /// The right-hand side of the Newton system at the current states and
       /// directions.
       void
