@@ -397,9 +397,12 @@ namespace impactfe
       // products W E z_j that its iterations make anyway: one product less
       // per solve, a third of a front's iteration (a solve from the last
       // answer, changed in a few rows, takes one or two GMRES iterations).
-      // Later cycles (few solves have them) make the product, so that
-      // rounding in the recurrence cannot build up over cycles.
-      bool recurrence = true;
+      // Later cycles (few solves have them) make the product, and so does
+      // the first if this solve started from a product by recurrence (the
+      // same P as the last solve's answer: contacts that only closed, or
+      // the confirming tight solve), so that rounding in the recurrence
+      // cannot build up over cycles or over solves.
+      bool recurrence = !product_from_recurrence;
       start_product   = work;
       if (basis_products.size() < k_max)
         basis_products.resize(k_max);
@@ -706,6 +709,10 @@ namespace impactfe
         static_cast<unsigned int>(std::ceil(std::sqrt(double(b.size()))));
       unsigned int verification_updates = 0;
       unsigned int n_changes = 0, n_changes_tight_margin = 0;
+      bool         damped_cycle = false;
+      // a tight solve that tests whether the inexact margin hides a front
+      bool         probing = false, probe_failed = false;
+      unsigned int probe_reference = 0;
       std::string  verification_failure;
       P.assign(n_rows, 0.);
       V = q;
@@ -989,6 +996,7 @@ namespace impactfe
         // a front: a few changes (at most sqrt(n), a front line of a 3D
         // contact zone), none undoing one of the update before, and not
         // the part of a cycle that its damping kept
+        damped_cycle  = cycles != cycles_before;
         n_changes     = 0;
         bool reversal = false;
         ++n_updates;
@@ -1009,7 +1017,7 @@ namespace impactfe
                                          direction[2 * a + 1]));
         same = new_state == state && new_feature == feature;
         // with no change: the 3D slip directions still converging
-        moving_front = n_changes > 0 ? !reversal && cycles == cycles_before &&
+        moving_front = n_changes > 0 ? !reversal && !damped_cycle &&
                                          n_changes <= front_width :
                                        turn > 0. && turn < last_turn;
         last_turn    = turn;
@@ -1124,8 +1132,10 @@ namespace impactfe
                 }
             }
 
-          bool   same = false;
-          double turn = update_and_turn(tight, same);
+          bool       same      = false;
+          const bool was_probe = probing;
+          probing              = false;
+          double turn          = update_and_turn(tight, same);
           if (same && !tight && m > 0 &&
               turn <= options.inexact_direction_tolerance)
             {
@@ -1229,23 +1239,40 @@ namespace impactfe
             }
           state   = new_state;
           feature = new_feature;
-          // The inexact solves' margin hides a front: the tight margin
-          // would change at least ten times as many states as this small
-          // update did (at most sqrt(n) changes: near the answer). Then
-          // the solves are tight from here on. On the 1 m slab of
-          // benchmarks/scaling at 30 001 contacts, a stick-slip front moved
-          // one node per inexact iteration for 320 iterations of one step;
-          // the first tight solve moved it by 910 nodes (the step took 29
-          // iterations). Where the front itself moves a few nodes per
-          // iteration (contact_mpi's block on a slab: at most 2.8 times as
-          // many), tight solves cost twice the GMRES iterations and gained
-          // none, hence an order of magnitude.
-          if (!tight && n_changes <= front_width &&
-              n_changes_tight_margin >= 10 * (n_changes + 1))
-            settled_once = true;
+          // The inexact solves' margin may hide a front: the tight margin
+          // would change at least ten times one more state than this small
+          // update did (at most sqrt(n) changes: near the answer; not a
+          // damped cycle, whose count says nothing about a front). The next
+          // solve is then tight, a probe; if its update changes ten times
+          // one more state than the inexact one did, the front was hidden
+          // and the solves are tight from here on, else they go back to
+          // inexact and no probe is made again in this solve. On the 1 m
+          // slab of benchmarks/scaling at 30 001 contacts, a stick-slip
+          // front moved one node per inexact iteration for 320 iterations
+          // of one step; the first tight solve moved it by 910 nodes (the
+          // step took 29 iterations). On contact_mpi's block on a slab the
+          // tight margin's count after an inexact solve is mostly its
+          // error: there tight solves from then on (without the probe's
+          // test) changed 2 to 5 states per iteration as the inexact ones
+          // did, at twice the GMRES iterations (24 003 candidates: 7 641
+          // -> 8 624 products in 20 steps).
+          if (was_probe)
+            {
+              if (n_changes >= 10 * (probe_reference + 1))
+                settled_once = true;
+              else
+                probe_failed = true;
+            }
+          else if (!tight && !probe_failed && !damped_cycle &&
+                   n_changes <= front_width &&
+                   n_changes_tight_margin >= 10 * (n_changes + 1))
+            {
+              probing         = true;
+              probe_reference = n_changes;
+            }
           // once the states have settled, every solve is tight (a solve is
-          // tight only after that, warm starts included)
-          tight = settled_once;
+          // tight only after that, warm starts included), and a probe
+          tight = settled_once || probing;
         }
       if (!last_report.converged && last_report.message.empty() &&
           !verification_failure.empty())

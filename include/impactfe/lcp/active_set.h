@@ -144,14 +144,14 @@ namespace impactfe
      *
      * The answer is accepted only if it passes verify_contact_velocities()
      * with V computed by a product with the final P; the last product the
-     * solver makes is that one. An answer that fails it has its states
-     * updated again, at most twice per solve, with a margin of 1e-2 of the
-     * verification's tolerance on its impulse scale (at least ten times
-     * the answer's linear residual), and the iteration goes on if any
-     * changes. Otherwise (no settling within max_iterations and the front
-     * iterations, settled states that fail the verification, a linear
-     * solve that stalls) converged is false and the caller falls back to
-     * Lemke's method.
+     * solver makes is that one (none if every contact is open: P = 0). An
+     * answer that fails it has its states updated again, at most twice per
+     * solve, with a margin of 1e-2 of the verification's tolerance on its
+     * impulse scale (at least ten times the answer's linear residual), and the
+     * iteration goes on if any changes. Otherwise (no settling within
+     * max_iterations and the front iterations, settled states that fail the
+     * verification, a linear solve that stalls) converged is false and the
+     * caller falls back to Lemke's method.
      */
     class ActiveSetSolver
     {
@@ -240,10 +240,11 @@ namespace impactfe
       std::vector<double> hessenberg, givens_cos, givens_sin, g, y_small;
       /// The P of the last product W P, if work still holds that product:
       /// a product of the same P (after the slip directions moved, or to
-      /// start a refinement) is then not made again. After a GMRES cycle
-      /// work is W P by recurrence (product_from_recurrence): good for the
-      /// next solve's residual, but not the product the caller's W made
-      /// last, nor a measured residual, so refine() makes that one anew.
+      /// start a refinement) is then not made again. After GMRES's first
+      /// cycle, if it was the last, work is W P by recurrence
+      /// (product_from_recurrence): good for the next solve's residual, but
+      /// not the product the caller's W made last, nor a measured residual,
+      /// so refine() makes that one anew.
       std::vector<double> product_P;
       bool                product_valid           = false;
       bool                product_from_recurrence = false;
