@@ -937,13 +937,16 @@ namespace impactfe
             complement.set_contact_states({}, {});
             continue;
           }
-        // A preconditioner whose slips lag by less than 0.05 mu costs
-        // GMRES a few iterations, far less than a factorisation.
+        // A preconditioner whose slips lag by less than 0.05 mu, or whose
+        // states lag by a few contacts (`Exact normal rows state lag`),
+        // costs GMRES a few iterations, far less than a factorisation.
         try
           {
-            if (complement.set_contact_states(normal_state[b],
-                                              normal_skew[b],
-                                              0.05))
+            if (complement.set_contact_states(
+                  normal_state[b],
+                  normal_skew[b],
+                  0.05,
+                  solver_parameters.exact_normal_rows_state_lag))
               ++active_set_stats.state_factorizations;
           }
         catch (const ExceptionBase &)
@@ -972,13 +975,33 @@ namespace impactfe
     const unsigned int n  = lcp_candidates.size();
     const auto        &complements =
       normal ? normal_schur_complements : schur_complements;
-    // at contact states (update_normal_states()), a sticking contact's
-    // tangents too, in its node's frame
-    auto sticks = [&](const unsigned int c) {
+    // At contact states (update_normal_states()) the products invert the
+    // states they were factorised at, which may lag the active set
+    // method's by a few contacts (SparseSchurComplement::
+    // set_contact_states()): a closed contact's normal and a sticking
+    // contact's tangents are the factorised inverse's unknowns if its
+    // factorised state has them; the other rows the method asks for are
+    // scaled by the complementarity constants, as for a sliding tangent.
+    auto factored_state = [&](const unsigned int c) {
       const unsigned int b = contact_set.candidate(c).body_a;
-      return normal && complements[b].inverts_contact_states() &&
-             normal_state[b][normal_frame_index[c]] ==
-               SparseSchurComplement::stick_state;
+      return complements[b].factored_states()[normal_frame_index[c]];
+    };
+    auto at_states = [&](const unsigned int c) {
+      return normal && complements[contact_set.candidate(c).body_a]
+                         .inverts_contact_states();
+    };
+    auto normal_unknown = [&](const unsigned int c) {
+      return !at_states(c) ||
+             factored_state(c) != SparseSchurComplement::open_state;
+    };
+    auto sticks = [&](const unsigned int c) {
+      return at_states(c) &&
+             factored_state(c) == SparseSchurComplement::stick_state;
+    };
+    auto sticks_now = [&](const unsigned int c) {
+      const unsigned int b = contact_set.candidate(c).body_a;
+      return at_states(c) && normal_state[b][normal_frame_index[c]] ==
+                               SparseSchurComplement::stick_state;
     };
     schur_nodal = 0.;
     for (unsigned int j = 0; j < n * nd; ++j)
@@ -989,7 +1012,10 @@ namespace impactfe
           if (!normal)
             contact_set.add_column(c * nd + j % nd, x[j], schur_nodal);
           else if (j % nd == 0)
-            schur_nodal.block(b)(frame_slots[c][0]) = x[j];
+            {
+              if (normal_unknown(c))
+                schur_nodal.block(b)(frame_slots[c][0]) = x[j];
+            }
           else if (sticks(c))
             for (unsigned int l = 0; l + 1 < dim; ++l)
               schur_nodal.block(b)(frame_slots[c][l + 1]) +=
@@ -1010,7 +1036,9 @@ namespace impactfe
         else if (!normal)
           y[j] = contact_set.column_dot(c * nd + j % nd, schur_product);
         else if (j % nd == 0)
-          y[j] = schur_product.block(candidate.body_a)(frame_slots[c][0]);
+          y[j] = normal_unknown(c) ?
+                   schur_product.block(candidate.body_a)(frame_slots[c][0]) :
+                   lcp_penalty[j] * x[j];
         else if (sticks(c))
           {
             y[j] = 0.;
@@ -1020,7 +1048,7 @@ namespace impactfe
                 schur_product.block(candidate.body_a)(frame_slots[c][l + 1]);
           }
         else
-          y[j] = 0.;
+          y[j] = sticks_now(c) ? lcp_penalty[j] * x[j] : 0.;
       }
   }
 

@@ -771,7 +771,8 @@ namespace impactfe
   SparseSchurComplement::set_contact_states(
     const std::vector<unsigned char>         &states,
     const std::vector<std::array<double, 3>> &skew,
-    const double                              skew_tolerance)
+    const double                              skew_tolerance,
+    const unsigned int                        max_stale_states)
   {
     if (states.empty())
       {
@@ -784,13 +785,24 @@ namespace impactfe
                            std::to_string(states.size()) + " states for " +
                            std::to_string(frame_dofs.size()) +
                            " frames (initialize() with for_contact_states?)"));
-    bool same = for_states && states == state_code;
-    for (std::size_t f = 0; f < frame_dofs.size() && same; ++f)
-      for (unsigned int l = 1; l < frame_size[f]; ++l)
-        same =
-          same && std::abs(skew[f][l] - state_skew[f][l]) <= skew_tolerance;
-    if (same)
-      return false;
+    // The products keep the states they invert while at most
+    // max_stale_states contacts differ from them (or their skews by more
+    // than skew_tolerance).
+    if (for_states)
+      {
+        unsigned int differing = 0;
+        for (std::size_t f = 0;
+             f < frame_dofs.size() && differing <= max_stale_states;
+             ++f)
+          {
+            bool same = states[f] == state_code[f];
+            for (unsigned int l = 1; l < frame_size[f] && same; ++l)
+              same = std::abs(skew[f][l] - state_skew[f][l]) <= skew_tolerance;
+            differing += same ? 0 : 1;
+          }
+        if (differing <= max_stale_states)
+          return false;
+      }
     for_states = false;
     state_code = states;
     state_skew = skew;
@@ -832,6 +844,14 @@ namespace impactfe
   SparseSchurComplement::inverts_contact_states() const
   {
     return for_states;
+  }
+
+
+
+  const std::vector<unsigned char> &
+  SparseSchurComplement::factored_states() const
+  {
+    return state_code;
   }
 
 

@@ -275,6 +275,26 @@ main()
   check(state_schur.inverts_contact_states() && error <= 1e-11 * scale,
         "contact states: the products invert K on the closed normals and "
         "sticking tangents");
+  // A lag (the active set method's `Exact normal rows state lag`): two
+  // contacts change, a sliding one opens and another sticks. Allowed two
+  // contacts behind, the products keep the factorised states and are
+  // unchanged to the last bit; allowed one, they are factorised again.
+  std::vector<unsigned char> lagging = states;
+  lagging[0]                         = SparseSchurComplement::open_state;
+  lagging[4]                         = SparseSchurComplement::stick_state;
+  Vector<double> kept(n);
+  const bool     refactorised_two =
+    state_schur.set_contact_states(lagging, skew, 0., 2);
+  state_schur.vmult(x_closed, kept, work);
+  kept -= lambda;
+  check(states[0] == SparseSchurComplement::slide_state &&
+          states[4] == SparseSchurComplement::slide_state &&
+          !refactorised_two && state_schur.factored_states() == states &&
+          kept.linfty_norm() == 0.,
+        "a lag of two contacts keeps the factorised states and products");
+  check(state_schur.set_contact_states(lagging, skew, 0., 1) &&
+          state_schur.factored_states() == lagging,
+        "a lag of one contact factorises the new states");
   // no states: S_N again
   state_schur.set_contact_states({}, {});
   state_schur.vmult(x, lambda, work);

@@ -39,6 +39,9 @@ namespace impactfe
     /// preconditioner inverts them exactly at the contact states (0: from
     /// the first solve).
     unsigned int exact_normal_rows_after = 40;
+    /// Contacts whose states may differ from those at which the exact
+    /// normal rows were last factorised before they are factorised again.
+    unsigned int exact_normal_rows_state_lag = 16;
     /// Active set products with the dense Schur complement of M~ on the
     /// contact DoFs where that is cheaper (dynamics/schur_complement.h).
     bool dense_schur_complement = true;

@@ -269,21 +269,27 @@ namespace impactfe
      * C': the normal slot of a closed frame, and the tangential slots of a
      * sticking one (the rotated unknowns). Empty @p states: the products
      * are those of S again. Otherwise A_RR - S A_NR is factorised (the
-     * analysis once), unless the products already invert states equal to
-     * @p states whose skews differ from @p skew by at most
-     * @p skew_tolerance (the products keep those). Returns whether it
-     * factorised. Throws, leaving the products those of S, if that matrix
-     * is singular.
+     * analysis once), unless the products already invert states that
+     * differ from @p states in at most @p max_stale_states contacts (a
+     * contact differs if its state does, or its skew by more than
+     * @p skew_tolerance): the products keep those, and factored_states()
+     * says which they are. Returns whether it factorised. Throws, leaving
+     * the products those of S, if that matrix is singular.
      */
     bool
     set_contact_states(const std::vector<unsigned char>         &states,
                        const std::vector<std::array<double, 3>> &skew,
-                       const double skew_tolerance = 0.);
+                       const double       skew_tolerance   = 0.,
+                       const unsigned int max_stale_states = 0);
 
     /// Whether the products invert the normal operator of contact states
     /// (set_contact_states()) rather than apply S.
     bool
     inverts_contact_states() const;
+
+    /// The states that the products invert (set_contact_states()).
+    const std::vector<unsigned char> &
+    factored_states() const;
 
     /// The unknowns C (sorted).
     const std::vector<types::global_dof_index> &
