@@ -81,15 +81,29 @@ namespace impactfe
         umfpack_dl_defaults(control.data());
         control[UMFPACK_IRSTEP] = 0;
         if (symmetric_pattern)
-          control[UMFPACK_STRATEGY] = UMFPACK_STRATEGY_SYMMETRIC;
-        const int status = umfpack_dl_symbolic(n,
-                                               n,
-                                               column_starts.data(),
-                                               row_indices.data(),
-                                               nullptr,
-                                               &symbolic,
-                                               control.data(),
-                                               nullptr);
+          {
+            control[UMFPACK_STRATEGY] = UMFPACK_STRATEGY_SYMMETRIC;
+            control[UMFPACK_ORDERING] = UMFPACK_ORDERING_METIS;
+          }
+        const auto analyse = [&]() {
+          return umfpack_dl_symbolic(n,
+                                     n,
+                                     column_starts.data(),
+                                     row_indices.data(),
+                                     nullptr,
+                                     &symbolic,
+                                     control.data(),
+                                     nullptr);
+        };
+        int status = analyse();
+        if (status != UMFPACK_OK &&
+            control[UMFPACK_ORDERING] != UMFPACK_ORDERING_AMD)
+          {
+            // an UMFPACK built without METIS
+            free_symbolic();
+            control[UMFPACK_ORDERING] = UMFPACK_ORDERING_AMD;
+            status                    = analyse();
+          }
         AssertThrow(status == UMFPACK_OK,
                     ExcMessage("SparseLU: the analysis of " + name +
                                " failed (UMFPACK status " +

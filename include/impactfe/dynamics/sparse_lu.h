@@ -33,10 +33,17 @@ namespace impactfe
     /**
      * @p symmetric_pattern: the matrices have a symmetric pattern and
      * diagonals that make good pivots (a symmetric matrix with some rows
-     * changed), so UMFPACK's symmetric strategy (AMD on A + A^T, diagonal
-     * pivots preferred) applies: on the active set method's state
-     * matrices of the thin slab at 10^4 contacts (61 206 unknowns) a
-     * numerical factorisation took 0.55 s with it against 1.05 s without.
+     * changed), so UMFPACK's symmetric strategy (a symmetric ordering of
+     * A + A^T, diagonal pivots preferred) applies: on the active set
+     * method's state matrices of the thin slab at 10^4 contacts (61 206
+     * unknowns) a numerical factorisation took 0.55 s with it against
+     * 1.05 s without. The ordering is METIS's nested dissection (AMD if
+     * UMFPACK has no METIS): on the 2D slab 1 m long at 30 001 contacts
+     * (300 010 unknowns) UMFPACK's analysis took 0.96 s with it against
+     * 8.7 s with its default AMD, for the same numerical factorisation
+     * time (0.53 s); on the 3D thin slab at 10^4 contacts (mu = 3, 5
+     * steps) 0.24 s against 0.11 s, and its six factorisations, analysis
+     * included, 4.2 s against 4.9 s.
      */
     explicit SparseLU(const bool symmetric_pattern = false);
     ~SparseLU();
