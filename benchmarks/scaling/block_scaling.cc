@@ -41,9 +41,14 @@
 // its statistics and, to compare methods, the last step's normal force and
 // the final kinetic energy to 15 digits.
 //
+// --state-lag K sets `Contact solver/Exact normal rows state lag`;
+// --step-trace prints each step's wall seconds, active set and GMRES
+// iterations, products and factorisations to stderr (where a run's time
+// goes: doc/lcp.md, "Large contact sets").
+//
 //   block_scaling --nx NX --ny NY [--steps S] [--top-candidates]
 //                 [--method lemke|active-set|automatic] [--cell-size H]
-//                 [--header]
+//                 [--state-lag K] [--step-trace] [--header]
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
@@ -60,6 +65,8 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
@@ -157,7 +164,9 @@ namespace
       const unsigned int n_steps,
       const bool         top_candidates,
       const std::string &method,
-      const double       given_cell_size)
+      const double       given_cell_size,
+      const int          state_lag,
+      const bool         step_trace)
   {
     // [m]: 1 m wide, or nx cells of the given size
     const double cell_size = given_cell_size > 0. ? given_cell_size : 1. / nx;
@@ -196,6 +205,8 @@ namespace
       method == "lemke"      ? ContactSolverParameters::Method::lemke :
       method == "active-set" ? ContactSolverParameters::Method::active_set :
                                ContactSolverParameters::Method::automatic;
+    if (state_lag >= 0)
+      solver_parameters.exact_normal_rows_state_lag = state_lag;
 
     MultibodySystem<2> system(time_stepping, solver_parameters, 2);
     system.add_body(block);
@@ -221,7 +232,27 @@ namespace
     StepReport   report;
     for (unsigned int step = 0; step < n_steps; ++step)
       {
-        report       = system.do_time_step();
+        const auto start  = std::chrono::steady_clock::now();
+        const auto before = system.active_set_statistics();
+        report            = system.do_time_step();
+        if (step_trace)
+          {
+            const auto &after = system.active_set_statistics();
+            std::fprintf(
+              stderr,
+              "step %u: %.3f s, %llu active set iterations, %llu GMRES "
+              "iterations, %llu products W x, %u factorisations of the exact "
+              "normal rows, %u active contacts\n",
+              step + 1,
+              std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                            start)
+                .count(),
+              after.iterations - before.iterations,
+              after.linear_iterations - before.linear_iterations,
+              after.operator_applications - before.operator_applications,
+              after.state_factorizations - before.state_factorizations,
+              report.active_contacts);
+          }
         max_active   = std::max(max_active, report.active_contacts);
         max_lcp_size = std::max(max_lcp_size, report.lcp_size);
       }
@@ -283,6 +314,8 @@ main(int argc, char **argv)
       bool         top_candidates = false, header = false;
       std::string  method    = "automatic";
       double       cell_size = 0.;
+      int          state_lag = -1;
+      bool         trace     = false;
       for (int i = 1; i < argc; ++i)
         {
           const std::string a = argv[i];
@@ -300,18 +333,22 @@ main(int argc, char **argv)
             method = argv[++i];
           else if (a == "--header")
             header = true;
+          else if (a == "--state-lag" && i + 1 < argc)
+            state_lag = std::atoi(argv[++i]);
+          else if (a == "--step-trace")
+            trace = true;
           else
             nx = 0;
         }
-      if (nx < 1 || ny < 1 || n_steps < 1 ||
+      if (nx < 1 || ny < 1 || n_steps < 1 || state_lag < -1 ||
           (method != "lemke" && method != "active-set" &&
            method != "automatic"))
         {
           std::cerr
             << "usage: block_scaling --nx NX --ny NY [--steps S] "
                "[--top-candidates] [--method lemke|active-set|automatic] "
-               "[--cell-size H] "
-               "[--header]   (NX, NY, S >= 1)\n";
+               "[--cell-size H] [--state-lag K] [--step-trace] "
+               "[--header]   (NX, NY, S >= 1, K >= 0)\n";
           return 1;
         }
       if (header)
@@ -321,7 +358,7 @@ main(int argc, char **argv)
                      "update_per_step,max_active,max_lcp_size,peak_rss_mb,"
                      "stored_columns_mb,factor_entries,floor_rhs_seconds,"
                      "floor_solve_seconds\n";
-      run(nx, ny, n_steps, top_candidates, method, cell_size);
+      run(nx, ny, n_steps, top_candidates, method, cell_size, state_lag, trace);
     }
   catch (std::exception &exc)
     {
