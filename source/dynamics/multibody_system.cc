@@ -614,7 +614,9 @@ namespace impactfe
     options.max_iterations = solver_parameters.active_set_iterations;
     options.max_front_iterations =
       solver_parameters.active_set_front_iterations;
-    options.exact_normal_rows       = exact_normal_rows;
+    // the exact normal rows: from the first solve, or as the schedule of
+    // the solves that switched to them says (lcp::ExactRowsSchedule)
+    options.exact_normal_rows       = exact_rows_schedule.start_exact();
     options.exact_normal_rows_after = solver_parameters.exact_normal_rows_after;
     if (nd == 3 && solver_parameters.friction_cone == lcp::ConeModel::facets)
       options.n_facets = solver_parameters.n_facets;
@@ -641,6 +643,7 @@ namespace impactfe
     stats.operator_applications += result.operator_applications;
     report.active_set_iterations += result.iterations;
     exact_normal_rows = exact_normal_rows || result.exact_normal_rows;
+    exact_rows_schedule.finish(result.exact_normal_rows);
     if (!result.converged)
       {
         ++stats.fallbacks;

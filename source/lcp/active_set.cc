@@ -103,6 +103,35 @@ namespace impactfe
 
 
 
+    bool
+    ExactRowsSchedule::start_exact() const
+    {
+      return hold > 0;
+    }
+
+
+
+    void
+    ExactRowsSchedule::finish(const bool used_exact_rows)
+    {
+      if (hold > 0)
+        {
+          --hold;
+          just_released = hold == 0;
+          return;
+        }
+      if (used_exact_rows)
+        {
+          period = just_released ?
+                     std::min<unsigned int>(2 * period + 1, 1u << 20) :
+                     0;
+          hold   = period;
+        }
+      just_released = used_exact_rows && hold == 0;
+    }
+
+
+
     void
     ActiveSetSolver::expand(const std::vector<double> &x_unknowns,
                             const std::vector<double> &mu,

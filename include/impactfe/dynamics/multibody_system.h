@@ -401,13 +401,14 @@ namespace impactfe
     /// normal frames (or invalid), its tangents' coordinates in that frame
     /// ([k][l]: tangent k + 1 on rotated unknown l + 1); per body the
     /// states (open, slide, stick; the skews) of the active set iteration;
-    /// whether the active set method used the exact normal rows (it does so
-    /// from then on).
+    /// whether the active set method has used the exact normal rows, and
+    /// when its problems start with them.
     std::vector<unsigned int>                         normal_frame_index;
     std::vector<std::array<std::array<double, 2>, 2>> normal_frame_tangents;
     std::vector<std::vector<unsigned char>>           normal_state;
     std::vector<std::vector<std::array<double, 3>>>   normal_skew;
     bool                                              exact_normal_rows = false;
+    lcp::ExactRowsSchedule                            exact_rows_schedule;
     std::vector<std::vector<SparseSchurComplement::NodeFrame>> normal_frames;
     std::vector<std::vector<types::global_dof_index>>          normal_dofs;
     bool   schur_preconditioner_ready = false;
