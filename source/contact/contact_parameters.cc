@@ -68,11 +68,14 @@ namespace impactfe
       "one solve after which the preconditioner of the normal rows, "
       "W_NN^{-1} on all candidates, is replaced by the exact inverse of "
       "those rows at the current contact states (the closed contacts only, "
-      "W_NN + mu W_NT D with the slip directions D), for the rest of the "
-      "run [-]. Each change of the states then costs one sparse LU "
-      "factorisation of the size of M~; it pays for large friction "
-      "coefficients and many open candidates (doc/lcp.md, 'Large friction "
-      "coefficients'). 0: from the first solve.");
+      "W_NN + mu W_NT D with the slip directions D) [-]. Later contact "
+      "problems start with them on a schedule: none at first, 1, 3, 7, ... "
+      "each time the first problem after such a hold switches again "
+      "(lcp::ExactRowsSchedule). A change of the states then costs one "
+      "sparse LU factorisation of the size of M~ (see 'Exact normal rows "
+      "state lag'); it pays for large friction coefficients and many open "
+      "candidates (doc/lcp.md, 'Large friction coefficients'). 0: from the "
+      "first solve, in every problem.");
     prm.declare_entry(
       "Exact normal rows state lag",
       "16",
