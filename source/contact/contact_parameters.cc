@@ -80,9 +80,10 @@ namespace impactfe
       "Exact normal rows state lag",
       "16",
       Patterns::Integer(0),
-      "With the exact normal rows: how many contacts may have changed state "
-      "since those rows were last factorised before they are factorised "
-      "again [-]. In between, the preconditioner is exact for the states "
+      "With the exact normal rows: how many contacts of a body may differ "
+      "from the states those rows were last factorised at (a changed state, "
+      "or a skew mu d that moved by more than 0.05) before they are "
+      "factorised again [-]. In between, the preconditioner is exact for the states "
       "it was factorised at, which costs the linear solves a few GMRES "
       "iterations, far less than a factorisation at every change: on the "
       "2D slab 1 m long at 30 001 contacts, 16 took a fifth off the run "

@@ -984,7 +984,8 @@ namespace impactfe
     // set_contact_states()): a closed contact's normal and a sticking
     // contact's tangents are the factorised inverse's unknowns if its
     // factorised state has them; the other rows the method asks for are
-    // scaled by the complementarity constants, as for a sliding tangent.
+    // scaled by the penalties c ~ 1 / W_jj (the active set method's
+    // complementarity constants, which average the two tangents' in 3D).
     auto factored_state = [&](const unsigned int c) {
       const unsigned int b = contact_set.candidate(c).body_a;
       return complements[b].factored_states()[normal_frame_index[c]];
@@ -1000,11 +1001,6 @@ namespace impactfe
     auto sticks = [&](const unsigned int c) {
       return at_states(c) &&
              factored_state(c) == SparseSchurComplement::stick_state;
-    };
-    auto sticks_now = [&](const unsigned int c) {
-      const unsigned int b = contact_set.candidate(c).body_a;
-      return at_states(c) && normal_state[b][normal_frame_index[c]] ==
-                               SparseSchurComplement::stick_state;
     };
     schur_nodal = 0.;
     for (unsigned int j = 0; j < n * nd; ++j)
@@ -1051,7 +1047,10 @@ namespace impactfe
                 schur_product.block(candidate.body_a)(frame_slots[c][l + 1]);
           }
         else
-          y[j] = sticks_now(c) ? lcp_penalty[j] * x[j] : 0.;
+          // a tangent the products do not invert: the method reads it only
+          // if the contact sticks now (the lag, or a singular state matrix
+          // that left the products those of S_N)
+          y[j] = lcp_penalty[j] * x[j];
       }
   }
 

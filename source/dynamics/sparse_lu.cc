@@ -58,6 +58,7 @@ namespace impactfe
         // with UMFPACK_At.
         free_numeric();
         free_symbolic();
+        analysed_pattern = nullptr; // until the analysis has succeeded
         column_starts.assign(n + 1, 0);
         row_indices.clear();
         destination.assign(pattern.n_nonzero_elements(), 0);

@@ -81,9 +81,9 @@ namespace impactfe
       unsigned int n_facets = 0;
     };
 
-    /// What a solve did.
     /**
-     * When a sequence of contact problems (one per time step) starts with
+     * When a sequence of active set solves (one per contact problem: per
+     * time step, and again when the candidates grow) starts with
      * the exact normal rows (ActiveSetOptions::exact_normal_rows). A
      * problem whose solve switched to them by itself is followed by
      * problems that start with them, none at first, and 1, 3, 7, ... each
@@ -112,6 +112,7 @@ namespace impactfe
 
 
 
+    /// What a solve did.
     struct ActiveSetReport
     {
       /// The contact states settled and (P, V) passed the verification.
