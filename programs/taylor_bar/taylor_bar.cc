@@ -387,6 +387,12 @@ main(int argc, char *argv[])
 {
   try
     {
+      AssertThrow(argc <= 2,
+                  dealii::ExcMessage("Usage: " + std::string(argv[0]) +
+                                     " [parameter file]"));
+      impactfe::require_one_process(
+        "taylor_bar",
+        "the finite-strain model has no distributed version yet.");
       TaylorBarProgram::TaylorBarProblem().run(
         argc > 1 ?
           std::string(argv[1]) :

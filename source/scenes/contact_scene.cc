@@ -62,6 +62,10 @@ namespace impactfe
     AssertThrow(argc <= 2,
                 ExcMessage("Usage: " + std::string(argv[0]) +
                            " [parameter file]"));
+    require_one_process(program_name,
+                        "distributed runs are made by contact_mpi "
+                        "(doc/parallel.md), which has the scenes of the "
+                        "serial programs (parameter_files/*_mpi.prm).");
     run(argc > 1 ? std::string(argv[1]) :
                    std::string(IMPACTFE_SOURCE_DIR) + "/parameter_files/" +
                      program_name + ".prm");

@@ -6,6 +6,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <ctime>
 #include <iomanip>
 #include <iostream>
@@ -93,6 +94,56 @@ namespace impactfe
     else
       text << std::setprecision(3) << value;
     return text.str();
+  }
+
+
+
+  LaunchedProcesses
+  launched_processes()
+  {
+    // a launcher's variable, if it holds a number
+    const auto read = [](const char *name, unsigned int &value) {
+      const char *text = std::getenv(name);
+      if (text == nullptr || *text == '\0')
+        return false;
+      char               *end    = nullptr;
+      const unsigned long number = std::strtoul(text, &end, 10);
+      if (*end != '\0')
+        return false;
+      value = static_cast<unsigned int>(number);
+      return true;
+    };
+    LaunchedProcesses processes;
+    for (const auto &[size_name, rank_name] :
+         {std::pair{"OMPI_COMM_WORLD_SIZE", "OMPI_COMM_WORLD_RANK"},
+          std::pair{"PMI_SIZE", "PMI_RANK"}})
+      if (read(size_name, processes.size))
+        {
+          read(rank_name, processes.rank);
+          break;
+        }
+    return processes;
+  }
+
+
+
+  void
+  require_one_process(const std::string &program,
+                      const std::string &alternative)
+  {
+    const LaunchedProcesses processes = launched_processes();
+    if (processes.size <= 1)
+      return;
+    if (processes.rank != 0)
+      std::exit(1);
+    AssertThrow(false,
+                dealii::ExcMessage(
+                  program + " runs on one process, but an MPI launcher "
+                            "started it on " +
+                  std::to_string(processes.size) +
+                  ": each process would make the same run and write the "
+                  "same files. Run it without mpirun; " +
+                  alternative));
   }
 
 

@@ -310,6 +310,14 @@ main()
            "/proc/impactfe_cannot_write_here\n  set VTU output = false\n"
            "end\n",
            mpi);
+  // a serial program started on two ranks: one message, not two runs
+  // writing the same files
+  run_case("serial_program_on_two_ranks",
+           with("Time stepping", "End time = 0.1"),
+           MPIEXEC_TWO_RANKS " " CYLINDER_IMPACT_EXECUTABLE);
+  run_case("taylor_bar_on_two_ranks",
+           with("Time", "Theta = 1"),
+           MPIEXEC_TWO_RANKS " " TAYLOR_BAR_EXECUTABLE);
   // Scene = impact throws the body of a mesh file with a velocity vector
   run_case("mpi_impact_velocity_of_two_components_in_3d",
            "set Scene = impact\n" +

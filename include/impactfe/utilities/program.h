@@ -119,6 +119,34 @@ namespace impactfe
     double started_at  = -1.;
   };
 
+  /**
+   * How many processes an MPI launcher started together with this one, and
+   * this one's rank, as the launcher announces them in the environment:
+   * Open MPI's mpirun (OMPI_COMM_WORLD_SIZE, OMPI_COMM_WORLD_RANK), the
+   * PMI of MPICH's and Intel MPI's Hydra (PMI_SIZE, PMI_RANK). {1, 0} when
+   * no launcher started it. Read without MPI_Init, which the serial
+   * programs do not call.
+   */
+  struct LaunchedProcesses
+  {
+    unsigned int size = 1, rank = 0;
+  };
+  LaunchedProcesses
+  launched_processes();
+
+  /**
+   * For the serial programs: started by an MPI launcher on several
+   * processes, each would make the same run and write the same files at
+   * the same time (`mpirun -np 2 cylinder_impact` made two identical runs
+   * and printed everything twice). Rank 0 throws, naming @p program, the
+   * count and @p alternative (where distributed runs are made); the other
+   * ranks exit at once with 1, before anything is written, so that the
+   * message appears once and no process waits for another.
+   */
+  void
+  require_one_process(const std::string &program,
+                      const std::string &alternative);
+
   /** The same for an exception of unknown type. */
   int
   report_unknown_exception();
