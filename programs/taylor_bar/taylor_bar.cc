@@ -20,7 +20,13 @@
 // (theta - 1/2) sum |v1 - v0|_M^2 the theta-scheme's dissipation, both
 // summed over the steps. The model (impactfe::FiniteStrainImpact,
 // axisymmetric or a 3D quarter of the bar) is in doc/taylor_bar.md.
+//
+// Started by mpirun on several ranks, the mesh is distributed (p4est) and
+// the Newton matrices are solved by MUMPS; rank 0 prints and writes the
+// files, and the VTU output comes as one piece per rank with a .pvtu.
 
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>
 
@@ -59,6 +65,12 @@ namespace TaylorBarProgram
     report_results() const;
     bool
     report_checks() const;
+
+    /// All ranks compute every figure (the queries are collective); rank
+    /// 0 prints them and writes the files.
+    const MPI_Comm    communicator = MPI_COMM_WORLD;
+    const bool        root = Utilities::MPI::this_mpi_process(communicator) == 0;
+    ConditionalOStream pcout{std::cout, root};
 
     FiniteStrainImpact::Settings        settings;
     MaterialParameters                  material;
@@ -140,16 +152,22 @@ namespace TaylorBarProgram
   void
   TaylorBarProblem::setup_system()
   {
-    bar = FiniteStrainImpact::create(settings, material, plasticity);
-    create_output_directory(output.directory);
-    history = std::make_unique<HistoryWriter>(
+    bar =
+      FiniteStrainImpact::create(settings, material, plasticity, communicator);
+    // rank 0 makes the directory before any rank writes a VTU piece there
+    if (root)
+      create_output_directory(output.directory);
+    MPI_Barrier(communicator);
+    if (root)
+      history = std::make_unique<HistoryWriter>(
       output.directory + "/history.csv",
       Utilities::split_string_list(
         "time, length_mm, footprint_radius_mm, kinetic_energy, "
         "stored_energy, plastic_work, contact_dissipation, "
         "scheme_dissipation, energy_balance_error, normal_force, "
         "max_equivalent_plastic_strain, newton_iterations, lcp_rows"));
-    std::cout << "Taylor bar ("
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
+    pcout << "Taylor bar ("
               << (settings.model == FiniteStrainImpact::Model::axisymmetric ?
                     "axisymmetric" :
                     "3D quarter")
@@ -159,7 +177,10 @@ namespace TaylorBarProgram
               << " s, theta = " << settings.theta
               << (settings.f_bar ? ", F-bar" : ", plain Q1")
               << ", mu = " << settings.friction_coefficient
-              << (settings.bilateral ? ", bilateral contact" : "") << std::endl;
+              << (settings.bilateral ? ", bilateral contact" : "")
+              << (n_ranks > 1 ? ", " + std::to_string(n_ranks) + " MPI ranks" :
+                                std::string())
+              << std::endl;
     initial_momentum = bar->axial_momentum();
     bar->write_cells_csv(output.directory + "/cells_initial.csv");
   }
@@ -175,9 +196,13 @@ namespace TaylorBarProgram
                  plastic = bar->plastic_work();
     const double balance = bar->energy_balance_error();
     worst_balance        = std::max(worst_balance, std::abs(balance));
-    history->add_row({bar->time(),
-                      1e3 * bar->current_length(),
-                      1e3 * bar->footprint_radius(),
+    const double length = bar->current_length(),
+                 radius = bar->footprint_radius(),
+                 alpha  = bar->max_equivalent_plastic_strain();
+    if (root)
+      history->add_row({bar->time(),
+                      1e3 * length,
+                      1e3 * radius,
                       kinetic,
                       stored,
                       plastic,
@@ -185,7 +210,7 @@ namespace TaylorBarProgram
                       totals.scheme_dissipation,
                       balance,
                       report.normal_impulse / settings.time_step,
-                      bar->max_equivalent_plastic_strain(),
+                      alpha,
                       static_cast<double>(report.newton_iterations),
                       static_cast<double>(report.n_candidates)});
     const unsigned int step =
@@ -206,7 +231,7 @@ namespace TaylorBarProgram
                  alpha             = bar->max_equivalent_plastic_strain();
     const FiniteStrainRunTotals &t = bar->totals();
     const double momentum_change   = bar->axial_momentum() - initial_momentum;
-    std::cout << std::setprecision(4) << "At t = " << bar->time() << " s:\n"
+    pcout << std::setprecision(4) << "At t = " << bar->time() << " s:\n"
               << "  final length " << length
               << " mm (L0 = " << 1e3 * settings.length << " mm)\n"
               << "  footprint radius " << radius
@@ -234,21 +259,26 @@ namespace TaylorBarProgram
                                1e-9)
               << std::endl;
     if (t.step_reductions > 0)
-      std::cout << "  Steps redone as 2-8 substeps: " << t.step_reductions
+      pcout << "  Steps redone as 2-8 substeps: " << t.step_reductions
                 << std::endl;
     if (output.print_performance)
-      std::cout << "  Newton: " << t.newton_iterations_per_step()
+      pcout << "  Newton: " << t.newton_iterations_per_step()
                 << " iterations per step (at most " << t.most_newton_iterations
                 << "), quadratic near the solution in "
                 << 100. * t.quadratic_fraction() << " %\n  CPU " << cpu_seconds
                 << " s" << std::endl;
+    const double kinetic = bar->kinetic_energy(),
+                 stored  = bar->stored_energy(), plastic = bar->plastic_work(),
+                 contact_radius = bar->contact_radius(),
+                 deepest        = bar->deepest_node_below_wall();
     JsonObject summary;
     summary.add("program", std::string("taylor_bar"))
+      .add("ranks", Utilities::MPI::n_mpi_processes(communicator))
       .add("n_dofs", bar->n_dofs())
       .add("steps", n_steps)
       .add("final_length_mm", length)
       .add("footprint_radius_mm", radius)
-      .add("contact_radius_mm", 1e3 * bar->contact_radius())
+      .add("contact_radius_mm", 1e3 * contact_radius)
       .add("max_equivalent_plastic_strain", alpha)
       .add("energy_balance_relative_error", worst_balance)
       .add("newton_iterations_per_step", t.newton_iterations_per_step())
@@ -257,21 +287,25 @@ namespace TaylorBarProgram
       .add("newton_step_reductions", t.step_reductions)
       .add("late_contact_candidates", t.late_candidates)
       .add("newton_contact_restarts", t.contact_restarts)
-      .add("deepest_node_below_wall_mm", 1e3 * bar->deepest_node_below_wall())
+      .add("deepest_node_below_wall_mm", 1e3 * deepest)
       .add("max_contact_violation", t.worst_contact_violation)
       .add("wall_impulse", t.wall_impulse)
       .add("momentum_change", momentum_change)
+      .add("impulse_balance_error",
+           std::abs(t.wall_impulse - momentum_change) /
+             std::abs(initial_momentum))
       .add("initial_momentum", initial_momentum)
       .add("last_contact_time", t.last_contact_time)
       .add("peak_contact_force", t.peak_contact_force)
-      .add("kinetic_energy", bar->kinetic_energy())
+      .add("kinetic_energy", kinetic)
       .add("initial_kinetic_energy", bar->initial_energy())
-      .add("plastic_work", bar->plastic_work())
-      .add("stored_energy", bar->stored_energy())
+      .add("plastic_work", plastic)
+      .add("stored_energy", stored)
       .add("contact_dissipation", t.contact_dissipation)
       .add("scheme_dissipation", t.scheme_dissipation)
       .add("cpu_seconds", cpu_seconds);
-    summary.write(output.directory + "/summary.json");
+    if (root)
+      summary.write(output.directory + "/summary.json");
   }
 
 
@@ -289,7 +323,7 @@ namespace TaylorBarProgram
     const auto check =
       [&](const std::string &what, const double value, const double bound) {
         const bool pass = value <= bound;
-        std::cout << "  Check: " << what << " = " << format_figure(value, 1e-9)
+        pcout << "  Check: " << what << " = " << format_figure(value, 1e-9)
                   << " <= " << bound << ": " << (pass ? "passed" : "FAILED")
                   << std::endl;
         ok = ok && pass;
@@ -327,7 +361,7 @@ namespace TaylorBarProgram
           [&](const double value, const double low, const double high) {
             return std::max({0., low - value, value - high}) / low;
           };
-        std::cout
+        pcout
           << "  Published: length 21.42-21.7 mm, footprint 7.0-7.1 mm\n";
         check("final length: relative distance to the published range",
               outside(1e3 * bar->current_length(), 21.42, 21.7),
@@ -336,13 +370,17 @@ namespace TaylorBarProgram
               outside(1e3 * bar->footprint_radius(), 7.0, 7.1),
               published_tolerance);
       }
-    std::cout << "RESULT program=taylor_bar final_length_mm="
-              << 1e3 * bar->current_length()
-              << " footprint_radius_mm=" << 1e3 * bar->footprint_radius()
+    const double length = bar->current_length(),
+                 radius = bar->footprint_radius(),
+                 alpha  = bar->max_equivalent_plastic_strain();
+    pcout << "RESULT program=taylor_bar final_length_mm="
+              << 1e3 * length
+              << " footprint_radius_mm=" << 1e3 * radius
               << " max_equivalent_plastic_strain="
-              << bar->max_equivalent_plastic_strain()
+              << alpha
               << " energy_balance_relative_error=" << worst_balance
-              << " n_dofs=" << bar->n_dofs()
+              << " n_dofs=" << bar->n_dofs() << " ranks="
+              << Utilities::MPI::n_mpi_processes(communicator)
               << " checks=" << (ok ? "passed" : "failed") << std::endl;
     return ok;
   }
@@ -385,14 +423,14 @@ namespace TaylorBarProgram
 int
 main(int argc, char *argv[])
 {
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const bool                               root =
+    dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   try
     {
       AssertThrow(argc <= 2,
                   dealii::ExcMessage("Usage: " + std::string(argv[0]) +
                                      " [parameter file]"));
-      impactfe::require_one_process(
-        "taylor_bar",
-        "the finite-strain model has no distributed version yet.");
       TaylorBarProgram::TaylorBarProblem().run(
         argc > 1 ?
           std::string(argv[1]) :
@@ -400,7 +438,9 @@ main(int argc, char *argv[])
     }
   catch (...)
     {
-      return impactfe::report_current_exception();
+      // every rank meets the same errors (the Newton iterates and the LCP
+      // are the same on all): rank 0 reports
+      return root ? impactfe::report_current_exception() : 1;
     }
   return 0;
 }

@@ -8,11 +8,18 @@
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/fe/mapping_q_eulerian.h>
 
+#include <deal.II/distributed/tria.h>
+
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/manifold_lib.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+#include <deal.II/lac/trilinos_vector.h>
 
 #include <deal.II/numerics/data_out.h>
 
@@ -25,7 +32,9 @@
 #include <fstream>
 #include <functional>
 #include <iomanip>
+#include <map>
 #include <set>
+#include <sstream>
 
 namespace impactfe
 {
@@ -184,15 +193,18 @@ namespace impactfe
   std::unique_ptr<FiniteStrainImpact>
   FiniteStrainImpact::create(const Settings             &settings,
                              const MaterialParameters   &material,
-                             const PlasticityParameters &plasticity)
+                             const PlasticityParameters &plasticity,
+                             const MPI_Comm              communicator)
   {
     if (settings.model == Model::three_dimensional)
       return std::make_unique<FiniteStrainCylinder<3>>(settings,
                                                        material,
-                                                       plasticity);
+                                                       plasticity,
+                                                       communicator);
     return std::make_unique<FiniteStrainCylinder<2>>(settings,
                                                      material,
-                                                     plasticity);
+                                                     plasticity,
+                                                     communicator);
   }
 
 
@@ -205,14 +217,37 @@ namespace impactfe
 
 
 
+  // A distributed run's Newton matrix: the rows of the locally owned DoFs,
+  // factorised by MUMPS through Amesos.
+  template <int dim>
+  struct FiniteStrainCylinder<dim>::DistributedMatrix
+  {
+    IndexSet                                        owned;
+    TrilinosWrappers::SparseMatrix                  matrix;
+    SolverControl                                   control;
+    std::unique_ptr<TrilinosWrappers::SolverDirect> solver;
+    TrilinosWrappers::MPI::Vector                   rhs, solution;
+  };
+
+
+
   template <int dim>
   FiniteStrainCylinder<dim>::FiniteStrainCylinder(
     const Settings             &settings,
     const MaterialParameters   &material,
-    const PlasticityParameters &plasticity)
+    const PlasticityParameters &plasticity,
+    const MPI_Comm              communicator)
     : settings(settings)
     , material(material)
     , law(material, plasticity)
+    , communicator(communicator)
+    , distributed(Utilities::MPI::job_supports_mpi() &&
+                  Utilities::MPI::n_mpi_processes(communicator) > 1)
+    , triangulation(
+        distributed ?
+          std::make_unique<parallel::distributed::Triangulation<dim>>(
+            communicator) :
+          std::make_unique<Triangulation<dim>>())
     , fe(FE_Q<dim>(1), dim)
     , step_solver(std::make_unique<SparseLU>())
   {
@@ -241,7 +276,7 @@ namespace impactfe
   FiniteStrainCylinder<2>::make_mesh()
   {
     GridGenerator::subdivided_hyper_rectangle(
-      triangulation,
+      *triangulation,
       {settings.n_radial, settings.n_axial},
       Point<2>(0., 0.),
       Point<2>(settings.radius, settings.length));
@@ -262,14 +297,14 @@ namespace impactfe
     GridGenerator::extrude_triangulation(flat_disc,
                                          settings.n_axial + 1,
                                          settings.length,
-                                         triangulation);
+                                         *triangulation);
     // The side faces (and their edges) follow the cylinder, and
     // setup_system() maps the reference cells with MappingQ(2): the initial
     // volume and mass are the cylinder's, not those of the inscribed
     // polygonal prism (2.5 % less at 4 cells across the radius).
-    triangulation.set_manifold(1, CylindricalManifold<3>(2));
+    triangulation->set_manifold(1, CylindricalManifold<3>(2));
     const double tolerance = 1e-10 * settings.radius;
-    for (const auto &cell : triangulation.active_cell_iterators())
+    for (const auto &cell : triangulation->active_cell_iterators())
       for (const unsigned int f : cell->face_indices())
         if (cell->face(f)->at_boundary())
           {
@@ -292,19 +327,44 @@ namespace impactfe
   FiniteStrainCylinder<dim>::setup_system()
   {
     make_mesh();
-    dof_handler.reinit(triangulation);
+    dof_handler.reinit(*triangulation);
     dof_handler.distribute_dofs(fe);
     // The finite-difference step of the tangent is relative to this.
     smallest_cell_size =
       (dim == 2) ?
         std::min(settings.radius / settings.n_radial,
                  settings.length / settings.n_axial) :
-        GridTools::minimal_cell_diameter(triangulation) / std::sqrt(3.);
+        GridTools::minimal_cell_diameter(*triangulation) / std::sqrt(3.);
 
-    DynamicSparsityPattern dsp(dof_handler.n_dofs());
-    DoFTools::make_sparsity_pattern(dof_handler, dsp);
-    sparsity.copy_from(dsp);
-    step_matrix.reinit(sparsity);
+    if (distributed)
+      {
+        distributed_matrix = std::make_unique<DistributedMatrix>();
+        DistributedMatrix &A = *distributed_matrix;
+        A.owned              = dof_handler.locally_owned_dofs();
+        IndexSet relevant;
+        DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
+        TrilinosWrappers::SparsityPattern pattern(A.owned,
+                                                  A.owned,
+                                                  relevant,
+                                                  communicator);
+        DoFTools::make_sparsity_pattern(
+          dof_handler,
+          pattern,
+          AffineConstraints<double>(),
+          false,
+          Utilities::MPI::this_mpi_process(communicator));
+        pattern.compress();
+        A.matrix.reinit(pattern);
+        A.rhs.reinit(A.owned, communicator);
+        A.solution.reinit(A.owned, communicator);
+      }
+    else
+      {
+        DynamicSparsityPattern dsp(dof_handler.n_dofs());
+        DoFTools::make_sparsity_pattern(dof_handler, dsp);
+        sparsity.copy_from(dsp);
+        step_matrix.reinit(sparsity);
+      }
 
     // Shape functions at the Gauss points and at the centre of each cell.
     std::vector<Point<dim>> points = QGauss<dim>(2).get_points();
@@ -322,10 +382,14 @@ namespace impactfe
                             update_values | update_gradients |
                               update_quadrature_points | update_JxW_values);
     lumped_mass.reinit(dof_handler.n_dofs());
-    cells.resize(triangulation.n_active_cells());
+    cells.resize(triangulation->n_active_cells());
+    owned_cells.clear();
     std::vector<types::global_dof_index> dofs(n_cell_dofs);
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
+        if (!cell->is_locally_owned())
+          continue;
+        owned_cells.push_back(cell->active_cell_index());
         fe_values.reinit(cell);
         cell->get_dof_indices(dofs);
         CellGeometry &g = cells[cell->active_cell_index()];
@@ -354,37 +418,110 @@ namespace impactfe
               }
           }
       }
+    sum_over_ranks(lumped_mass);
 
     // Symmetry: u_x = 0 on x = 0 (the axis in r-z), and in 3D u_y = 0 on
-    // y = 0. Candidates: the nodes of the side and of the lower end.
+    // y = 0. Candidates: the nodes of the side and of the lower end. Every
+    // vertex, with its reference z and its DoF along z (lengths, momentum).
+    // Each rank finds those of its cells; a distributed run gathers them on
+    // every rank, the candidates sorted by position so that the LCP's rows
+    // do not depend on the partition.
     const double                      tolerance = 1e-10 * settings.radius;
-    std::set<types::global_dof_index> symmetry;
-    std::set<unsigned int>            seen;
+    std::set<types::global_dof_index> symmetry, seen, seen_vertex;
+    // per candidate: its dim DoFs, its dim coordinates, on the lower end
+    std::vector<double> found;
     for (const auto &cell : dof_handler.active_cell_iterators())
-      for (const unsigned int f : cell->face_indices())
-        if (cell->face(f)->at_boundary())
-          for (const unsigned int v : cell->face(f)->vertex_indices())
-            {
-              const auto        face = cell->face(f);
-              const Point<dim> &x    = face->vertex(v);
-              for (unsigned int d = 0; d < dim - 1; ++d)
-                if (std::abs(x[d]) < tolerance)
-                  symmetry.insert(face->vertex_dof_index(v, d));
-              double r = std::abs(x[0]);
-              if (dim == 3)
-                r = std::sqrt(x[0] * x[0] + x[1] * x[1]);
-              const bool on_end = std::abs(x[axial]) < tolerance;
-              if ((on_end || std::abs(r - settings.radius) < tolerance) &&
-                  seen.insert(face->vertex_index(v)).second)
-                {
-                  std::array<types::global_dof_index, dim> node_dofs;
-                  for (unsigned int d = 0; d < dim; ++d)
-                    node_dofs[d] = face->vertex_dof_index(v, d);
-                  candidate_dofs.push_back(node_dofs);
-                  candidate_positions.push_back(x);
-                  on_lower_end.push_back(on_end);
-                }
-            }
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        for (const unsigned int v : cell->vertex_indices())
+          if (seen_vertex.insert(cell->vertex_dof_index(v, axial)).second)
+            axial_vertices.emplace_back(cell->vertex(v)[axial],
+                                        cell->vertex_dof_index(v, axial));
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
+            for (const unsigned int v : cell->face(f)->vertex_indices())
+              {
+                const auto        face = cell->face(f);
+                const Point<dim> &x    = face->vertex(v);
+                for (unsigned int d = 0; d < dim - 1; ++d)
+                  if (std::abs(x[d]) < tolerance)
+                    symmetry.insert(face->vertex_dof_index(v, d));
+                double r = std::abs(x[0]);
+                if (dim == 3)
+                  r = std::sqrt(x[0] * x[0] + x[1] * x[1]);
+                const bool on_end = std::abs(x[axial]) < tolerance;
+                if ((on_end || std::abs(r - settings.radius) < tolerance) &&
+                    seen.insert(face->vertex_dof_index(v, axial)).second)
+                  {
+                    for (unsigned int d = 0; d < dim; ++d)
+                      found.push_back(face->vertex_dof_index(v, d));
+                    for (unsigned int d = 0; d < dim; ++d)
+                      found.push_back(x[d]);
+                    found.push_back(on_end ? 1. : 0.);
+                  }
+              }
+      }
+    const unsigned int record = 2 * dim + 1;
+    if (distributed)
+      {
+        std::vector<types::global_dof_index> local_symmetry(symmetry.begin(),
+                                                            symmetry.end());
+        symmetry.clear();
+        for (const auto &part :
+             Utilities::MPI::all_gather(communicator, local_symmetry))
+          symmetry.insert(part.begin(), part.end());
+        std::vector<double> vertices;
+        for (const auto &[z, dof] : axial_vertices)
+          vertices.insert(vertices.end(), {z, double(dof)});
+        std::map<types::global_dof_index, double> all_vertices;
+        for (const auto &part :
+             Utilities::MPI::all_gather(communicator, vertices))
+          for (std::size_t i = 0; i < part.size(); i += 2)
+            all_vertices.emplace(
+              static_cast<types::global_dof_index>(part[i + 1]), part[i]);
+        axial_vertices.clear();
+        for (const auto &[dof, z] : all_vertices)
+          axial_vertices.emplace_back(z, dof);
+        // each candidate once (by its DoF along z), sorted by z, then r
+        std::map<types::global_dof_index, std::vector<double>> unique;
+        for (const auto &part : Utilities::MPI::all_gather(communicator, found))
+          for (std::size_t i = 0; i < part.size(); i += record)
+            unique.emplace(
+              static_cast<types::global_dof_index>(part[i + axial]),
+              std::vector<double>(part.begin() + i,
+                                  part.begin() + i + record));
+        std::vector<std::vector<double>> sorted;
+        for (auto &entry : unique)
+          sorted.push_back(std::move(entry.second));
+        std::sort(sorted.begin(),
+                  sorted.end(),
+                  [](const std::vector<double> &a,
+                     const std::vector<double> &b) {
+                    return std::lexicographical_compare(a.rbegin() + 1,
+                                                        a.rbegin() + 1 + dim,
+                                                        b.rbegin() + 1,
+                                                        b.rbegin() + 1 + dim);
+                  });
+        found.clear();
+        for (const auto &c : sorted)
+          found.insert(found.end(), c.begin(), c.end());
+      }
+    for (std::size_t i = 0; i < found.size(); i += record)
+      {
+        std::array<types::global_dof_index, dim> node_dofs;
+        Point<dim>                               x;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            node_dofs[d] = static_cast<types::global_dof_index>(found[i + d]);
+            x[d]         = found[i + dim + d];
+          }
+        candidate_dofs.push_back(node_dofs);
+        candidate_positions.push_back(x);
+        on_lower_end.push_back(found[i + 2 * dim] > 0.5);
+      }
+    AssertThrow(!candidate_dofs.empty(),
+                ExcMessage("Taylor bar: no contact candidate was found."));
     contact_states.assign(candidate_dofs.size(), ContactState::open);
     tied.assign(candidate_dofs.size(), false);
     for (const auto dof : symmetry)
@@ -394,15 +531,26 @@ namespace impactfe
     displacement.reinit(dof_handler.n_dofs());
     velocity.reinit(dof_handler.n_dofs());
     old_force.reinit(dof_handler.n_dofs());
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      for (const unsigned int v : cell->vertex_indices())
-        velocity[cell->vertex_dof_index(v, axial)] = -settings.speed;
+    for (const auto &[z, dof] : axial_vertices)
+      velocity[dof] = -settings.speed;
     initial_kinetic_energy = kinetic_energy();
 
     history_old.resize(n_gauss * cells.size());
     for (auto &h : history_old)
       law.initialize(h);
     history_new = history_old;
+  }
+
+
+
+  template <int dim>
+  void
+  FiniteStrainCylinder<dim>::sum_over_ranks(Vector<double> &v) const
+  {
+    if (distributed)
+      Utilities::MPI::sum(ArrayView<const double>(v.begin(), v.size()),
+                          communicator,
+                          ArrayView<double>(v.begin(), v.size()));
   }
 
 
@@ -564,11 +712,13 @@ namespace impactfe
   FiniteStrainCylinder<dim>::assemble_internal_force(
     const Vector<double> &u,
     Vector<double>       &force,
-    SparseMatrix<double> *tangent)
+    const bool            with_tangent)
   {
     force = 0.;
-    if (tangent != nullptr)
-      *tangent = 0.;
+    if (with_tangent && distributed)
+      distributed_matrix->matrix = 0.;
+    else if (with_tangent)
+      step_matrix = 0.;
     // The consistent tangent in closed form (cell_force()), or by central
     // differences of the cell force (F-bar's dependence on the centre
     // included), each Gauss point on the branch of the return mapping it
@@ -579,7 +729,7 @@ namespace impactfe
     CellVector                           u_cell, f_cell, f_plus, f_minus;
     FullMatrix<double>                   k_cell(n_cell_dofs, n_cell_dofs);
     std::vector<types::global_dof_index> dofs(n_cell_dofs);
-    for (unsigned int c = 0; c < cells.size(); ++c)
+    for (const unsigned int c : owned_cells)
       {
         for (unsigned int i = 0; i < n_cell_dofs; ++i)
           u_cell[i] = u[cells[c].dofs[i]];
@@ -590,12 +740,11 @@ namespace impactfe
                    f_cell,
                    &history_new,
                    branches,
-                   (tangent != nullptr && settings.closed_form_tangent) ?
-                     &k_cell :
-                     nullptr);
+                   (with_tangent && settings.closed_form_tangent) ? &k_cell :
+                                                                    nullptr);
         for (unsigned int i = 0; i < n_cell_dofs; ++i)
           force[cells[c].dofs[i]] += f_cell[i];
-        if (tangent == nullptr)
+        if (!with_tangent)
           continue;
         for (unsigned int j = 0;
              j < n_cell_dofs && !settings.closed_form_tangent;
@@ -611,8 +760,81 @@ namespace impactfe
               k_cell(i, j) = (f_plus[i] - f_minus[i]) / (2. * delta);
           }
         std::copy(cells[c].dofs.begin(), cells[c].dofs.end(), dofs.begin());
-        tangent->add(dofs, k_cell);
+        if (distributed)
+          distributed_matrix->matrix.add(dofs, k_cell);
+        else
+          step_matrix.add(dofs, k_cell);
       }
+    sum_over_ranks(force);
+    if (with_tangent && distributed)
+      distributed_matrix->matrix.compress(VectorOperation::add);
+  }
+
+
+
+  template <int dim>
+  void
+  FiniteStrainCylinder<dim>::factorize_newton_matrix(
+    const double                                h,
+    const std::vector<types::global_dof_index> &fixed)
+  {
+    const double scale = h * h * settings.theta * settings.theta;
+    if (!distributed)
+      {
+        step_matrix *= scale;
+        for (unsigned int i = 0; i < lumped_mass.size(); ++i)
+          step_matrix.add(i, i, lumped_mass[i]);
+        for (const auto dof : fixed)
+          {
+            for (auto entry = step_matrix.begin(dof);
+                 entry != step_matrix.end(dof);
+                 ++entry)
+              entry->value() = 0.;
+            step_matrix.set(dof, dof, lumped_mass[dof]);
+          }
+        step_solver->factorize(step_matrix, "the Newton matrix");
+        return;
+      }
+    DistributedMatrix &A = *distributed_matrix;
+    A.matrix *= scale;
+    for (const auto i : A.owned)
+      A.matrix.add(i, i, lumped_mass[i]);
+    A.matrix.compress(VectorOperation::add);
+    std::vector<types::global_dof_index> owned_fixed;
+    for (const auto dof : fixed)
+      if (A.owned.is_element(dof))
+        owned_fixed.push_back(dof);
+    A.matrix.clear_rows(owned_fixed, 0.);
+    for (const auto dof : owned_fixed)
+      A.matrix.set(dof, dof, lumped_mass[dof]);
+    A.matrix.compress(VectorOperation::insert);
+    A.solver = std::make_unique<TrilinosWrappers::SolverDirect>(
+      A.control, TrilinosWrappers::SolverDirect::AdditionalData(false,
+                                                                "Amesos_Mumps"));
+    A.solver->initialize(A.matrix);
+  }
+
+
+
+  template <int dim>
+  void
+  FiniteStrainCylinder<dim>::solve_newton_matrix(const Vector<double> &b,
+                                                 Vector<double>       &x)
+  {
+    if (!distributed)
+      {
+        step_solver->solve(b, x);
+        return;
+      }
+    DistributedMatrix &A = *distributed_matrix;
+    for (const auto i : A.owned)
+      A.rhs[i] = b[i];
+    A.rhs.compress(VectorOperation::insert);
+    A.solver->solve(A.solution, A.rhs);
+    x = 0.;
+    for (const auto i : A.owned)
+      x[i] = A.solution[i];
+    sum_over_ranks(x);
   }
 
 
@@ -786,7 +1008,7 @@ namespace impactfe
           return false;
         u1 = u0;
         u1.add(h * theta, v1, h * (1. - theta), v0);
-        assemble_internal_force(u1, force, &step_matrix);
+        assemble_internal_force(u1, force, true);
         // residual = M (v1 - v0) + h (theta f1 + (1 - theta) f0) - H P
         for (unsigned int i = 0; i < u0.size(); ++i)
           residual[i] = lumped_mass[i] * (v1[i] - v0[i]) +
@@ -843,24 +1065,13 @@ namespace impactfe
 
         // A = M + h^2 theta^2 K_t; the held rows (symmetry, tied, pinned):
         // identity (times M).
-        step_matrix *= h * h * theta * theta;
-        for (unsigned int i = 0; i < u0.size(); ++i)
-          step_matrix.add(i, i, lumped_mass[i]);
-        for (const auto dof : fixed)
-          {
-            for (auto entry = step_matrix.begin(dof);
-                 entry != step_matrix.end(dof);
-                 ++entry)
-              entry->value() = 0.;
-            step_matrix.set(dof, dof, lumped_mass[dof]);
-          }
-        step_solver->factorize(step_matrix, "the Newton matrix");
+        factorize_newton_matrix(h, fixed);
         // The whole impulse is the unknown: free step from the residual
         // without the contact impulse.
         for (unsigned int c = 0; c < P.size(); ++c)
           residual[lcp_dof(c)] += P[c];
         residual *= -1.;
-        step_solver->solve(residual, dv_free);
+        solve_newton_matrix(residual, dv_free);
         v1 += dv_free;
         if (active.empty())
           continue;
@@ -874,7 +1085,7 @@ namespace impactfe
             unit           = 0.;
             unit[dof]      = 1.;
             if (!is_fixed[dof])
-              step_solver->solve(unit, columns[c]);
+              solve_newton_matrix(unit, columns[c]);
           }
         problem.n_directions = n_directions;
         problem.n_contacts   = active.size();
@@ -1075,7 +1286,7 @@ namespace impactfe
     // the law saw it.
     double     e = 0.;
     CellVector u;
-    for (unsigned int c = 0; c < cells.size(); ++c)
+    for (const unsigned int c : owned_cells)
       {
         const CellGeometry &g = cells[c];
         for (unsigned int i = 0; i < n_cell_dofs; ++i)
@@ -1090,7 +1301,7 @@ namespace impactfe
                  g.weight[q];
           }
       }
-    return e;
+    return distributed ? Utilities::MPI::sum(e, communicator) : e;
   }
 
 
@@ -1100,12 +1311,12 @@ namespace impactfe
   FiniteStrainCylinder<dim>::plastic_work() const
   {
     double e = 0.;
-    for (unsigned int c = 0; c < cells.size(); ++c)
+    for (const unsigned int c : owned_cells)
       for (unsigned int q = 0; q < n_gauss; ++q)
         e += law.plastic_work(FiniteStrainJ2Model<3>::equivalent_plastic_strain(
                history_old[n_gauss * c + q])) *
              cells[c].weight[q];
-    return e;
+    return distributed ? Utilities::MPI::sum(e, communicator) : e;
   }
 
 
@@ -1115,11 +1326,8 @@ namespace impactfe
   FiniteStrainCylinder<dim>::current_length() const
   {
     double top = 0.;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      for (const unsigned int v : cell->vertex_indices())
-        top = std::max(top,
-                       cell->vertex(v)[axial] +
-                         displacement[cell->vertex_dof_index(v, axial)]);
+    for (const auto &[z, dof] : axial_vertices)
+      top = std::max(top, z + displacement[dof]);
     return top;
   }
 
@@ -1130,11 +1338,8 @@ namespace impactfe
   FiniteStrainCylinder<dim>::deepest_node_below_wall() const
   {
     double depth = 0.;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      for (const unsigned int v : cell->vertex_indices())
-        depth = std::max(depth,
-                         -cell->vertex(v)[axial] -
-                           displacement[cell->vertex_dof_index(v, axial)]);
+    for (const auto &[z, dof] : axial_vertices)
+      depth = std::max(depth, -z - displacement[dof]);
     return depth;
   }
 
@@ -1196,10 +1401,12 @@ namespace impactfe
   FiniteStrainCylinder<dim>::max_equivalent_plastic_strain() const
   {
     double alpha = 0.;
-    for (const auto &h : history_old)
-      alpha =
-        std::max(alpha, FiniteStrainJ2Model<3>::equivalent_plastic_strain(h));
-    return alpha;
+    for (const unsigned int c : owned_cells)
+      for (unsigned int q = 0; q < n_gauss; ++q)
+        alpha = std::max(alpha,
+                         FiniteStrainJ2Model<3>::equivalent_plastic_strain(
+                           history_old[n_gauss * c + q]));
+    return distributed ? Utilities::MPI::max(alpha, communicator) : alpha;
   }
 
 
@@ -1240,16 +1447,9 @@ namespace impactfe
   double
   FiniteStrainCylinder<dim>::axial_momentum() const
   {
-    std::vector<bool> counted(dof_handler.n_dofs(), false);
-    double            p = 0.;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      for (const unsigned int v : cell->vertex_indices())
-        {
-          const auto dof = cell->vertex_dof_index(v, axial);
-          if (!counted[dof])
-            p += lumped_mass[dof] * velocity[dof];
-          counted[dof] = true;
-        }
+    double p = 0.;
+    for (const auto &[z, dof] : axial_vertices)
+      p += lumped_mass[dof] * velocity[dof];
     return p;
   }
 
@@ -1259,13 +1459,15 @@ namespace impactfe
   void
   FiniteStrainCylinder<dim>::write_cells_csv(const std::string &file_name) const
   {
-    std::ofstream out(file_name);
-    AssertThrow(out, ExcMessage("Cannot write " + file_name));
-    out << "r0,z0,r1,z1,r2,z2,r3,z3,alpha\n" << std::setprecision(8);
+    // Each rank its cells' rows; rank 0 writes them all.
+    std::ostringstream out;
+    out << std::setprecision(8);
     const double tolerance = 1e-10 * settings.radius;
     for (const auto &cell : dof_handler.active_cell_iterators())
       for (const unsigned int f : cell->face_indices())
         {
+          if (!cell->is_locally_owned())
+            break;
           // The r-z section: the cell itself, or in 3D its face on y = 0,
           // its corners sorted counter-clockwise in the x-z plane.
           std::vector<Point<2>> corners;
@@ -1299,6 +1501,21 @@ namespace impactfe
             out << x[0] << ',' << x[1] << ',';
           out << cell_alpha(cell->active_cell_index()) << '\n';
         }
+    const std::vector<std::string> rows =
+      Utilities::MPI::gather(communicator, out.str(), 0);
+    const bool    root = Utilities::MPI::this_mpi_process(communicator) == 0;
+    std::ofstream file;
+    if (root)
+      file.open(file_name);
+    // every rank throws, or none: no rank waits for another
+    AssertThrow(Utilities::MPI::min(root && !file ? 0 : 1, communicator) == 1,
+                ExcMessage("Cannot write " + file_name));
+    if (root)
+      {
+        file << "r0,z0,r1,z1,r2,z2,r3,z3,alpha\n";
+        for (const std::string &part : rows)
+          file << part;
+      }
   }
 
 
@@ -1323,12 +1540,25 @@ namespace impactfe
                              std::vector<std::string>(dim, "velocity"),
                              DataOut<dim>::type_dof_data,
                              vector);
-    Vector<float> alpha(triangulation.n_active_cells());
-    for (unsigned int c = 0; c < cells.size(); ++c)
+    Vector<float> alpha(triangulation->n_active_cells());
+    for (const unsigned int c : owned_cells)
       alpha[c] = cell_alpha(c);
     data_out.add_data_vector(alpha, "equivalent_plastic_strain");
     const MappingQEulerian<dim> mapping(1, dof_handler, displacement);
     data_out.build_patches(mapping);
+    if (distributed)
+      {
+        // one piece per rank and the .pvtu that names them
+        const std::string record = data_out.write_vtu_with_pvtu_record(
+          directory + "/", "solution", step, communicator, 5);
+        vtu_records.emplace_back(time(), record);
+        if (Utilities::MPI::this_mpi_process(communicator) == 0)
+          {
+            std::ofstream pvd(directory + "/solution.pvd");
+            DataOutBase::write_pvd_record(pvd, vtu_records);
+          }
+        return;
+      }
     std::ofstream out(file_name);
     AssertThrow(out, ExcMessage("Cannot write " + file_name));
     data_out.write_vtu(out);

@@ -315,9 +315,6 @@ main()
   run_case("serial_program_on_two_ranks",
            with("Time stepping", "End time = 0.1"),
            MPIEXEC_TWO_RANKS " " CYLINDER_IMPACT_EXECUTABLE);
-  run_case("taylor_bar_on_two_ranks",
-           with("Time", "Theta = 1"),
-           MPIEXEC_TWO_RANKS " " TAYLOR_BAR_EXECUTABLE);
   // Scene = impact throws the body of a mesh file with a velocity vector
   run_case("mpi_impact_velocity_of_two_components_in_3d",
            "set Scene = impact\n" +

@@ -7,6 +7,8 @@
 #ifndef impactfe_finite_strain_finite_strain_impact_h
 #define impactfe_finite_strain_finite_strain_impact_h
 
+#include <deal.II/base/mpi.h>
+
 #include <deal.II/dofs/dof_handler.h>
 
 #include <deal.II/fe/fe_system.h>
@@ -145,11 +147,20 @@ namespace impactfe
       check() const;
     };
 
-    /** The model @p settings names, set up at t = 0. */
+    /**
+     * The model @p settings names, set up at t = 0. On a @p communicator of
+     * more than one process the mesh is distributed (p4est): each rank
+     * assembles its cells and keeps their internal variables, the Newton
+     * matrices are Trilinos matrices factorised by MUMPS (Amesos), and the
+     * nodal vectors, the candidates and the contact LCP are held on every
+     * rank; every query below is then collective. On one process: the
+     * serial mesh and UMFPACK.
+     */
     static std::unique_ptr<FiniteStrainImpact>
     create(const Settings             &settings,
            const MaterialParameters   &material,
-           const PlasticityParameters &plasticity);
+           const PlasticityParameters &plasticity,
+           const MPI_Comm              communicator = MPI_COMM_SELF);
 
     virtual ~FiniteStrainImpact() = default;
 
@@ -221,7 +232,8 @@ namespace impactfe
     /**
      * `solution-<step>.vtu` in @p directory (the deformed mesh with the
      * displacement, the velocity and alpha per cell) and the record of all
-     * written so far in `solution.pvd`.
+     * written so far in `solution.pvd`; distributed: one piece per rank,
+     * `solution_<step>.<rank>.vtu`, and `solution_<step>.pvtu`.
      */
     virtual void
     write_vtu(const std::string &directory, const unsigned int step) = 0;
@@ -244,7 +256,8 @@ namespace impactfe
   public:
     FiniteStrainCylinder(const Settings             &settings,
                          const MaterialParameters   &material,
-                         const PlasticityParameters &plasticity);
+                         const PlasticityParameters &plasticity,
+                         const MPI_Comm              communicator);
     ~FiniteStrainCylinder() override;
 
     FiniteStrainStepReport
@@ -328,11 +341,27 @@ namespace impactfe
     /// converge (the state is then partly updated: the caller restores it).
     bool
     try_step(const double h, FiniteStrainStepReport &report);
-    /** f_int(u) and, if @p tangent is not null, its tangent. */
+    /**
+     * f_int(u) on every rank and, if @p with_tangent, its tangent into the
+     * Newton matrix (serial or distributed).
+     */
     void
     assemble_internal_force(const Vector<double> &displacement,
                             Vector<double>       &force,
-                            SparseMatrix<double> *tangent);
+                            const bool            with_tangent);
+    /**
+     * The Newton matrix from the tangent: A = M + (h theta)^2 K_t, the rows
+     * of @p fixed replaced by M's diagonal; then factorised.
+     */
+    void
+    factorize_newton_matrix(const double                                h,
+                            const std::vector<types::global_dof_index> &fixed);
+    /** x = A^{-1} b, on every rank. */
+    void
+    solve_newton_matrix(const Vector<double> &b, Vector<double> &x);
+    /** Sum a vector over the ranks (nothing on one). */
+    void
+    sum_over_ranks(Vector<double> &v) const;
     using Branch = FiniteStrainJ2Model<3>::Branch;
     /// The cell's internal force; updated internal variables to @p history
     /// (one vector per Gauss point) if not null. A Gauss point whose entry
@@ -356,11 +385,20 @@ namespace impactfe
     double
     cell_alpha(const unsigned int cell) const;
 
-    Settings                  settings;
-    MaterialParameters        material;
-    FiniteStrainJ2Model<3>    law;
-    Triangulation<dim>        triangulation;
+    Settings               settings;
+    MaterialParameters     material;
+    FiniteStrainJ2Model<3> law;
+    MPI_Comm               communicator;
+    /// More than one rank: a parallel::distributed::Triangulation.
+    bool                                distributed;
+    std::unique_ptr<Triangulation<dim>> triangulation;
+    /// Indexed by active_cell_index(); filled for the locally owned cells
+    /// (owned_cells), which are all cells in a serial run.
     std::vector<CellGeometry> cells;
+    std::vector<unsigned int> owned_cells;
+    /// Every vertex once: its reference coordinate along the axis and its
+    /// DoF along it (on every rank).
+    std::vector<std::pair<double, types::global_dof_index>> axial_vertices;
     double                    smallest_cell_size     = 0.;
     double                    initial_kinetic_energy = 0.;
     FESystem<dim>             fe;
@@ -369,7 +407,10 @@ namespace impactfe
     SparsityPattern           sparsity;
     SparseMatrix<double>      step_matrix;
     /// LU of the Newton matrix; the analysis is kept for all steps.
-    std::unique_ptr<SparseLU>        step_solver;
+    std::unique_ptr<SparseLU> step_solver;
+    /// Distributed runs: the Trilinos Newton matrix and its MUMPS solver.
+    struct DistributedMatrix;
+    std::unique_ptr<DistributedMatrix> distributed_matrix;
     Vector<double>                   lumped_mass;
     Vector<double>                   displacement, velocity, old_force;
     std::vector<std::vector<double>> history_old, history_new;
