@@ -897,8 +897,17 @@ namespace impactfe
         });
         for (std::size_t k = keep; k < changed.size(); ++k)
           {
-            new_state[changed[k]]   = state[changed[k]];
-            new_feature[changed[k]] = feature[changed[k]];
+            const unsigned int a = changed[k];
+            new_state[a]         = state[a];
+            new_feature[a]       = feature[a];
+            // 2D: a sliding contact's state names the sign of its P_T, which
+            // expand() takes from its direction; one kept sliding keeps its
+            // direction, or the two would disagree (a contact whose slip
+            // turned round and was held back from sticking). In 3D the
+            // direction of a sliding contact is its Newton update, whatever
+            // the state change held back.
+            if (nd == 2 && is_sliding(state[a]))
+              new_direction[a] = direction[a];
           }
       };
 
