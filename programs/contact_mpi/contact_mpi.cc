@@ -32,6 +32,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <impactfe/parallel/distributed_scene.h>
+#include <impactfe/utilities/mpi_errors.h>
 #include <impactfe/utilities/program.h>
 
 #include <string>
@@ -46,8 +47,6 @@ int
 main(int argc, char *argv[])
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const bool                               root =
-    dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   try
     {
       AssertThrow(argc <= 2,
@@ -66,7 +65,7 @@ main(int argc, char *argv[])
     }
   catch (...)
     {
-      return root ? impactfe::report_current_exception() : 1;
+      return impactfe::report_current_exception_on_rank_zero(MPI_COMM_WORLD);
     }
   return 0;
 }

@@ -32,6 +32,7 @@
 
 #include <impactfe/finite_strain/finite_strain_impact.h>
 #include <impactfe/output/output.h>
+#include <impactfe/utilities/mpi_errors.h>
 #include <impactfe/utilities/program.h>
 
 #include <algorithm>
@@ -68,8 +69,8 @@ namespace TaylorBarProgram
 
     /// All ranks compute every figure (the queries are collective); rank
     /// 0 prints them and writes the files.
-    const MPI_Comm    communicator = MPI_COMM_WORLD;
-    const bool        root = Utilities::MPI::this_mpi_process(communicator) == 0;
+    const MPI_Comm communicator = MPI_COMM_WORLD;
+    const bool     root = Utilities::MPI::this_mpi_process(communicator) == 0;
     ConditionalOStream pcout{std::cout, root};
 
     FiniteStrainImpact::Settings        settings;
@@ -154,33 +155,32 @@ namespace TaylorBarProgram
   {
     bar =
       FiniteStrainImpact::create(settings, material, plasticity, communicator);
-    // rank 0 makes the directory before any rank writes a VTU piece there
-    if (root)
+    // Rank 0 makes the directory (before any rank writes a VTU piece
+    // there) and writes the files; an error there stops every rank.
+    on_rank_zero(communicator, [&]() {
       create_output_directory(output.directory);
-    MPI_Barrier(communicator);
-    if (root)
       history = std::make_unique<HistoryWriter>(
-      output.directory + "/history.csv",
-      Utilities::split_string_list(
-        "time, length_mm, footprint_radius_mm, kinetic_energy, "
-        "stored_energy, plastic_work, contact_dissipation, "
-        "scheme_dissipation, energy_balance_error, normal_force, "
-        "max_equivalent_plastic_strain, newton_iterations, lcp_rows"));
+        output.directory + "/history.csv",
+        Utilities::split_string_list(
+          "time, length_mm, footprint_radius_mm, kinetic_energy, "
+          "stored_energy, plastic_work, contact_dissipation, "
+          "scheme_dissipation, energy_balance_error, normal_force, "
+          "max_equivalent_plastic_strain, newton_iterations, lcp_rows"));
+    });
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
     pcout << "Taylor bar ("
-              << (settings.model == FiniteStrainImpact::Model::axisymmetric ?
-                    "axisymmetric" :
-                    "3D quarter")
-              << "): " << settings.n_radial << " x " << settings.n_axial
-              << " cells, " << bar->n_dofs() << " DoFs, " << n_steps
-              << " steps of " << settings.time_step
-              << " s, theta = " << settings.theta
-              << (settings.f_bar ? ", F-bar" : ", plain Q1")
-              << ", mu = " << settings.friction_coefficient
-              << (settings.bilateral ? ", bilateral contact" : "")
-              << (n_ranks > 1 ? ", " + std::to_string(n_ranks) + " MPI ranks" :
-                                std::string())
-              << std::endl;
+          << (settings.model == FiniteStrainImpact::Model::axisymmetric ?
+                "axisymmetric" :
+                "3D quarter")
+          << "): " << settings.n_radial << " x " << settings.n_axial
+          << " cells, " << bar->n_dofs() << " DoFs, " << n_steps << " steps of "
+          << settings.time_step << " s, theta = " << settings.theta
+          << (settings.f_bar ? ", F-bar" : ", plain Q1")
+          << ", mu = " << settings.friction_coefficient
+          << (settings.bilateral ? ", bilateral contact" : "")
+          << (n_ranks > 1 ? ", " + std::to_string(n_ranks) + " MPI ranks" :
+                            std::string())
+          << std::endl;
     initial_momentum = bar->axial_momentum();
     bar->write_cells_csv(output.directory + "/cells_initial.csv");
   }
@@ -196,23 +196,24 @@ namespace TaylorBarProgram
                  plastic = bar->plastic_work();
     const double balance = bar->energy_balance_error();
     worst_balance        = std::max(worst_balance, std::abs(balance));
-    const double length = bar->current_length(),
-                 radius = bar->footprint_radius(),
-                 alpha  = bar->max_equivalent_plastic_strain();
-    if (root)
+    const double length  = bar->current_length(),
+                 radius  = bar->footprint_radius(),
+                 alpha   = bar->max_equivalent_plastic_strain();
+    on_rank_zero(communicator, [&]() {
       history->add_row({bar->time(),
-                      1e3 * length,
-                      1e3 * radius,
-                      kinetic,
-                      stored,
-                      plastic,
-                      totals.contact_dissipation,
-                      totals.scheme_dissipation,
-                      balance,
-                      report.normal_impulse / settings.time_step,
-                      alpha,
-                      static_cast<double>(report.newton_iterations),
-                      static_cast<double>(report.n_candidates)});
+                        1e3 * length,
+                        1e3 * radius,
+                        kinetic,
+                        stored,
+                        plastic,
+                        totals.contact_dissipation,
+                        totals.scheme_dissipation,
+                        balance,
+                        report.normal_impulse / settings.time_step,
+                        alpha,
+                        static_cast<double>(report.newton_iterations),
+                        static_cast<double>(report.n_candidates)});
+    });
     const unsigned int step =
       static_cast<unsigned int>(std::llround(bar->time() / settings.time_step));
     if (output.vtu_output &&
@@ -232,43 +233,41 @@ namespace TaylorBarProgram
     const FiniteStrainRunTotals &t = bar->totals();
     const double momentum_change   = bar->axial_momentum() - initial_momentum;
     pcout << std::setprecision(4) << "At t = " << bar->time() << " s:\n"
-              << "  final length " << length
-              << " mm (L0 = " << 1e3 * settings.length << " mm)\n"
-              << "  footprint radius " << radius
-              << " mm (r0 = " << 1e3 * settings.radius << " mm)\n"
-              << "  largest equivalent plastic strain " << alpha << "\n"
-              << "  energy: kinetic " << bar->kinetic_energy() << " J, stored "
-              << bar->stored_energy() << " J, plastic work "
-              << bar->plastic_work() << " J, contact " << t.contact_dissipation
-              << " J, scheme " << t.scheme_dissipation << " J of "
-              << bar->initial_energy() << " J\n"
-              << "  largest energy balance error "
-              << format_figure(worst_balance, 1e-9) << " of E_kin(0)\n"
-              << "  contact: largest verification violation "
-              << format_figure(t.worst_contact_violation, 1e-12)
-              << ", last contact force at t = " << t.last_contact_time
-              << " s, peak force " << t.peak_contact_force << " N\n"
-              << "  deepest node below the wall (folded cells) "
-              << format_figure(1e3 * bar->deepest_node_below_wall(), 1e-9)
-              << " mm\n"
-              << "  wall impulse " << t.wall_impulse
-              << " N s, change of momentum " << momentum_change
-              << " N s, relative difference "
-              << format_figure(std::abs(t.wall_impulse - momentum_change) /
-                                 std::abs(initial_momentum),
-                               1e-9)
-              << std::endl;
+          << "  final length " << length
+          << " mm (L0 = " << 1e3 * settings.length << " mm)\n"
+          << "  footprint radius " << radius
+          << " mm (r0 = " << 1e3 * settings.radius << " mm)\n"
+          << "  largest equivalent plastic strain " << alpha << "\n"
+          << "  energy: kinetic " << bar->kinetic_energy() << " J, stored "
+          << bar->stored_energy() << " J, plastic work " << bar->plastic_work()
+          << " J, contact " << t.contact_dissipation << " J, scheme "
+          << t.scheme_dissipation << " J of " << bar->initial_energy() << " J\n"
+          << "  largest energy balance error "
+          << format_figure(worst_balance, 1e-9) << " of E_kin(0)\n"
+          << "  contact: largest verification violation "
+          << format_figure(t.worst_contact_violation, 1e-12)
+          << ", last contact force at t = " << t.last_contact_time
+          << " s, peak force " << t.peak_contact_force << " N\n"
+          << "  deepest node below the wall (folded cells) "
+          << format_figure(1e3 * bar->deepest_node_below_wall(), 1e-9)
+          << " mm\n"
+          << "  wall impulse " << t.wall_impulse << " N s, change of momentum "
+          << momentum_change << " N s, relative difference "
+          << format_figure(std::abs(t.wall_impulse - momentum_change) /
+                             std::abs(initial_momentum),
+                           1e-9)
+          << std::endl;
     if (t.step_reductions > 0)
       pcout << "  Steps redone as 2-8 substeps: " << t.step_reductions
-                << std::endl;
+            << std::endl;
     if (output.print_performance)
       pcout << "  Newton: " << t.newton_iterations_per_step()
-                << " iterations per step (at most " << t.most_newton_iterations
-                << "), quadratic near the solution in "
-                << 100. * t.quadratic_fraction() << " %\n  CPU " << cpu_seconds
-                << " s" << std::endl;
-    const double kinetic = bar->kinetic_energy(),
-                 stored  = bar->stored_energy(), plastic = bar->plastic_work(),
+            << " iterations per step (at most " << t.most_newton_iterations
+            << "), quadratic near the solution in "
+            << 100. * t.quadratic_fraction() << " %\n  CPU " << cpu_seconds
+            << " s" << std::endl;
+    const double kinetic = bar->kinetic_energy(), stored = bar->stored_energy(),
+                 plastic        = bar->plastic_work(),
                  contact_radius = bar->contact_radius(),
                  deepest        = bar->deepest_node_below_wall();
     JsonObject summary;
@@ -304,8 +303,8 @@ namespace TaylorBarProgram
       .add("contact_dissipation", t.contact_dissipation)
       .add("scheme_dissipation", t.scheme_dissipation)
       .add("cpu_seconds", cpu_seconds);
-    if (root)
-      summary.write(output.directory + "/summary.json");
+    on_rank_zero(communicator,
+                 [&]() { summary.write(output.directory + "/summary.json"); });
   }
 
 
@@ -324,8 +323,8 @@ namespace TaylorBarProgram
       [&](const std::string &what, const double value, const double bound) {
         const bool pass = value <= bound;
         pcout << "  Check: " << what << " = " << format_figure(value, 1e-9)
-                  << " <= " << bound << ": " << (pass ? "passed" : "FAILED")
-                  << std::endl;
+              << " <= " << bound << ": " << (pass ? "passed" : "FAILED")
+              << std::endl;
         ok = ok && pass;
       };
     const FiniteStrainRunTotals &t = bar->totals();
@@ -361,8 +360,7 @@ namespace TaylorBarProgram
           [&](const double value, const double low, const double high) {
             return std::max({0., low - value, value - high}) / low;
           };
-        pcout
-          << "  Published: length 21.42-21.7 mm, footprint 7.0-7.1 mm\n";
+        pcout << "  Published: length 21.42-21.7 mm, footprint 7.0-7.1 mm\n";
         check("final length: relative distance to the published range",
               outside(1e3 * bar->current_length(), 21.42, 21.7),
               published_tolerance);
@@ -373,15 +371,13 @@ namespace TaylorBarProgram
     const double length = bar->current_length(),
                  radius = bar->footprint_radius(),
                  alpha  = bar->max_equivalent_plastic_strain();
-    pcout << "RESULT program=taylor_bar final_length_mm="
-              << 1e3 * length
-              << " footprint_radius_mm=" << 1e3 * radius
-              << " max_equivalent_plastic_strain="
-              << alpha
-              << " energy_balance_relative_error=" << worst_balance
-              << " n_dofs=" << bar->n_dofs() << " ranks="
-              << Utilities::MPI::n_mpi_processes(communicator)
-              << " checks=" << (ok ? "passed" : "failed") << std::endl;
+    pcout << "RESULT program=taylor_bar final_length_mm=" << 1e3 * length
+          << " footprint_radius_mm=" << 1e3 * radius
+          << " max_equivalent_plastic_strain=" << alpha
+          << " energy_balance_relative_error=" << worst_balance
+          << " n_dofs=" << bar->n_dofs()
+          << " ranks=" << Utilities::MPI::n_mpi_processes(communicator)
+          << " checks=" << (ok ? "passed" : "failed") << std::endl;
     return ok;
   }
 
@@ -424,8 +420,6 @@ int
 main(int argc, char *argv[])
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const bool                               root =
-    dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   try
     {
       AssertThrow(argc <= 2,
@@ -438,9 +432,7 @@ main(int argc, char *argv[])
     }
   catch (...)
     {
-      // every rank meets the same errors (the Newton iterates and the LCP
-      // are the same on all): rank 0 reports
-      return root ? impactfe::report_current_exception() : 1;
+      return impactfe::report_current_exception_on_rank_zero(MPI_COMM_WORLD);
     }
   return 0;
 }

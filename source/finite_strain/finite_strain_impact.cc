@@ -1,14 +1,14 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/quadrature_lib.h>
 
+#include <deal.II/distributed/tria.h>
+
 #include <deal.II/dofs/dof_tools.h>
 
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/fe/mapping_q_eulerian.h>
-
-#include <deal.II/distributed/tria.h>
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
@@ -25,6 +25,7 @@
 
 #include <impactfe/dynamics/sparse_lu.h>
 #include <impactfe/finite_strain/finite_strain_impact.h>
+#include <impactfe/utilities/mpi_errors.h>
 #include <impactfe/utilities/program.h>
 
 #include <algorithm>
@@ -338,7 +339,7 @@ namespace impactfe
 
     if (distributed)
       {
-        distributed_matrix = std::make_unique<DistributedMatrix>();
+        distributed_matrix   = std::make_unique<DistributedMatrix>();
         DistributedMatrix &A = *distributed_matrix;
         A.owned              = dof_handler.locally_owned_dofs();
         IndexSet relevant;
@@ -347,12 +348,12 @@ namespace impactfe
                                                   A.owned,
                                                   relevant,
                                                   communicator);
-        DoFTools::make_sparsity_pattern(
-          dof_handler,
-          pattern,
-          AffineConstraints<double>(),
-          false,
-          Utilities::MPI::this_mpi_process(communicator));
+        DoFTools::make_sparsity_pattern(dof_handler,
+                                        pattern,
+                                        AffineConstraints<double>(),
+                                        false,
+                                        Utilities::MPI::this_mpi_process(
+                                          communicator));
         pattern.compress();
         A.matrix.reinit(pattern);
         A.rhs.reinit(A.owned, communicator);
@@ -382,17 +383,20 @@ namespace impactfe
                             update_values | update_gradients |
                               update_quadrature_points | update_JxW_values);
     lumped_mass.reinit(dof_handler.n_dofs());
-    cells.resize(triangulation->n_active_cells());
+    cells.clear();
     owned_cells.clear();
+    local_cell.assign(triangulation->n_active_cells(),
+                      numbers::invalid_unsigned_int);
     std::vector<types::global_dof_index> dofs(n_cell_dofs);
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
         if (!cell->is_locally_owned())
           continue;
+        local_cell[cell->active_cell_index()] = cells.size();
         owned_cells.push_back(cell->active_cell_index());
         fe_values.reinit(cell);
         cell->get_dof_indices(dofs);
-        CellGeometry &g = cells[cell->active_cell_index()];
+        CellGeometry &g = cells.emplace_back();
         for (unsigned int i = 0; i < n_cell_dofs; ++i)
           {
             g.dofs[i]      = dofs[i];
@@ -424,8 +428,9 @@ namespace impactfe
     // y = 0. Candidates: the nodes of the side and of the lower end. Every
     // vertex, with its reference z and its DoF along z (lengths, momentum).
     // Each rank finds those of its cells; a distributed run gathers them on
-    // every rank, the candidates sorted by position so that the LCP's rows
-    // do not depend on the partition.
+    // every rank, the candidates sorted by position (z, then the other
+    // coordinates from the last) so that the LCP's rows do not depend on
+    // the partition.
     const double                      tolerance = 1e-10 * settings.radius;
     std::set<types::global_dof_index> symmetry, seen, seen_vertex;
     // per candidate: its dim DoFs, its dim coordinates, on the lower end
@@ -483,14 +488,13 @@ namespace impactfe
         axial_vertices.clear();
         for (const auto &[dof, z] : all_vertices)
           axial_vertices.emplace_back(z, dof);
-        // each candidate once (by its DoF along z), sorted by z, then r
+        // each candidate once (by its DoF along z), sorted by position
         std::map<types::global_dof_index, std::vector<double>> unique;
         for (const auto &part : Utilities::MPI::all_gather(communicator, found))
           for (std::size_t i = 0; i < part.size(); i += record)
             unique.emplace(
               static_cast<types::global_dof_index>(part[i + axial]),
-              std::vector<double>(part.begin() + i,
-                                  part.begin() + i + record));
+              std::vector<double>(part.begin() + i, part.begin() + i + record));
         std::vector<std::vector<double>> sorted;
         for (auto &entry : unique)
           sorted.push_back(std::move(entry.second));
@@ -547,10 +551,23 @@ namespace impactfe
   void
   FiniteStrainCylinder<dim>::sum_over_ranks(Vector<double> &v) const
   {
-    if (distributed)
-      Utilities::MPI::sum(ArrayView<const double>(v.begin(), v.size()),
-                          communicator,
-                          ArrayView<double>(v.begin(), v.size()));
+    // Summed on rank 0 and broadcast, not all-reduced: every rank must hold
+    // the same bits, since each takes the Newton and LCP decisions on its
+    // own copy, and an all-reduce need not round alike on all ranks.
+    if (!distributed)
+      return;
+    const bool root  = Utilities::MPI::this_mpi_process(communicator) == 0;
+    int        error = MPI_Reduce(root ? MPI_IN_PLACE : v.begin(),
+                           root ? v.begin() : nullptr,
+                           static_cast<int>(v.size()),
+                           MPI_DOUBLE,
+                           MPI_SUM,
+                           0,
+                           communicator);
+    AssertThrowMPI(error);
+    error = MPI_Bcast(
+      v.begin(), static_cast<int>(v.size()), MPI_DOUBLE, 0, communicator);
+    AssertThrowMPI(error);
   }
 
 
@@ -709,10 +726,9 @@ namespace impactfe
 
   template <int dim>
   void
-  FiniteStrainCylinder<dim>::assemble_internal_force(
-    const Vector<double> &u,
-    Vector<double>       &force,
-    const bool            with_tangent)
+  FiniteStrainCylinder<dim>::assemble_internal_force(const Vector<double> &u,
+                                                     Vector<double> &force,
+                                                     const bool with_tangent)
   {
     force = 0.;
     if (with_tangent && distributed)
@@ -729,42 +745,45 @@ namespace impactfe
     CellVector                           u_cell, f_cell, f_plus, f_minus;
     FullMatrix<double>                   k_cell(n_cell_dofs, n_cell_dofs);
     std::vector<types::global_dof_index> dofs(n_cell_dofs);
-    for (const unsigned int c : owned_cells)
-      {
-        for (unsigned int i = 0; i < n_cell_dofs; ++i)
-          u_cell[i] = u[cells[c].dofs[i]];
-        std::array<Branch, n_gauss> branches;
-        branches.fill(Branch::automatic);
-        cell_force(c,
-                   u_cell,
-                   f_cell,
-                   &history_new,
-                   branches,
-                   (with_tangent && settings.closed_form_tangent) ? &k_cell :
-                                                                    nullptr);
-        for (unsigned int i = 0; i < n_cell_dofs; ++i)
-          force[cells[c].dofs[i]] += f_cell[i];
-        if (!with_tangent)
-          continue;
-        for (unsigned int j = 0;
-             j < n_cell_dofs && !settings.closed_form_tangent;
-             ++j)
-          {
-            const double saved = u_cell[j];
-            u_cell[j]          = saved + delta;
-            cell_force(c, u_cell, f_plus, nullptr, branches);
-            u_cell[j] = saved - delta;
-            cell_force(c, u_cell, f_minus, nullptr, branches);
-            u_cell[j] = saved;
-            for (unsigned int i = 0; i < n_cell_dofs; ++i)
-              k_cell(i, j) = (f_plus[i] - f_minus[i]) / (2. * delta);
-          }
-        std::copy(cells[c].dofs.begin(), cells[c].dofs.end(), dofs.begin());
-        if (distributed)
-          distributed_matrix->matrix.add(dofs, k_cell);
-        else
-          step_matrix.add(dofs, k_cell);
-      }
+    // an inverted cell is met by the rank that owns it: all ranks stop
+    on_every_rank(communicator, [&]() {
+      for (unsigned int c = 0; c < cells.size(); ++c)
+        {
+          for (unsigned int i = 0; i < n_cell_dofs; ++i)
+            u_cell[i] = u[cells[c].dofs[i]];
+          std::array<Branch, n_gauss> branches;
+          branches.fill(Branch::automatic);
+          cell_force(c,
+                     u_cell,
+                     f_cell,
+                     &history_new,
+                     branches,
+                     (with_tangent && settings.closed_form_tangent) ? &k_cell :
+                                                                      nullptr);
+          for (unsigned int i = 0; i < n_cell_dofs; ++i)
+            force[cells[c].dofs[i]] += f_cell[i];
+          if (!with_tangent)
+            continue;
+          for (unsigned int j = 0;
+               j < n_cell_dofs && !settings.closed_form_tangent;
+               ++j)
+            {
+              const double saved = u_cell[j];
+              u_cell[j]          = saved + delta;
+              cell_force(c, u_cell, f_plus, nullptr, branches);
+              u_cell[j] = saved - delta;
+              cell_force(c, u_cell, f_minus, nullptr, branches);
+              u_cell[j] = saved;
+              for (unsigned int i = 0; i < n_cell_dofs; ++i)
+                k_cell(i, j) = (f_plus[i] - f_minus[i]) / (2. * delta);
+            }
+          std::copy(cells[c].dofs.begin(), cells[c].dofs.end(), dofs.begin());
+          if (distributed)
+            distributed_matrix->matrix.add(dofs, k_cell);
+          else
+            step_matrix.add(dofs, k_cell);
+        }
+    });
     sum_over_ranks(force);
     if (with_tangent && distributed)
       distributed_matrix->matrix.compress(VectorOperation::add);
@@ -809,8 +828,8 @@ namespace impactfe
       A.matrix.set(dof, dof, lumped_mass[dof]);
     A.matrix.compress(VectorOperation::insert);
     A.solver = std::make_unique<TrilinosWrappers::SolverDirect>(
-      A.control, TrilinosWrappers::SolverDirect::AdditionalData(false,
-                                                                "Amesos_Mumps"));
+      A.control,
+      TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Mumps"));
     A.solver->initialize(A.matrix);
   }
 
@@ -1286,7 +1305,7 @@ namespace impactfe
     // the law saw it.
     double     e = 0.;
     CellVector u;
-    for (const unsigned int c : owned_cells)
+    for (unsigned int c = 0; c < cells.size(); ++c)
       {
         const CellGeometry &g = cells[c];
         for (unsigned int i = 0; i < n_cell_dofs; ++i)
@@ -1311,7 +1330,7 @@ namespace impactfe
   FiniteStrainCylinder<dim>::plastic_work() const
   {
     double e = 0.;
-    for (const unsigned int c : owned_cells)
+    for (unsigned int c = 0; c < cells.size(); ++c)
       for (unsigned int q = 0; q < n_gauss; ++q)
         e += law.plastic_work(FiniteStrainJ2Model<3>::equivalent_plastic_strain(
                history_old[n_gauss * c + q])) *
@@ -1401,7 +1420,7 @@ namespace impactfe
   FiniteStrainCylinder<dim>::max_equivalent_plastic_strain() const
   {
     double alpha = 0.;
-    for (const unsigned int c : owned_cells)
+    for (unsigned int c = 0; c < cells.size(); ++c)
       for (unsigned int q = 0; q < n_gauss; ++q)
         alpha = std::max(alpha,
                          FiniteStrainJ2Model<3>::equivalent_plastic_strain(
@@ -1499,23 +1518,23 @@ namespace impactfe
             continue;
           for (const Point<2> &x : corners)
             out << x[0] << ',' << x[1] << ',';
-          out << cell_alpha(cell->active_cell_index()) << '\n';
+          out << cell_alpha(local_cell[cell->active_cell_index()]) << '\n';
         }
     const std::vector<std::string> rows =
-      Utilities::MPI::gather(communicator, out.str(), 0);
-    const bool    root = Utilities::MPI::this_mpi_process(communicator) == 0;
-    std::ofstream file;
-    if (root)
-      file.open(file_name);
-    // every rank throws, or none: no rank waits for another
-    AssertThrow(Utilities::MPI::min(root && !file ? 0 : 1, communicator) == 1,
-                ExcMessage("Cannot write " + file_name));
-    if (root)
-      {
-        file << "r0,z0,r1,z1,r2,z2,r3,z3,alpha\n";
-        for (const std::string &part : rows)
-          file << part;
-      }
+      distributed ? Utilities::MPI::gather(communicator, out.str(), 0) :
+                    std::vector<std::string>{out.str()};
+    const auto write = [&]() {
+      std::ofstream file(file_name);
+      AssertThrow(file, ExcMessage("Cannot write " + file_name));
+      file << "r0,z0,r1,z1,r2,z2,r3,z3,alpha\n";
+      for (const std::string &part : rows)
+        file << part;
+    };
+    // (a serial run need not have initialised MPI)
+    if (distributed)
+      on_rank_zero(communicator, write);
+    else
+      write();
   }
 
 
@@ -1541,8 +1560,8 @@ namespace impactfe
                              DataOut<dim>::type_dof_data,
                              vector);
     Vector<float> alpha(triangulation->n_active_cells());
-    for (const unsigned int c : owned_cells)
-      alpha[c] = cell_alpha(c);
+    for (unsigned int c = 0; c < cells.size(); ++c)
+      alpha[owned_cells[c]] = cell_alpha(c);
     data_out.add_data_vector(alpha, "equivalent_plastic_strain");
     const MappingQEulerian<dim> mapping(1, dof_handler, displacement);
     data_out.build_patches(mapping);
@@ -1552,11 +1571,13 @@ namespace impactfe
         const std::string record = data_out.write_vtu_with_pvtu_record(
           directory + "/", "solution", step, communicator, 5);
         vtu_records.emplace_back(time(), record);
-        if (Utilities::MPI::this_mpi_process(communicator) == 0)
-          {
-            std::ofstream pvd(directory + "/solution.pvd");
-            DataOutBase::write_pvd_record(pvd, vtu_records);
-          }
+        on_rank_zero(communicator, [&]() {
+          std::ofstream pvd(directory + "/solution.pvd");
+          AssertThrow(pvd,
+                      ExcMessage("Cannot write " + directory +
+                                 "/solution.pvd"));
+          DataOutBase::write_pvd_record(pvd, vtu_records);
+        });
         return;
       }
     std::ofstream out(file_name);

@@ -8,6 +8,7 @@
 
 #include <impactfe/dynamics/contact_monitor.h>
 #include <impactfe/parallel/distributed_scene.h>
+#include <impactfe/utilities/mpi_errors.h>
 #include <impactfe/utilities/program.h>
 
 #include <algorithm>
@@ -28,36 +29,6 @@ namespace impactfe
   {
     namespace
     {
-      // Rank 0 writes the files; an error there is thrown on every rank,
-      // so that no rank is left waiting in a collective operation.
-      template <typename Action>
-      void
-      on_rank_zero(const MPI_Comm comm, const Action &action)
-      {
-        std::string error;
-        if (Utilities::MPI::this_mpi_process(comm) == 0)
-          try
-            {
-              action();
-            }
-          catch (const ExceptionBase &e) // its message, not where it was
-            {
-              std::ostringstream message;
-              e.print_info(message);
-              error = message.str();
-              error.erase(0, error.find_first_not_of(" \n"));
-              error.erase(error.find_last_not_of(" \n") + 1);
-            }
-          catch (const std::exception &e)
-            {
-              error = e.what();
-            }
-        error = Utilities::MPI::broadcast(comm, error, 0);
-        AssertThrow(error.empty(), ExcMessage(error));
-      }
-
-
-
       // The per-body material lists of subsection Bodies: the entry, its
       // unit and the member of MaterialParameters it sets.
       struct PerBodyMaterialEntry

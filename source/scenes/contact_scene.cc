@@ -64,8 +64,9 @@ namespace impactfe
                            " [parameter file]"));
     require_one_process(program_name,
                         "distributed runs are made by contact_mpi "
-                        "(doc/parallel.md), which has the scenes of the "
-                        "serial programs (parameter_files/*_mpi.prm).");
+                        "(doc/parallel.md), which runs the 2D and 3D "
+                        "scenes of the serial programs "
+                        "(parameter_files/*_mpi.prm).");
     run(argc > 1 ? std::string(argv[1]) :
                    std::string(IMPACTFE_SOURCE_DIR) + "/parameter_files/" +
                      program_name + ".prm");

@@ -134,12 +134,15 @@ namespace impactfe
     const LaunchedProcesses processes = launched_processes();
     if (processes.size <= 1)
       return;
+    // exit 0: mpirun stops all processes at the first non-zero exit, which
+    // could stop rank 0 before it has printed; it still returns rank 0's 1
     if (processes.rank != 0)
-      std::exit(1);
+      std::exit(0);
     AssertThrow(false,
                 dealii::ExcMessage(
-                  program + " runs on one process, but an MPI launcher "
-                            "started it on " +
+                  program +
+                  " runs on one process, but an MPI launcher "
+                  "started it on " +
                   std::to_string(processes.size) +
                   ": each process would make the same run and write the "
                   "same files. Run it without mpirun; " +

@@ -310,6 +310,11 @@ main()
            "/proc/impactfe_cannot_write_here\n  set VTU output = false\n"
            "end\n",
            mpi);
+  // taylor_bar on two ranks: a cell inverted by too long a step is found
+  // by the rank that owns it; every rank stops, rank 0 gives its message
+  run_case("taylor_bar_inverted_cell_on_two_ranks",
+           with("Time", "Time step = 4e-6\n  set End time = 20e-6"),
+           MPIEXEC_TWO_RANKS " " TAYLOR_BAR_EXECUTABLE);
   // a serial program started on two ranks: one message, not two runs
   // writing the same files
   run_case("serial_program_on_two_ranks",

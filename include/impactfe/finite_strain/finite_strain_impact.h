@@ -392,10 +392,12 @@ namespace impactfe
     /// More than one rank: a parallel::distributed::Triangulation.
     bool                                distributed;
     std::unique_ptr<Triangulation<dim>> triangulation;
-    /// Indexed by active_cell_index(); filled for the locally owned cells
-    /// (owned_cells), which are all cells in a serial run.
+    /// The locally owned cells (all in a serial run), in the order of
+    /// their active_cell_index(), owned_cells[c] for the c-th; their
+    /// internal variables below are numbered alike. local_cell: the
+    /// inverse (invalid for the cells of other ranks).
     std::vector<CellGeometry> cells;
-    std::vector<unsigned int> owned_cells;
+    std::vector<unsigned int> owned_cells, local_cell;
     /// Every vertex once: its reference coordinate along the axis and its
     /// DoF along it (on every rank).
     std::vector<std::pair<double, types::global_dof_index>> axial_vertices;
@@ -411,9 +413,9 @@ namespace impactfe
     /// Distributed runs: the Trilinos Newton matrix and its MUMPS solver.
     struct DistributedMatrix;
     std::unique_ptr<DistributedMatrix> distributed_matrix;
-    Vector<double>                   lumped_mass;
-    Vector<double>                   displacement, velocity, old_force;
-    std::vector<std::vector<double>> history_old, history_new;
+    Vector<double>                     lumped_mass;
+    Vector<double>                     displacement, velocity, old_force;
+    std::vector<std::vector<double>>   history_old, history_new;
     /// Per candidate node: its DoFs (the last along z); which are on the
     /// lower end.
     std::vector<std::array<types::global_dof_index, dim>> candidate_dofs;

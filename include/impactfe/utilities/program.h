@@ -140,8 +140,10 @@ namespace impactfe
    * the same time (`mpirun -np 2 cylinder_impact` made two identical runs
    * and printed everything twice). Rank 0 throws, naming @p program, the
    * count and @p alternative (where distributed runs are made); the other
-   * ranks exit at once with 1, before anything is written, so that the
-   * message appears once and no process waits for another.
+   * ranks exit at once, before anything is written, with 0 (mpirun stops
+   * every process at the first non-zero exit, which could cut rank 0's
+   * message short; it returns rank 0's 1), so that the message appears
+   * once and no process waits for another.
    */
   void
   require_one_process(const std::string &program,

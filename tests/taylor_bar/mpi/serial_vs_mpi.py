@@ -10,13 +10,18 @@ their own checks (exit code 0). Compared, each against its own scale:
 * the deformed cells of cells_final.csv (their corners and plastic
   strain, rows sorted: the ranks write their cells in another order) to
   --tolerance of the bar's length (corners) and of the largest strain;
-* the wall impulse and the change of momentum of summary.json.
+* the wall impulse and the change of momentum of summary.json;
+* with --vtu (VTU output turned on in a copy of the file): the same
+  number of outputs in both solution.pvd files, each of the distributed
+  run a .pvtu whose pieces, one per rank, exist.
 
-Prints one line per quantity and exits with 1 if one differs by more."""
+Checks that the runs were made on one and on two ranks (summary.json),
+prints one line per quantity and exits with 1 if one differs by more."""
 import argparse
 import csv
 import json
 import os
+import re
 import shlex
 import shutil
 import subprocess
@@ -40,10 +45,18 @@ def main():
     ap.add_argument("--mpiexec", required=True)
     ap.add_argument("--work", required=True)
     ap.add_argument("--tolerance", type=float, default=1e-8)
+    ap.add_argument("--vtu", action="store_true")
     a = ap.parse_args()
     shutil.rmtree(a.work, ignore_errors=True)
-    runs = {"serial": [a.program, a.prm],
-            "mpi": shlex.split(a.mpiexec) + [a.program, a.prm]}
+    os.makedirs(a.work)
+    prm = a.prm
+    if a.vtu:
+        prm = os.path.join(a.work, "vtu.prm")
+        with open(prm, "w") as out:
+            out.write(open(a.prm).read() + "\nsubsection Output\n"
+                      "  set VTU output = true\nend\n")
+    runs = {"serial": [a.program, prm],
+            "mpi": shlex.split(a.mpiexec) + [a.program, prm]}
     for name, command in runs.items():
         os.makedirs(os.path.join(a.work, name))
         run(command, os.path.join(a.work, name))
@@ -75,11 +88,16 @@ def main():
         report(name, max(abs(x - y) for x, y in zip(s, m)) / scale)
 
     def cells(name):
-        # sorted by the corners rounded to 1e-9 m (the rows' order is the
-        # ranks'), compared unrounded
+        # sorted by the cell's centre rounded to 1e-6 of the bar's size
+        # (the rows' order is the ranks'), compared unrounded
         rows = [tuple(float(x) for x in r) for r in
                 list(csv.reader(open(path(name, "cells_final.csv"))))[1:]]
-        return sorted(rows, key=lambda r: tuple(round(x, 9) for x in r[:8]))
+        size = max(max(abs(x) for x in r[:8]) for r in rows)
+
+        def centre(r):
+            return (round(sum(r[0:8:2]) / 4 / size, 6),
+                    round(sum(r[1:8:2]) / 4 / size, 6))
+        return sorted(rows, key=centre)
     cs, cm = cells("serial"), cells("mpi")
     if len(cs) != len(cm):
         print(f"cells_final.csv: {len(cs)} cells against {len(cm)}: FAILED")
@@ -94,9 +112,26 @@ def main():
 
     js = json.load(open(path("serial", "summary.json")))
     jm = json.load(open(path("mpi", "summary.json")))
-    print(f"ranks: {js['ranks']} and {jm['ranks']}")
+    ranks_ok = js["ranks"] == 1 and jm["ranks"] == 2
+    failed = failed or not ranks_ok
+    print(f"ranks: {js['ranks']} and {jm['ranks']} "
+          f"{'OK' if ranks_ok else 'FAILED (expected 1 and 2)'}")
     for key in ("wall_impulse", "momentum_change"):
         report(key, abs(js[key] - jm[key]) / abs(js["initial_momentum"]))
+    if a.vtu:
+        def records(name):
+            text = open(path(name, "solution.pvd")).read()
+            return re.findall(r'file="([^"]+)"', text)
+        serial_files, mpi_files = records("serial"), records("mpi")
+        pieces_ok = len(mpi_files) == len(serial_files) > 0
+        for pvtu in mpi_files:
+            text = open(path("mpi", pvtu)).read()
+            pieces = re.findall(r'Source="([^"]+)"', text)
+            pieces_ok = pieces_ok and len(pieces) == 2 and all(
+                os.path.exists(path("mpi", p)) for p in pieces)
+        failed = failed or not pieces_ok
+        print(f"VTU: {len(serial_files)} outputs and {len(mpi_files)} "
+              f".pvtu of 2 pieces each {'OK' if pieces_ok else 'FAILED'}")
     return 1 if failed else 0
 
 

@@ -1,0 +1,136 @@
+// Errors in distributed runs: an exception met on some ranks is thrown on
+// every rank, with its message, so that no rank is left waiting in a
+// collective operation for one that has stopped.
+#ifndef impactfe_utilities_mpi_errors_h
+#define impactfe_utilities_mpi_errors_h
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
+
+#include <impactfe/utilities/program.h>
+
+#include <chrono>
+#include <exception>
+#include <sstream>
+#include <string>
+#include <thread>
+
+namespace impactfe
+{
+  /**
+   * The message of @p e as report_exception() prints it: for a deal.II
+   * exception its text, not where it was thrown.
+   */
+  inline std::string
+  exception_message(const std::exception &e)
+  {
+    const auto *deal_ii = dynamic_cast<const dealii::ExceptionBase *>(&e);
+    if (deal_ii == nullptr)
+      return e.what();
+    std::ostringstream message;
+    deal_ii->print_info(message);
+    std::string text = message.str();
+    text.erase(0, text.find_first_not_of(" \n"));
+    text.erase(text.find_last_not_of(" \n") + 1);
+    return text;
+  }
+
+
+
+  /**
+   * Run @p action on rank 0 only (writing the files); an exception there
+   * is thrown on every rank with its message.
+   */
+  template <typename Action>
+  void
+  on_rank_zero(const MPI_Comm comm, const Action &action)
+  {
+    std::string error;
+    if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+      try
+        {
+          action();
+        }
+      catch (const std::exception &e)
+        {
+          error = exception_message(e);
+          if (error.empty())
+            error = "an error without a message";
+        }
+    error = dealii::Utilities::MPI::broadcast(comm, error, 0);
+    AssertThrow(error.empty(), dealii::ExcMessage(error));
+  }
+
+
+
+  /**
+   * Run @p action on every rank; if it throws on some, the message of the
+   * lowest of them is thrown on all (an inverted element is found only by
+   * the rank that owns it). On one process @p action just runs.
+   */
+  template <typename Action>
+  void
+  on_every_rank(const MPI_Comm comm, const Action &action)
+  {
+    if (!dealii::Utilities::MPI::job_supports_mpi() ||
+        dealii::Utilities::MPI::n_mpi_processes(comm) == 1)
+      {
+        action();
+        return;
+      }
+    std::string error;
+    try
+      {
+        action();
+      }
+    catch (const std::exception &e)
+      {
+        error = exception_message(e);
+        if (error.empty())
+          error = "an error without a message";
+      }
+    const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
+    const unsigned int first   = dealii::Utilities::MPI::min(
+      error.empty() ? n_ranks : dealii::Utilities::MPI::this_mpi_process(comm),
+      comm);
+    if (first == n_ranks)
+      return;
+    error = dealii::Utilities::MPI::broadcast(comm, error, first);
+    AssertThrow(false, dealii::ExcMessage(error));
+  }
+
+
+
+  /**
+   * For `catch (...)` in the main() of a distributed program, where every
+   * rank normally meets the error (on_rank_zero(), on_every_rank()): rank
+   * 0 reports it (report_current_exception()), and all ranks meet at a
+   * barrier before they exit with 1, since mpirun stops every process at
+   * the first non-zero exit and would cut rank 0's message short. An error
+   * met by some ranks only leaves the others elsewhere: after 10 s at the
+   * barrier the job is aborted (MPI_Abort) rather than left to hang.
+   */
+  inline int
+  report_current_exception_on_rank_zero(const MPI_Comm comm)
+  {
+    const bool  root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+    const int   code = root ? report_current_exception() : 1;
+    MPI_Request request;
+    if (MPI_Ibarrier(comm, &request) != MPI_SUCCESS)
+      return code;
+    int        done  = 0;
+    const auto start = std::chrono::steady_clock::now();
+    while (!done)
+      {
+        MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+        if (done)
+          break;
+        if (std::chrono::steady_clock::now() - start > std::chrono::seconds(10))
+          MPI_Abort(comm, code);
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      }
+    return code;
+  }
+} // namespace impactfe
+
+#endif
