@@ -412,6 +412,14 @@ namespace impactfe
       const double w = p.W.linfty_norm();
       const double scale =
         std::max(max_norm(P), w > 0. ? (free + gaps) / w : 0.);
+      // a NaN or an infinity is no answer (max_norm() would pass over a NaN)
+      const auto finite = [](const std::vector<double> &v) {
+        return std::all_of(v.begin(), v.end(), [](const double x) {
+          return std::isfinite(x);
+        });
+      };
+      if (!finite(P) || !finite(F))
+        return std::numeric_limits<double>::infinity();
       const double residual = max_norm(F);
       return scale > 0. ? residual / scale : residual;
     }
@@ -643,9 +651,20 @@ namespace impactfe
                   xi[s] += sigma * nu;
                 }
               direction(dx, dy);
+              // A nearly singular Newton matrix (redundant contacts: W of
+              // lower rank) can give a direction with a NaN, which the
+              // step to the boundary's comparisons pass over, and which
+              // was then taken as a full step (a rigid box on four
+              // corners, with one BLAS and not another). The iterate is
+              // kept instead.
+              const auto finite = [](const std::vector<double> &v) {
+                return std::all_of(v.begin(), v.end(), [](const double z) {
+                  return std::isfinite(z);
+                });
+              };
               const double alpha =
                 std::min(1., 0.99 * step_to_boundary(dx, dy));
-              if (!(alpha > 1e-10))
+              if (!finite(dx) || !finite(dy) || !(alpha > 1e-10))
                 {
                   stop = "stalled";
                   break;
@@ -1106,7 +1125,14 @@ namespace impactfe
                 rc[i] = -z[i] * w[i] - dza[i] * dwa[i] + sigma * nu;
               direction(dz, dw);
               const double alpha = std::min(1., 0.99 * ratio(dz, dw));
-              if (!(alpha > 1e-10))
+              // a direction with a NaN (nearly singular H) would pass
+              // ratio()'s comparisons as a full step: keep the iterate
+              const auto finite = [](const std::vector<double> &v) {
+                return std::all_of(v.begin(), v.end(), [](const double x) {
+                  return std::isfinite(x);
+                });
+              };
+              if (!(alpha > 1e-10) || !finite(dz) || !finite(dw))
                 {
                   stop = "stalled";
                   break;
