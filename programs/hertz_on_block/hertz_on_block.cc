@@ -47,6 +47,7 @@
 #include <impactfe/utilities/program.h>
 
 #include <cmath>
+#include <sstream>
 
 namespace HertzOnBlockProgram
 {
@@ -105,6 +106,24 @@ namespace HertzOnBlockProgram
     title() const override
     {
       return "Hertz impact of a ball on an elastic block";
+    }
+    // With both master surfaces (two passes) some motions are constrained
+    // twice: W is rank-deficient and the states of the doubly constrained
+    // nodes are not unique, so their count follows the rounding (48 state
+    // changes with one BLAS, 92 with another, the same forces). The screen
+    // report says so instead of the count; summary.json keeps it.
+    void
+    print_report(const std::string &text, std::ostream &out) const override
+    {
+      std::istringstream lines(text);
+      std::string        line;
+      while (std::getline(lines, line))
+        if (master_surface == "both" &&
+            line.rfind("  Contact state changes", 0) == 0)
+          out << "  Contact state changes: not unique with two passes "
+                 "(summary.json has this run's count)\n";
+        else
+          out << line << '\n';
     }
 
     /// Relative displacement of the centres of mass along -z, beyond the
