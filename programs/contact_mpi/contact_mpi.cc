@@ -40,9 +40,10 @@
 
 
 // @sect3{The main function}
-// Every error met here is met by every rank (the parameters, the set-up and
-// the solves are collective), so rank 0 alone prints it and all exit with
-// 1: no rank is left waiting.
+// An error met here is normally met by every rank (the parameters, the
+// set-up and the solves are collective), so rank 0 alone prints it and all
+// exit with 1: no rank is left waiting
+// (report_current_exception_on_rank_zero()).
 int
 main(int argc, char *argv[])
 {

@@ -548,6 +548,18 @@ namespace impactfe
 
 
   template <int dim>
+  double
+  FiniteStrainCylinder<dim>::sum_over_ranks(const double x) const
+  {
+    Vector<double> v(1);
+    v[0] = x;
+    sum_over_ranks(v);
+    return v[0];
+  }
+
+
+
+  template <int dim>
   void
   FiniteStrainCylinder<dim>::sum_over_ranks(Vector<double> &v) const
   {
@@ -1320,7 +1332,7 @@ namespace impactfe
                  g.weight[q];
           }
       }
-    return distributed ? Utilities::MPI::sum(e, communicator) : e;
+    return sum_over_ranks(e);
   }
 
 
@@ -1335,7 +1347,7 @@ namespace impactfe
         e += law.plastic_work(FiniteStrainJ2Model<3>::equivalent_plastic_strain(
                history_old[n_gauss * c + q])) *
              cells[c].weight[q];
-    return distributed ? Utilities::MPI::sum(e, communicator) : e;
+    return sum_over_ranks(e);
   }
 
 

@@ -192,6 +192,15 @@ namespace impactfe
         return m;
       }
 
+      /// No NaN and no infinity in @p v (max_norm() passes over a NaN).
+      bool
+      all_finite(const std::vector<double> &v)
+      {
+        return std::all_of(v.begin(), v.end(), [](const double x) {
+          return std::isfinite(x);
+        });
+      }
+
       /// rho_c = d / trace(W_cc): the natural map's step for contact c.
       double
       contact_step(const ContactProblem &p, const unsigned int c)
@@ -366,9 +375,7 @@ namespace impactfe
                                    const std::vector<double> &mu,
                                    const unsigned int         n_facets)
       {
-        if (!std::all_of(P.begin(), P.end(), [](const double v) {
-              return std::isfinite(v);
-            }))
+        if (!all_finite(P))
           return ContactVerification();
         std::vector<double> V;
         p.W.vmult(V, P);
@@ -398,6 +405,9 @@ namespace impactfe
                         const std::vector<double> &P,
                         std::vector<double>       &u)
     {
+      // a NaN or an infinity is no answer
+      if (!all_finite(P))
+        return std::numeric_limits<double>::infinity();
       std::vector<double> q(p.free_velocity), F;
       for (unsigned int c = 0; c < p.n_contacts; ++c)
         q[p.n_directions * c] += p.gap_term[c];
@@ -412,13 +422,7 @@ namespace impactfe
       const double w = p.W.linfty_norm();
       const double scale =
         std::max(max_norm(P), w > 0. ? (free + gaps) / w : 0.);
-      // a NaN or an infinity is no answer (max_norm() would pass over a NaN)
-      const auto finite = [](const std::vector<double> &v) {
-        return std::all_of(v.begin(), v.end(), [](const double x) {
-          return std::isfinite(x);
-        });
-      };
-      if (!finite(P) || !finite(F))
+      if (!all_finite(F))
         return std::numeric_limits<double>::infinity();
       const double residual = max_norm(F);
       return scale > 0. ? residual / scale : residual;
@@ -657,14 +661,14 @@ namespace impactfe
               // was then taken as a full step (a rigid box on four
               // corners, with one BLAS and not another). The iterate is
               // kept instead.
-              const auto finite = [](const std::vector<double> &v) {
-                return std::all_of(v.begin(), v.end(), [](const double z) {
-                  return std::isfinite(z);
-                });
-              };
               const double alpha =
                 std::min(1., 0.99 * step_to_boundary(dx, dy));
-              if (!finite(dx) || !finite(dy) || !(alpha > 1e-10))
+              if (!all_finite(dx) || !all_finite(dy))
+                {
+                  stop = "non-finite direction";
+                  break;
+                }
+              if (!(alpha > 1e-10))
                 {
                   stop = "stalled";
                   break;
@@ -737,6 +741,8 @@ namespace impactfe
               if (info != 0)
                 break;
               dpotrs_("U", &nn, &inc, JtJ.data(), &nn, step.data(), &nn, &info);
+              if (info != 0 || !all_finite(step))
+                break;
               ++last_report.newton_iterations;
               double t = 1.;
               for (; t >= 1e-4; t *= 0.5)
@@ -1127,12 +1133,12 @@ namespace impactfe
               const double alpha = std::min(1., 0.99 * ratio(dz, dw));
               // a direction with a NaN (nearly singular H) would pass
               // ratio()'s comparisons as a full step: keep the iterate
-              const auto finite = [](const std::vector<double> &v) {
-                return std::all_of(v.begin(), v.end(), [](const double x) {
-                  return std::isfinite(x);
-                });
-              };
-              if (!(alpha > 1e-10) || !finite(dz) || !finite(dw))
+              if (!all_finite(dz) || !all_finite(dw))
+                {
+                  stop = "non-finite direction";
+                  break;
+                }
+              if (!(alpha > 1e-10))
                 {
                   stop = "stalled";
                   break;

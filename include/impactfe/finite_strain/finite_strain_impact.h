@@ -359,9 +359,15 @@ namespace impactfe
     /** x = A^{-1} b, on every rank. */
     void
     solve_newton_matrix(const Vector<double> &b, Vector<double> &x);
-    /** Sum a vector over the ranks (nothing on one). */
+    /**
+     * Sum a vector over the ranks (nothing on one), the same bits on
+     * every rank (reduced on rank 0, broadcast).
+     */
     void
     sum_over_ranks(Vector<double> &v) const;
+    /// The same for a number (the energies, which the checks compare).
+    double
+    sum_over_ranks(const double x) const;
     using Branch = FiniteStrainJ2Model<3>::Branch;
     /// The cell's internal force; updated internal variables to @p history
     /// (one vector per Gauss point) if not null. A Gauss point whose entry

@@ -39,7 +39,9 @@ namespace impactfe
       /// residual <= tolerance.
       bool converged = false;
       /// Why the interior point iteration stopped ("converged", "stalled",
-      /// "iteration limit", "singular Newton matrix").
+      /// "iteration limit", "singular Newton matrix", "non-finite
+      /// direction": a nearly singular Newton matrix gave a NaN; the last
+      /// iterate is kept).
       std::string stop;
     };
 
@@ -136,7 +138,8 @@ namespace impactfe
      * exact_cone_error() it does not compare impulses with velocities, whose
      * sizes can differ by orders of magnitude (a free velocity of 1 m/s
      * against impulses of a time step), so a tolerance on it is a tolerance
-     * on the impulses. @p u is work space.
+     * on the impulses. Infinite if P or the map has a NaN or an infinity.
+     * @p u is work space.
      */
     double
     exact_cone_residual(const ContactProblem      &problem,

@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <exception>
+#include <iostream>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -39,12 +40,19 @@ namespace impactfe
 
   /**
    * Run @p action on rank 0 only (writing the files); an exception there
-   * is thrown on every rank with its message.
+   * is thrown on every rank with its message. @p action must not
+   * communicate. Without MPI, or on one process, @p action just runs.
    */
   template <typename Action>
   void
   on_rank_zero(const MPI_Comm comm, const Action &action)
   {
+    if (!dealii::Utilities::MPI::job_supports_mpi() ||
+        dealii::Utilities::MPI::n_mpi_processes(comm) == 1)
+      {
+        action();
+        return;
+      }
     std::string error;
     if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
       try
@@ -57,6 +65,10 @@ namespace impactfe
           if (error.empty())
             error = "an error without a message";
         }
+      catch (...)
+        {
+          error = "an exception of unknown type";
+        }
     error = dealii::Utilities::MPI::broadcast(comm, error, 0);
     AssertThrow(error.empty(), dealii::ExcMessage(error));
   }
@@ -66,7 +78,8 @@ namespace impactfe
   /**
    * Run @p action on every rank; if it throws on some, the message of the
    * lowest of them is thrown on all (an inverted element is found only by
-   * the rank that owns it). On one process @p action just runs.
+   * the rank that owns it). @p action must not communicate. On one
+   * process @p action just runs.
    */
   template <typename Action>
   void
@@ -89,6 +102,10 @@ namespace impactfe
         if (error.empty())
           error = "an error without a message";
       }
+    catch (...)
+      {
+        error = "an exception of unknown type";
+      }
     const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
     const unsigned int first   = dealii::Utilities::MPI::min(
       error.empty() ? n_ranks : dealii::Utilities::MPI::this_mpi_process(comm),
@@ -108,16 +125,20 @@ namespace impactfe
    * barrier before they exit with 1, since mpirun stops every process at
    * the first non-zero exit and would cut rank 0's message short. An error
    * met by some ranks only leaves the others elsewhere: after 10 s at the
-   * barrier the job is aborted (MPI_Abort) rather than left to hang.
+   * barrier a rank other than 0 prints its own message and the job is
+   * aborted (MPI_Abort). That is a best effort, not a guarantee: such a
+   * rank may block before, while its objects are destroyed (a MUMPS
+   * solver shuts down collectively).
    */
   inline int
   report_current_exception_on_rank_zero(const MPI_Comm comm)
   {
-    const bool  root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
-    const int   code = root ? report_current_exception() : 1;
-    MPI_Request request;
-    if (MPI_Ibarrier(comm, &request) != MPI_SUCCESS)
-      return code;
+    if (!dealii::Utilities::MPI::job_supports_mpi())
+      return report_current_exception();
+    const unsigned int rank = dealii::Utilities::MPI::this_mpi_process(comm);
+    const int          code = rank == 0 ? report_current_exception() : 1;
+    MPI_Request        request;
+    MPI_Ibarrier(comm, &request);
     int        done  = 0;
     const auto start = std::chrono::steady_clock::now();
     while (!done)
@@ -126,7 +147,14 @@ namespace impactfe
         if (done)
           break;
         if (std::chrono::steady_clock::now() - start > std::chrono::seconds(10))
-          MPI_Abort(comm, code);
+          {
+            if (rank != 0)
+              {
+                std::cerr << "On MPI rank " << rank << ":" << std::endl;
+                report_current_exception();
+              }
+            MPI_Abort(comm, code);
+          }
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
       }
     return code;
