@@ -39,6 +39,32 @@ namespace impactfe
 
 
   /**
+   * Run @p action; the message of what it threw (exception_message()), or
+   * an empty string.
+   */
+  template <typename Action>
+  std::string
+  failure_of(const Action &action)
+  {
+    try
+      {
+        action();
+      }
+    catch (const std::exception &e)
+      {
+        const std::string message = exception_message(e);
+        return message.empty() ? "an error without a message" : message;
+      }
+    catch (...)
+      {
+        return "an exception of unknown type";
+      }
+    return "";
+  }
+
+
+
+  /**
    * Run @p action on rank 0 only (writing the files); an exception there
    * is thrown on every rank with its message. @p action must not
    * communicate. Without MPI, or on one process, @p action just runs.
@@ -55,20 +81,7 @@ namespace impactfe
       }
     std::string error;
     if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
-      try
-        {
-          action();
-        }
-      catch (const std::exception &e)
-        {
-          error = exception_message(e);
-          if (error.empty())
-            error = "an error without a message";
-        }
-      catch (...)
-        {
-          error = "an exception of unknown type";
-        }
+      error = failure_of(action);
     error = dealii::Utilities::MPI::broadcast(comm, error, 0);
     AssertThrow(error.empty(), dealii::ExcMessage(error));
   }
@@ -91,21 +104,7 @@ namespace impactfe
         action();
         return;
       }
-    std::string error;
-    try
-      {
-        action();
-      }
-    catch (const std::exception &e)
-      {
-        error = exception_message(e);
-        if (error.empty())
-          error = "an error without a message";
-      }
-    catch (...)
-      {
-        error = "an exception of unknown type";
-      }
+    std::string        error   = failure_of(action);
     const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
     const unsigned int first   = dealii::Utilities::MPI::min(
       error.empty() ? n_ranks : dealii::Utilities::MPI::this_mpi_process(comm),
