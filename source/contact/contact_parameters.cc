@@ -26,13 +26,18 @@ namespace impactfe
       "verification, and when it does not converge the step falls back to "
       "Lemke's method and says so (doc/lcp.md, 'Large contact sets'). "
       "'automatic': the active set method when at least 'Active set "
-      "threshold' candidates can touch in a step, Lemke's method below.");
+      "threshold' candidates can touch in a step, Lemke's method below; "
+      "in 3D with friction the active set method at every size where its "
+      "products are dense (see 'Dense Schur complement'), since Lemke's "
+      "facet LCPs are the dearer ones there (doc/lcp.md, 'Which method "
+      "automatic takes').");
     prm.declare_entry("Active set threshold",
                       "300",
                       Patterns::Integer(1),
                       "With 'Method = automatic': the number of contact "
                       "candidates in a step's problem from which the active "
-                      "set method is used [-].");
+                      "set method is used (in 3D with friction and dense "
+                      "products: from one) [-].");
     prm.declare_entry(
       "Dense Schur complement",
       "true",

@@ -255,6 +255,7 @@ namespace impactfe
       solve_cost += 4. * solver->n_factor_entries();
 
     contact_set.build_operator(body_list);
+    dense_contact_products       = dense_products_pay_off();
     const unsigned int n_columns = contact_set.n_columns();
     delassus.reinit(0, 0); // allocated when a first column is computed
     delassus_ready.assign(contact_set.n_candidates(), false);
@@ -520,14 +521,47 @@ namespace impactfe
   // instead of the n_c solves and the O(n_c^3) pivots of Lemke's method on
   // the dense W. The last product is with the answer, so M~^{-1} H P is
   // the velocity correction and the check of the excluded candidates.
+  //
+  // In 3D with friction, automatic takes the active set method for every
+  // size when its products are dense: Lemke's method there solves facet
+  // LCPs of (k + 2) n_c rows (the exact cone: one or more per problem),
+  // which on the default block_sliding_3d scene (25 contacts) cost 4.4 ms
+  // per step against 0.05 ms, and 0.15 against 0.04 ms on
+  // oblique_plate_3d's 36 (doc/lcp.md, "Which method automatic takes").
+  // In 2D and without friction Lemke's small LCPs are the cheaper ones.
   template <int dim>
   bool
   MultibodySystem<dim>::use_active_set(const unsigned int n) const
   {
     using Method = ContactSolverParameters::Method;
-    return (solver_parameters.method == Method::active_set ||
-            (solver_parameters.method == Method::automatic &&
-             n >= solver_parameters.active_set_threshold));
+    if (solver_parameters.method != Method::automatic)
+      return solver_parameters.method == Method::active_set;
+    return n >= solver_parameters.active_set_threshold ||
+           (contact_set.n_directions() == 3 && dense_contact_products);
+  }
+
+
+
+  // The dense Schur complements (DenseSchurComplement) serve the active set
+  // method's products if every candidate is against a rigid obstacle (so
+  // that C holds every DoF of H), they are not turned off, and for every
+  // body with contact DoFs they are the cheaper products (typically 3D).
+  template <int dim>
+  bool
+  MultibodySystem<dim>::dense_products_pay_off() const
+  {
+    if (!solver_parameters.dense_schur_complement)
+      return false;
+    for (unsigned int c = 0; c < contact_set.n_candidates(); ++c)
+      if (!contact_set.candidate(c).against_rigid_obstacle())
+        return false;
+    const auto dofs = contact_set.obstacle_contact_dofs(body_list.size());
+    for (unsigned int b = 0; b < body_list.size(); ++b)
+      if (!dofs[b].empty() &&
+          !DenseSchurComplement::pays_off(dofs[b].size(),
+                                          step_solvers[b]->n_factor_entries()))
+        return false;
+    return true;
   }
 
 
@@ -783,19 +817,7 @@ namespace impactfe
     normal_schur_pending = false;
     dense_schur.clear();
     schur_preconditioner_ready = true;
-    // The dense Schur complements, if every candidate is against a rigid
-    // obstacle (so that C holds every DoF of H) and they are the cheaper
-    // products (typically in 3D).
-    bool dense = true;
-    for (unsigned int c = 0; c < contact_set.n_candidates(); ++c)
-      dense = dense && contact_set.candidate(c).against_rigid_obstacle();
-    for (unsigned int b = 0; b < n_bodies; ++b)
-      dense =
-        dense &&
-        (schur_contact_dofs[b].empty() ||
-         DenseSchurComplement::pays_off(schur_contact_dofs[b].size(),
-                                        step_solvers[b]->n_factor_entries()));
-    if (dense && solver_parameters.dense_schur_complement)
+    if (dense_contact_products)
       {
         active_set_stats.dense_schur_complement = true;
         dense_schur.resize(n_bodies);

@@ -462,6 +462,11 @@ namespace impactfe
     /// method.
     bool
     use_active_set(const unsigned int n) const;
+    /// Whether the active set method's products W x are to be dense ones
+    /// (dense_schur): dense_products_pay_off() at set-up.
+    bool dense_contact_products = false;
+    bool
+    dense_products_pay_off() const;
     /**
      * Solve the problem on lcp_candidates by the active set method; fills
      * local_impulses, impulse_velocity and the contact states. False (and
