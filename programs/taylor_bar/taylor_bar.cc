@@ -77,9 +77,7 @@ namespace TaylorBarProgram
     MaterialParameters                  material;
     PlasticityParameters                plasticity;
     OutputParameters                    output;
-    bool                                rebound_check       = false;
-    double                              max_rebound_error   = 0.05;
-    double                              published_tolerance = 0.;
+    FiniteStrainImpact::Verification    verification;
     std::unique_ptr<FiniteStrainImpact> bar;
     std::unique_ptr<HistoryWriter>      history;
 
@@ -107,24 +105,7 @@ namespace TaylorBarProgram
     prm.leave_subsection();
     PlasticityParameters::declare_parameters(prm);
     OutputParameters::declare_parameters(prm, "results/taylor_bar");
-    prm.enter_subsection("Verification");
-    prm.declare_entry("Elastic rebound check",
-                      "false",
-                      Patterns::Bool(),
-                      "Compare with the 1D elastic bar hitting a rigid wall "
-                      "(needs nu = 0 and an elastic impact): contact for "
-                      "2 L0/c, force rho c v0 A, wall impulse 2 m v0.");
-    prm.declare_entry("Maximum rebound error",
-                      "0.05",
-                      Patterns::Double(0),
-                      "Largest relative error of the rebound check.");
-    prm.declare_entry("Published range tolerance",
-                      "0",
-                      Patterns::Double(0),
-                      "If > 0: the final length and footprint radius must "
-                      "lie within the published ranges widened by this "
-                      "relative amount.");
-    prm.leave_subsection();
+    FiniteStrainImpact::Verification::declare_parameters(prm);
   }
 
 
@@ -136,12 +117,8 @@ namespace TaylorBarProgram
     material.parse_parameters(prm, 3);
     plasticity.parse_parameters(prm);
     output.parse_parameters(prm);
-    prm.enter_subsection("Verification");
-    rebound_check       = prm.get_bool("Elastic rebound check");
-    max_rebound_error   = prm.get_double("Maximum rebound error");
-    published_tolerance = prm.get_double("Published range tolerance");
-    prm.leave_subsection();
-    AssertThrow(!rebound_check || material.poissons_ratio == 0.,
+    verification.parse_parameters(prm);
+    AssertThrow(!verification.rebound_check || material.poissons_ratio == 0.,
                 ExcMessage("Verification/Elastic rebound check needs "
                            "Material/Poisson's ratio = 0 (a 1D bar)."));
     n_steps = settings.n_steps();
@@ -232,11 +209,11 @@ namespace TaylorBarProgram
                  alpha             = bar->max_equivalent_plastic_strain();
     const FiniteStrainRunTotals &t = bar->totals();
     const double momentum_change   = bar->axial_momentum() - initial_momentum;
-    // each figure once: the energies are sums over the ranks
+    // each figure once for the screen (the energies are sums over the
+    // ranks); add_to_summary() queries its own
     const double kinetic = bar->kinetic_energy(), stored = bar->stored_energy(),
-                 plastic        = bar->plastic_work(),
-                 contact_radius = bar->contact_radius(),
-                 deepest        = bar->deepest_node_below_wall();
+                 plastic = bar->plastic_work(),
+                 deepest = bar->deepest_node_below_wall();
     pcout << std::setprecision(4) << "At t = " << bar->time() << " s:\n"
           << "  final length " << length
           << " mm (L0 = " << 1e3 * settings.length << " mm)\n"
@@ -273,36 +250,10 @@ namespace TaylorBarProgram
     JsonObject summary;
     summary.add("program", std::string("taylor_bar"))
       .add("ranks", Utilities::MPI::n_mpi_processes(communicator))
-      .add("n_dofs", bar->n_dofs())
       .add("steps", n_steps)
-      .add("final_length_mm", length)
-      .add("footprint_radius_mm", radius)
-      .add("contact_radius_mm", 1e3 * contact_radius)
-      .add("max_equivalent_plastic_strain", alpha)
       .add("energy_balance_relative_error", worst_balance)
-      .add("newton_iterations_per_step", t.newton_iterations_per_step())
-      .add("newton_convergence_order", t.median_convergence_order())
-      .add("newton_quadratic_fraction", t.quadratic_fraction())
-      .add("newton_step_reductions", t.step_reductions)
-      .add("late_contact_candidates", t.late_candidates)
-      .add("newton_contact_restarts", t.contact_restarts)
-      .add("deepest_node_below_wall_mm", 1e3 * deepest)
-      .add("max_contact_violation", t.worst_contact_violation)
-      .add("wall_impulse", t.wall_impulse)
-      .add("momentum_change", momentum_change)
-      .add("impulse_balance_error",
-           std::abs(t.wall_impulse - momentum_change) /
-             std::abs(initial_momentum))
-      .add("initial_momentum", initial_momentum)
-      .add("last_contact_time", t.last_contact_time)
-      .add("peak_contact_force", t.peak_contact_force)
-      .add("kinetic_energy", kinetic)
-      .add("initial_kinetic_energy", bar->initial_energy())
-      .add("plastic_work", plastic)
-      .add("stored_energy", stored)
-      .add("contact_dissipation", t.contact_dissipation)
-      .add("scheme_dissipation", t.scheme_dissipation)
       .add("cpu_seconds", cpu_seconds);
+    bar->add_to_summary(summary, initial_momentum);
     on_rank_zero(communicator,
                  [&]() { summary.write(output.directory + "/summary.json"); });
   }
@@ -336,7 +287,7 @@ namespace TaylorBarProgram
     check("-(contact dissipation) / E_kin(0)",
           std::max(0., -t.contact_dissipation) / bar->initial_energy(),
           1e-9);
-    if (rebound_check)
+    if (verification.rebound_check)
       {
         const double c = std::sqrt(material.youngs_modulus / material.density);
         const double mass = material.density * numbers::PI * settings.radius *
@@ -344,11 +295,11 @@ namespace TaylorBarProgram
         check("rebound: |contact time - 2 L0/c| / (2 L0/c)",
               std::abs(t.last_contact_time - 2. * settings.length / c) /
                 (2. * settings.length / c),
-              max_rebound_error);
+              verification.max_rebound_error);
         check("rebound: |wall impulse - 2 m v0| / (2 m v0)",
               std::abs(t.wall_impulse - 2. * mass * settings.speed) /
                 (2. * mass * settings.speed),
-              max_rebound_error);
+              verification.max_rebound_error);
         check("rebound: plastic work / E_kin(0)",
               bar->plastic_work() / bar->initial_energy(),
               1e-12);
@@ -356,7 +307,7 @@ namespace TaylorBarProgram
     const double length = bar->current_length(),
                  radius = bar->footprint_radius(),
                  alpha  = bar->max_equivalent_plastic_strain();
-    if (published_tolerance > 0.)
+    if (verification.published_tolerance > 0.)
       {
         // The ranges of published finite-element results (issue 13).
         const auto outside =
@@ -366,10 +317,10 @@ namespace TaylorBarProgram
         pcout << "  Published: length 21.42-21.7 mm, footprint 7.0-7.1 mm\n";
         check("final length: relative distance to the published range",
               outside(1e3 * length, 21.42, 21.7),
-              published_tolerance);
+              verification.published_tolerance);
         check("footprint radius: relative distance to the published range",
               outside(1e3 * radius, 7.0, 7.1),
-              published_tolerance);
+              verification.published_tolerance);
       }
     pcout << "RESULT program=taylor_bar final_length_mm=" << 1e3 * length
           << " footprint_radius_mm=" << 1e3 * radius

@@ -1286,6 +1286,80 @@ namespace impactfe
 
 
 
+  void
+  FiniteStrainImpact::Verification::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Verification");
+    prm.declare_entry("Elastic rebound check",
+                      "false",
+                      Patterns::Bool(),
+                      "Compare with the 1D elastic bar hitting a rigid wall "
+                      "(needs nu = 0 and an elastic impact): contact for "
+                      "2 L0/c, force rho c v0 A, wall impulse 2 m v0.");
+    prm.declare_entry("Maximum rebound error",
+                      "0.05",
+                      Patterns::Double(0),
+                      "Largest relative error of the rebound check.");
+    prm.declare_entry("Published range tolerance",
+                      "0",
+                      Patterns::Double(0),
+                      "If > 0: the final length and footprint radius must "
+                      "lie within the published ranges widened by this "
+                      "relative amount.");
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  FiniteStrainImpact::Verification::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Verification");
+    rebound_check       = prm.get_bool("Elastic rebound check");
+    max_rebound_error   = prm.get_double("Maximum rebound error");
+    published_tolerance = prm.get_double("Published range tolerance");
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  FiniteStrainImpact::add_to_summary(JsonObject  &summary,
+                                     const double initial_momentum) const
+  {
+    const FiniteStrainRunTotals &t = totals();
+    const double momentum_change   = axial_momentum() - initial_momentum;
+    summary.add("n_dofs", n_dofs())
+      .add("final_length_mm", 1e3 * current_length())
+      .add("footprint_radius_mm", 1e3 * footprint_radius())
+      .add("contact_radius_mm", 1e3 * contact_radius())
+      .add("max_equivalent_plastic_strain", max_equivalent_plastic_strain())
+      .add("newton_iterations_per_step", t.newton_iterations_per_step())
+      .add("newton_convergence_order", t.median_convergence_order())
+      .add("newton_quadratic_fraction", t.quadratic_fraction())
+      .add("newton_step_reductions", t.step_reductions)
+      .add("late_contact_candidates", t.late_candidates)
+      .add("newton_contact_restarts", t.contact_restarts)
+      .add("deepest_node_below_wall_mm", 1e3 * deepest_node_below_wall())
+      .add("max_contact_violation", t.worst_contact_violation)
+      .add("wall_impulse", t.wall_impulse)
+      .add("momentum_change", momentum_change)
+      .add("impulse_balance_error",
+           std::abs(t.wall_impulse - momentum_change) /
+             std::abs(initial_momentum))
+      .add("initial_momentum", initial_momentum)
+      .add("last_contact_time", t.last_contact_time)
+      .add("peak_contact_force", t.peak_contact_force)
+      .add("kinetic_energy", kinetic_energy())
+      .add("initial_kinetic_energy", initial_energy())
+      .add("plastic_work", plastic_work())
+      .add("stored_energy", stored_energy())
+      .add("contact_dissipation", t.contact_dissipation)
+      .add("scheme_dissipation", t.scheme_dissipation);
+  }
+
+
+
   double
   FiniteStrainImpact::energy_balance_error() const
   {

@@ -24,6 +24,7 @@
 #include <impactfe/bodies/finite_strain_plasticity.h>
 #include <impactfe/bodies/material.h>
 #include <impactfe/lcp/contact_problem.h>
+#include <impactfe/output/output.h>
 
 #include <array>
 #include <functional>
@@ -148,6 +149,26 @@ namespace impactfe
     };
 
     /**
+     * Parameter subsection `Verification`: checks against results known
+     * without the run (taylor_bar's report_checks()).
+     */
+    struct Verification
+    {
+      /// The 1D elastic bar hitting a rigid wall (needs nu = 0 and an
+      /// elastic impact), and the largest relative error it allows.
+      bool   rebound_check     = false;
+      double max_rebound_error = 0.05;
+      /// If > 0: the final length and the footprint radius within the
+      /// published ranges widened by this relative amount.
+      double published_tolerance = 0.;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /**
      * The model @p settings names, set up at t = 0. On a @p communicator of
      * more than one process the mesh is distributed (p4est): each rank
      * assembles its cells and keeps their internal variables, the Newton
@@ -219,6 +240,14 @@ namespace impactfe
     /** Momentum of the bar along z [N s]. */
     virtual double
     axial_momentum() const = 0;
+
+    /**
+     * Add the run's figures to @p summary (summary.json): the size, the
+     * shape, the energies, Newton's statistics and the contact totals,
+     * with the impulse balance against @p initial_momentum. Collective.
+     */
+    void
+    add_to_summary(JsonObject &summary, const double initial_momentum) const;
 
     /**
      * The deformed cells of the r-z section (in 3D: the faces on the
