@@ -12,21 +12,16 @@
 
 namespace impactfe
 {
-  // CHOLMOD's state: its common block, the factor, the right-hand side and
-  // the solution/work arrays that cholmod_solve2 reuses from one call to
-  // the next.
+  // CHOLMOD's state: its common block, the factor, and the solution/work
+  // arrays that cholmod_solve2 reuses from one call to the next (the
+  // solves of several right-hand sides at once).
   struct SparseCholesky::Data
   {
     cholmod_common  common;
-    cholmod_factor *factor   = nullptr;
-    cholmod_dense  *rhs      = nullptr;
-    cholmod_dense  *solution = nullptr;
-    cholmod_dense  *work_y   = nullptr;
-    cholmod_dense  *work_e   = nullptr;
-    // The same for several right-hand sides at once.
-    cholmod_dense *block_solution = nullptr;
-    cholmod_dense *block_work_y   = nullptr;
-    cholmod_dense *block_work_e   = nullptr;
+    cholmod_factor *factor         = nullptr;
+    cholmod_dense  *block_solution = nullptr;
+    cholmod_dense  *block_work_y   = nullptr;
+    cholmod_dense  *block_work_e   = nullptr;
     // A simplicial factor L D L^T = P A P^T, copied out of CHOLMOD: the
     // strictly lower part of L by columns (for the backward substitution)
     // and by rows (forward), each sorted, 1 / D, the permutation, and the
@@ -42,8 +37,9 @@ namespace impactfe
     // work vector of its solve (solve_single_precision(), made at its
     // first call).
     mutable std::vector<float> single_values, single_work, single_block;
-    // The work space of solve_lower() (rows below a supernode).
-    mutable std::vector<double> rows_below;
+    // The work space of solve_lower() and of solve() with a supernodal
+    // factor (rows below a supernode), and solve()'s permuted vector.
+    mutable std::vector<double> rows_below, super_work;
 
     Data()
     {
@@ -54,15 +50,12 @@ namespace impactfe
     free_all()
     {
       cholmod_free_factor(&factor, &common);
-      cholmod_free_dense(&rhs, &common);
-      cholmod_free_dense(&solution, &common);
-      cholmod_free_dense(&work_y, &common);
-      cholmod_free_dense(&work_e, &common);
       cholmod_free_dense(&block_solution, &common);
       cholmod_free_dense(&block_work_y, &common);
       cholmod_free_dense(&block_work_e, &common);
       single_values.clear(); // rounded from the factor just freed
       rows_below.clear();
+      super_work.clear();
     }
 
     ~Data()
@@ -71,6 +64,23 @@ namespace impactfe
       cholmod_finish(&common);
     }
   };
+
+
+
+  namespace
+  {
+    // The most rows of any supernode of @p L (a bound on the rows below
+    // any of its leading columns).
+    std::size_t
+    most_rows(const cholmod_factor &L)
+    {
+      const int  *pi   = static_cast<const int *>(L.pi);
+      std::size_t most = 1;
+      for (std::size_t s = 0; s < L.nsuper; ++s)
+        most = std::max<std::size_t>(most, pi[s + 1] - pi[s]);
+      return most;
+    }
+  } // namespace
 
 
 
@@ -168,10 +178,15 @@ namespace impactfe
                                  "step).") :
                      ": CHOLMOD status " + std::to_string(data->common.status) +
                        ".")));
-    data->rhs = cholmod_zeros(upper.nrow, 1, CHOLMOD_REAL, &data->common);
     data->column_start.clear();
     if (!data->factor->is_super)
       copy_simplicial_factor();
+    else
+      {
+        // solve()'s work space, so that the time loop does not allocate
+        data->super_work.assign(data->factor->n, 0.);
+        data->rows_below.resize(most_rows(*data->factor));
+      }
   }
 
 
@@ -407,121 +422,6 @@ namespace impactfe
 
 
 
-  void
-  SparseCholesky::solve(Vector<double> &x) const
-  {
-    Assert(data->factor != nullptr, ExcMessage("factorize() first."));
-    const std::size_t n = data->factor->n;
-    AssertDimension(x.size(), n);
-    if (!data->column_start.empty())
-      {
-        // L D L^T z = P x, then x = P^T z. Both substitutions accumulate
-        // in a register, and the term of the neighbour just computed
-        // (column i-1 of row i, row j+1 of column j: the whole of a 1D
-        // chain) is taken from a register too, not through memory: these
-        // recurrences are latency-bound.
-        const Data &d    = *data;
-        const int  *perm = d.permutation.data();
-        double     *z    = d.work.data();
-        for (std::size_t k = 0; k < n; ++k)
-          z[k] = x[perm[k]];
-        {
-          const int    *start    = d.row_start.data();
-          const int    *col      = d.row_column.data();
-          const double *L        = d.row_value.data();
-          double        previous = 0.;
-          for (std::size_t i = 0; i < n; ++i)
-            {
-              double sum = z[i];
-              int    end = start[i + 1];
-              if (end > start[i] && col[end - 1] + 1 == static_cast<int>(i))
-                {
-                  --end;
-                  sum -= L[end] * previous;
-                }
-              for (int p = start[i]; p < end; ++p)
-                sum -= L[p] * z[col[p]];
-              z[i]     = sum;
-              previous = sum;
-            }
-        }
-        {
-          const int    *start    = d.column_start.data();
-          const int    *row      = d.column_row.data();
-          const double *L        = d.column_value.data();
-          const double *inverse  = d.inverse_diagonal.data();
-          double        previous = 0.;
-          for (std::size_t j = n; j-- > 0;)
-            {
-              double sum   = z[j] * inverse[j];
-              int    begin = start[j];
-              if (begin < start[j + 1] && row[begin] == static_cast<int>(j + 1))
-                {
-                  sum -= L[begin] * previous;
-                  ++begin;
-                }
-              for (int p = begin; p < start[j + 1]; ++p)
-                sum -= L[p] * z[row[p]];
-              z[j]     = sum;
-              previous = sum;
-            }
-        }
-        for (std::size_t k = 0; k < n; ++k)
-          x[perm[k]] = z[k];
-        return;
-      }
-    double *b = static_cast<double *>(data->rhs->x);
-    std::copy(x.begin(), x.end(), b);
-    const int ok = cholmod_solve2(CHOLMOD_A,
-                                  data->factor,
-                                  data->rhs,
-                                  nullptr,
-                                  &data->solution,
-                                  nullptr,
-                                  &data->work_y,
-                                  &data->work_e,
-                                  &data->common);
-    AssertThrow(ok, ExcMessage("CHOLMOD solve failed."));
-    restore_simplicial_workspace(data->work_y, n);
-    const double *s = static_cast<const double *>(data->solution->x);
-    std::copy(s, s + n, x.begin());
-  }
-
-
-
-  void
-  SparseCholesky::solve(double *columns, const unsigned int n_columns) const
-  {
-    Assert(data->factor != nullptr, ExcMessage("factorize() first."));
-    if (n_columns == 0)
-      return;
-    const std::size_t n = data->factor->n;
-    cholmod_dense     block;
-    block.nrow   = n;
-    block.ncol   = n_columns;
-    block.nzmax  = n * n_columns;
-    block.d      = n;
-    block.x      = columns;
-    block.z      = nullptr;
-    block.xtype  = CHOLMOD_REAL;
-    block.dtype  = CHOLMOD_DOUBLE;
-    const int ok = cholmod_solve2(CHOLMOD_A,
-                                  data->factor,
-                                  &block,
-                                  nullptr,
-                                  &data->block_solution,
-                                  nullptr,
-                                  &data->block_work_y,
-                                  &data->block_work_e,
-                                  &data->common);
-    AssertThrow(ok, ExcMessage("CHOLMOD solve failed."));
-    restore_simplicial_workspace(data->block_work_y, n);
-    const double *s = static_cast<const double *>(data->block_solution->x);
-    std::copy(s, s + n * n_columns, columns);
-  }
-
-
-
   namespace
   {
     // The BLAS of the supernodal substitutions, in either precision.
@@ -585,6 +485,59 @@ namespace impactfe
     // (a supernode may be cut: its own later rows then count as rows
     // below); backward, only the columns k >= @p first_column are
     // computed. @p t: work space for the rows below a supernode.
+    //
+    // Supernodes of at most narrow_supernode columns are done by plain
+    // loops, column by column, the others by BLAS (a triangular solve and
+    // a matrix-vector product): the two calls cost more than the
+    // arithmetic of a narrow supernode. Thin 2D meshes have nothing else
+    // (13 columns on average on a slab of 30000 x 4 cells: a solve pair
+    // 17 -> 6.5 ms); 3D meshes have wide ones too, which BLAS does faster.
+    constexpr int narrow_supernode = 32;
+
+    template <typename Number>
+    void
+    narrow_forward(const Number *block,
+                   const int     n_columns,
+                   const int     n_rows,
+                   const int    *rows,
+                   Number       *z_own,
+                   Number       *z)
+    {
+      for (int j = 0; j < n_columns; ++j)
+        {
+          const Number *column = block + std::size_t(j) * n_rows;
+          const Number  x_j    = z_own[j] / column[j];
+          z_own[j]             = x_j;
+          for (int i = j + 1; i < n_columns; ++i)
+            z_own[i] -= column[i] * x_j;
+          for (int i = n_columns; i < n_rows; ++i)
+            z[rows[i]] -= column[i] * x_j;
+        }
+    }
+
+    // The transpose; @p ld the block's leading dimension, @p rows the
+    // rows from the first computed column on.
+    template <typename Number>
+    void
+    narrow_backward(const Number *block,
+                    const int     n_columns,
+                    const int     n_rows,
+                    const int     ld,
+                    const int    *rows,
+                    Number       *z_own,
+                    const Number *z)
+    {
+      for (int j = n_columns; j-- > 0;)
+        {
+          const Number *column = block + std::size_t(j) * ld;
+          Number        sum    = z_own[j];
+          for (int i = n_columns; i < n_rows; ++i)
+            sum -= column[i] * z[rows[i]];
+          for (int i = j + 1; i < n_columns; ++i)
+            sum -= column[i] * z_own[i];
+          z_own[j] = sum / column[j];
+        }
+    }
     template <typename Number>
     void
     supernodal_substitution(const cholmod_factor &L,
@@ -616,6 +569,12 @@ namespace impactfe
             const int     n_rows  = pi[s + 1] - pi[s];
             const int     n_below = n_rows - n_columns;
             const Number *block   = Lx + px[s];
+            if (n_columns <= narrow_supernode)
+              {
+                narrow_forward(
+                  block, n_columns, n_rows, rows + pi[s], z + k1, z);
+                continue;
+              }
             triangular_solve("N", &n_columns, block, &n_rows, z + k1);
             if (n_below > 0)
               {
@@ -647,6 +606,17 @@ namespace impactfe
             const int     ld      = pi[s + 1] - pi[s];
             const int     n_below = ld - skip - n_columns;
             const Number *block   = Lx + px[s] + std::size_t(skip) * ld + skip;
+            if (n_columns <= narrow_supernode)
+              {
+                narrow_backward(block,
+                                n_columns,
+                                n_columns + n_below,
+                                ld,
+                                rows + pi[s] + skip,
+                                z + k1,
+                                z);
+                continue;
+              }
             if (n_below > 0)
               {
                 const int *below = rows + pi[s] + skip + n_columns;
@@ -666,18 +636,123 @@ namespace impactfe
           }
     }
 
-    // The most rows of any supernode of @p L (a bound on the rows below
-    // any of its leading columns).
-    std::size_t
-    most_rows(const cholmod_factor &L)
-    {
-      const int  *pi   = static_cast<const int *>(L.pi);
-      std::size_t most = 1;
-      for (std::size_t s = 0; s < L.nsuper; ++s)
-        most = std::max<std::size_t>(most, pi[s + 1] - pi[s]);
-      return most;
-    }
   } // namespace
+
+
+
+  void
+  SparseCholesky::solve(Vector<double> &x) const
+  {
+    Assert(data->factor != nullptr, ExcMessage("factorize() first."));
+    const std::size_t n = data->factor->n;
+    AssertDimension(x.size(), n);
+    if (!data->column_start.empty())
+      {
+        // L D L^T z = P x, then x = P^T z. Both substitutions accumulate
+        // in a register, and the term of the neighbour just computed
+        // (column i-1 of row i, row j+1 of column j: the whole of a 1D
+        // chain) is taken from a register too, not through memory: these
+        // recurrences are latency-bound.
+        const Data &d    = *data;
+        const int  *perm = d.permutation.data();
+        double     *z    = d.work.data();
+        for (std::size_t k = 0; k < n; ++k)
+          z[k] = x[perm[k]];
+        {
+          const int    *start    = d.row_start.data();
+          const int    *col      = d.row_column.data();
+          const double *L        = d.row_value.data();
+          double        previous = 0.;
+          for (std::size_t i = 0; i < n; ++i)
+            {
+              double sum = z[i];
+              int    end = start[i + 1];
+              if (end > start[i] && col[end - 1] + 1 == static_cast<int>(i))
+                {
+                  --end;
+                  sum -= L[end] * previous;
+                }
+              for (int p = start[i]; p < end; ++p)
+                sum -= L[p] * z[col[p]];
+              z[i]     = sum;
+              previous = sum;
+            }
+        }
+        {
+          const int    *start    = d.column_start.data();
+          const int    *row      = d.column_row.data();
+          const double *L        = d.column_value.data();
+          const double *inverse  = d.inverse_diagonal.data();
+          double        previous = 0.;
+          for (std::size_t j = n; j-- > 0;)
+            {
+              double sum   = z[j] * inverse[j];
+              int    begin = start[j];
+              if (begin < start[j + 1] && row[begin] == static_cast<int>(j + 1))
+                {
+                  sum -= L[begin] * previous;
+                  ++begin;
+                }
+              for (int p = begin; p < start[j + 1]; ++p)
+                sum -= L[p] * z[row[p]];
+              z[j]     = sum;
+              previous = sum;
+            }
+        }
+        for (std::size_t k = 0; k < n; ++k)
+          x[perm[k]] = z[k];
+        return;
+      }
+    // A supernodal factor: L L^T z = P x by supernodes (as
+    // solve_single_precision(), in double precision), then x = P^T z;
+    // CHOLMOD's own solve makes two BLAS calls per supernode, which on
+    // the small supernodes of thin 2D meshes cost more than the
+    // arithmetic (doc/performance.md, "Supernodal substitutions").
+    const cholmod_factor &L    = *data->factor;
+    const int            *perm = static_cast<const int *>(L.Perm);
+    double               *z    = data->super_work.data();
+    for (std::size_t k = 0; k < n; ++k)
+      z[k] = x[perm[k]];
+    const double *values = static_cast<const double *>(L.x);
+    const int     all    = n;
+    supernodal_substitution(L, values, z, data->rows_below.data(), true, all);
+    supernodal_substitution(L, values, z, data->rows_below.data(), false, all);
+    for (std::size_t k = 0; k < n; ++k)
+      x[perm[k]] = z[k];
+  }
+
+
+
+  void
+  SparseCholesky::solve(double *columns, const unsigned int n_columns) const
+  {
+    Assert(data->factor != nullptr, ExcMessage("factorize() first."));
+    if (n_columns == 0)
+      return;
+    const std::size_t n = data->factor->n;
+    cholmod_dense     block;
+    block.nrow   = n;
+    block.ncol   = n_columns;
+    block.nzmax  = n * n_columns;
+    block.d      = n;
+    block.x      = columns;
+    block.z      = nullptr;
+    block.xtype  = CHOLMOD_REAL;
+    block.dtype  = CHOLMOD_DOUBLE;
+    const int ok = cholmod_solve2(CHOLMOD_A,
+                                  data->factor,
+                                  &block,
+                                  nullptr,
+                                  &data->block_solution,
+                                  nullptr,
+                                  &data->block_work_y,
+                                  &data->block_work_e,
+                                  &data->common);
+    AssertThrow(ok, ExcMessage("CHOLMOD solve failed."));
+    restore_simplicial_workspace(data->block_work_y, n);
+    const double *s = static_cast<const double *>(data->block_solution->x);
+    std::copy(s, s + n * n_columns, columns);
+  }
 
 
 

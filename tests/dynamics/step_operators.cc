@@ -3,9 +3,10 @@
 //   pass) against deal.II's products, for the coefficients of all four
 //   schemes, on bodies with and without damping;
 // * SparseCholesky::solve() against the residual of M~ x = b and against
-//   CHOLMOD's own solve (the multi-column path), on a 1D bar and 2D blocks,
-//   whose factors are simplicial (our substitutions) or supernodal
-//   (CHOLMOD's).
+//   CHOLMOD's own solve (the multi-column path), on a 1D bar and 2D and 3D
+//   blocks, whose factors are simplicial or supernodal (both solved by our
+//   substitutions; a supernodal factor's narrow supernodes by plain loops,
+//   its wide ones, which the 3D block has, by BLAS).
 #include <deal.II/grid/grid_generator.h>
 
 #include <impactfe/bodies/elastic_body.h>
@@ -172,5 +173,6 @@ main()
   check_cholesky<1>("1D bar, 320 cells", {320}, true);
   check_cholesky<2>("2D block 6 x 3", {6, 3}, true);
   check_cholesky<2>("2D block 60 x 60", {60, 60}, false);
+  check_cholesky<3>("3D block 10 x 10 x 10", {10, 10, 10}, false);
   return impactfe_tests::n_failed_checks;
 }
