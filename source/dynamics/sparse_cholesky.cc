@@ -648,11 +648,13 @@ namespace impactfe
     AssertDimension(x.size(), n);
     if (!data->column_start.empty())
       {
-        // L D L^T z = P x, then x = P^T z. Both substitutions accumulate
-        // in a register, and the term of the neighbour just computed
-        // (column i-1 of row i, row j+1 of column j: the whole of a 1D
-        // chain) is taken from a register too, not through memory: these
-        // recurrences are latency-bound.
+        // L D L^T z = P x, then x = P^T z. These recurrences are
+        // latency-bound: the term of the neighbour just computed (column
+        // i-1 of row i, row j+1 of column j: the whole of a 1D chain) is
+        // taken from a register, not through memory, and subtracted last,
+        // so that only it waits for the row before; the other terms,
+        // which the processor can sum ahead, go into two sums, which
+        // halves their own chain (a 2D strip's rows hold 15 entries).
         const Data &d    = *data;
         const int  *perm = d.permutation.data();
         double     *z    = d.work.data();
@@ -665,15 +667,23 @@ namespace impactfe
           double        previous = 0.;
           for (std::size_t i = 0; i < n; ++i)
             {
-              double sum = z[i];
-              int    end = start[i + 1];
-              if (end > start[i] && col[end - 1] + 1 == static_cast<int>(i))
+              int        end = start[i + 1];
+              const bool neighbour =
+                end > start[i] && col[end - 1] + 1 == static_cast<int>(i);
+              if (neighbour)
+                --end;
+              double sum = z[i], other = 0.;
+              int    p = start[i];
+              for (; p + 2 <= end; p += 2)
                 {
-                  --end;
-                  sum -= L[end] * previous;
+                  sum -= L[p] * z[col[p]];
+                  other -= L[p + 1] * z[col[p + 1]];
                 }
-              for (int p = start[i]; p < end; ++p)
+              if (p < end)
                 sum -= L[p] * z[col[p]];
+              sum += other;
+              if (neighbour)
+                sum -= L[end] * previous;
               z[i]     = sum;
               previous = sum;
             }
@@ -686,15 +696,21 @@ namespace impactfe
           double        previous = 0.;
           for (std::size_t j = n; j-- > 0;)
             {
-              double sum   = z[j] * inverse[j];
-              int    begin = start[j];
-              if (begin < start[j + 1] && row[begin] == static_cast<int>(j + 1))
+              const int  begin = start[j];
+              const bool neighbour =
+                begin < start[j + 1] && row[begin] == static_cast<int>(j + 1);
+              double sum = z[j] * inverse[j], other = 0.;
+              int    p = begin + (neighbour ? 1 : 0);
+              for (; p + 2 <= start[j + 1]; p += 2)
                 {
-                  sum -= L[begin] * previous;
-                  ++begin;
+                  sum -= L[p] * z[row[p]];
+                  other -= L[p + 1] * z[row[p + 1]];
                 }
-              for (int p = begin; p < start[j + 1]; ++p)
+              if (p < start[j + 1])
                 sum -= L[p] * z[row[p]];
+              sum += other;
+              if (neighbour)
+                sum -= L[begin] * previous;
               z[j]     = sum;
               previous = sum;
             }
