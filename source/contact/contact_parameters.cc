@@ -125,10 +125,11 @@ namespace impactfe
       "exact",
       Patterns::Selection("exact|facets"),
       "3D friction only (in 2D the cone is exact): 'exact', the circular "
-      "Coulomb cone |P_T| <= mu P_N, reached by facet LCPs re-aligned with "
-      "the slip directions until the exact-cone error is below 'Exact cone "
-      "tolerance' (doc/lcp.md); 'facets', the polygonal cone of 'Number of "
-      "facets' facets inscribed in it (one LCP per step).");
+      "Coulomb cone |P_T| <= mu P_N (the active set method solves it "
+      "directly; Lemke's method by facet LCPs re-aligned with the slip "
+      "directions until the exact-cone error is below 'Exact cone "
+      "tolerance', doc/lcp.md); 'facets', the polygonal cone of 'Number of "
+      "facets' facets inscribed in it (Lemke: one LCP per step).");
     prm.declare_entry(
       "Number of facets",
       "8",

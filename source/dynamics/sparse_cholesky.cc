@@ -330,7 +330,8 @@ namespace impactfe
   // bars, small 2D meshes). Its solve then costs little more than its
   // ~4 nnz(L) flops, and the packing into cholmod_dense objects and
   // CHOLMOD's dispatch cost as much: the substitutions below do only the
-  // flops. Supernodal factors keep CHOLMOD's BLAS-based solve.
+  // flops. (Supernodal factors have substitutions of their own too,
+  // solve_supernodal(); only the multi-column solve calls CHOLMOD.)
   void
   SparseCholesky::copy_simplicial_factor()
   {

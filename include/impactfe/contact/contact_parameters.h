@@ -19,10 +19,11 @@ namespace impactfe
   struct ContactSolverParameters
   {
     /// How each step's contact problem is solved: Lemke's method on the
-    /// dense Delassus matrix, the matrix-free active set method
-    /// (lcp/active_set.h, frictionless and 2D problems; Lemke is the
-    /// fallback), or the active set method from active_set_threshold
-    /// candidates on.
+    /// dense Delassus matrix, the active set method (lcp/active_set.h,
+    /// W as a product; Lemke is the fallback), or automatic: the active
+    /// set method from active_set_threshold candidates on, and in 3D with
+    /// friction wherever W x is a dense product
+    /// (MultibodySystem::use_active_set()).
     enum class Method
     {
       lemke,

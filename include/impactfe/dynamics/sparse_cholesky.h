@@ -118,8 +118,8 @@ namespace impactfe
 
     /**
      * Whether CHOLMOD chose a simplicial factor (small fill: 1D, small 2D
-     * meshes); solve() then substitutes in arrays of its own instead of
-     * calling CHOLMOD.
+     * meshes): solve() then substitutes in a copy of L D L^T in arrays of
+     * its own; a supernodal factor is substituted supernode by supernode.
      */
     bool
     simplicial() const;
