@@ -147,7 +147,9 @@ namespace
         x(i) = std::sin(1. + i);
         y(i) = std::cos(1. + i);
       }
-    rhs_seconds = seconds_per_call([&]() { rhs_operator.apply(x, y, rhs); });
+    FreeRhsOperator::Translations translation;
+    rhs_seconds =
+      seconds_per_call([&]() { rhs_operator.apply(x, y, rhs, translation); });
     Vector<double> v(x.block(0));
     solve_seconds = seconds_per_call([&]() {
       cholesky.solve(v);

@@ -203,6 +203,30 @@ namespace impactfe
           body.has_damping() ? &body.damping_matrix() : nullptr);
         operators.external_force.block(b) = body.external_force();
       }
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        unit_fields[d] = make_block_vector();
+        Tensor<1, dim> e;
+        e[d]                = 1.;
+        mass_unit_fields[d] = make_block_vector();
+        for (unsigned int b = 0; b < n_bodies; ++b)
+          {
+            body_list[b]->fill_uniform(unit_fields[d].block(b), e);
+            body_list[b]->mass_matrix().vmult(mass_unit_fields[d].block(b),
+                                              unit_fields[d].block(b));
+          }
+      }
+    ++state_version; // the cached momenta used the old fields
+    // F~ relative to each body's translation (FreeRhsOperator)
+    operators.dof_components.assign(n_bodies, {});
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        operators.dof_components[b].assign(unit_fields[0].block(b).size(), 0);
+        for (unsigned int d = 1; d < dim; ++d)
+          for (unsigned int i = 0; i < unit_fields[d].block(b).size(); ++i)
+            if (unit_fields[d].block(b)(i) != 0.)
+              operators.dof_components[b][i] = d;
+      }
     factorize_step_matrices(*scheme, step_matrices, step_solvers);
     free_rhs_operator.reinit(operators, scheme->free_rhs_coefficients());
 
@@ -234,21 +258,6 @@ namespace impactfe
     scheme->set_massless_contact_nodes(any_massless);
     if (coarse_scheme)
       coarse_scheme->set_massless_contact_nodes(any_massless);
-
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        unit_fields[d] = make_block_vector();
-        Tensor<1, dim> e;
-        e[d]                = 1.;
-        mass_unit_fields[d] = make_block_vector();
-        for (unsigned int b = 0; b < n_bodies; ++b)
-          {
-            body_list[b]->fill_uniform(unit_fields[d].block(b), e);
-            body_list[b]->mass_matrix().vmult(mass_unit_fields[d].block(b),
-                                              unit_fields[d].block(b));
-          }
-      }
-    ++state_version; // the cached momenta used the old fields
 
     solve_cost = 0.;
     for (const auto &solver : step_solvers)
@@ -1149,9 +1158,14 @@ namespace impactfe
     const unsigned int nd = contact_set.n_directions();
     const double       H  = coarse_scheme->time_step();
 
-    coarse_scheme->free_rhs(coarse_free_rhs_operator, current, free_velocity);
+    coarse_scheme->free_rhs(coarse_free_rhs_operator,
+                            current,
+                            free_velocity,
+                            free_velocity_translation);
     for (unsigned int b = 0; b < body_list.size(); ++b)
       coarse_step_solvers[b]->solve(free_velocity.block(b));
+    coarse_free_rhs_operator.add_translation(free_velocity_translation,
+                                             free_velocity);
     contact_set.local_velocities(free_velocity, local_free_velocity);
     coarse_scheme->gap_term(contact_set, current, gap_terms);
     for (unsigned int c = 0; c < contact_set.n_candidates(); ++c)
@@ -1209,13 +1223,17 @@ namespace impactfe
 
     // 1. Free velocity. Massless nodes are balanced at t^{i+1}
     // (TimeIntegrator::set_massless_contact_nodes()).
-    scheme->free_rhs(free_rhs_operator, current, free_velocity);
+    scheme->free_rhs(free_rhs_operator,
+                     current,
+                     free_velocity,
+                     free_velocity_translation);
     const double carry = scheme->massless_impulse_carry();
     for (unsigned int b = 0; b < massless_dofs.size(); ++b)
       for (unsigned int k = 0; k < massless_dofs[b].size(); ++k)
         free_velocity.block(b)(massless_dofs[b][k]) +=
           carry * massless_impulses[b][k];
     solve_step_matrix(free_velocity);
+    free_rhs_operator.add_translation(free_velocity_translation, free_velocity);
 
     // 2. Local free velocities and the scheme's gap terms.
     contact_set.local_velocities(free_velocity, local_free_velocity);

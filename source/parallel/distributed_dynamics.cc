@@ -215,6 +215,36 @@ namespace impactfe
         for (DistributedVector *x :
              {&acceleration, &predicted_displacement, &predicted_velocity})
           x->reinit(owned, comm);
+
+      // F~ relative to the translation: the components of the owned DoFs
+      // and, per component, the smallest DoF index any rank owns
+      owned_components.assign(owned.n_elements(), 0);
+      reference_dofs.fill(numbers::invalid_dof_index);
+      free_translation = {{0., 0., 0.}};
+      if (!body.has_damping())
+        {
+          for (DistributedVector *x :
+               {&shifted_velocity, &shifted_displacement})
+            x->reinit(owned, comm);
+          std::array<types::global_dof_index, 3> first;
+          first.fill(numbers::invalid_dof_index);
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              Tensor<1, dim> e;
+              e[d] = 1.;
+              work = 0.;
+              body.fill_uniform(work, e);
+              const double *unit = work.begin();
+              for (unsigned int k = 0; k < owned.n_elements(); ++k)
+                if (unit[k] != 0.)
+                  {
+                    owned_components[k] = d;
+                    first[d] = std::min(first[d], owned.nth_index_in_set(k));
+                  }
+              reference_dofs[d] = Utilities::MPI::min(first[d], comm);
+            }
+          work = 0.;
+        }
       const unsigned int n  = contact.n_candidates();
       const unsigned int nd = contact.n_directions();
       active.assign(n, false);
@@ -1054,6 +1084,70 @@ namespace impactfe
 
 
     // @sect3{The time step}
+    // t and s: x and y at the reference DoFs, summed over the ranks (the
+    // owner's value); any translation would do (FreeRhsOperator).
+    template <int dim>
+    bool
+    DistributedImpactSolver<dim>::take_off_translation(
+      const DistributedVector &x,
+      const DistributedVector &y)
+    {
+      if (reference_dofs[0] == numbers::invalid_dof_index)
+        return false;
+      const IndexSet       &owned = body.locally_owned_dofs();
+      std::array<double, 6> ts    = {{0., 0., 0., 0., 0., 0.}};
+      for (unsigned int d = 0; d < dim; ++d)
+        if (owned.is_element(reference_dofs[d]))
+          {
+            ts[d]     = x[reference_dofs[d]];
+            ts[3 + d] = y[reference_dofs[d]];
+          }
+      Utilities::MPI::sum(ArrayView<const double>(ts.data(), 6),
+                          body.communicator(),
+                          ArrayView<double>(ts.data(), 6));
+      const double *xk = x.begin(), *yk = y.begin();
+      double *sx = shifted_velocity.begin(), *sy = shifted_displacement.begin();
+      for (unsigned int k = 0; k < owned_components.size(); ++k)
+        {
+          const unsigned int d = owned_components[k];
+          sx[k]                = xk[k] - ts[d];
+          sy[k]                = yk[k] - ts[3 + d];
+        }
+      for (unsigned int d = 0; d < 3; ++d)
+        free_translation[d] = ts[d];
+      return true;
+    }
+
+
+
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::add_translation(DistributedVector &x) const
+    {
+      if (reference_dofs[0] == numbers::invalid_dof_index)
+        return;
+      double *xk = x.begin();
+      for (unsigned int k = 0; k < owned_components.size(); ++k)
+        xk[k] += free_translation[owned_components[k]];
+    }
+
+
+
+    // C's DoFs are the nodes' dim DoFs in component order
+    // (setup_contact_slots()).
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::add_translation(
+      std::vector<double> &contact_values) const
+    {
+      if (reference_dofs[0] == numbers::invalid_dof_index)
+        return;
+      for (unsigned int k = 0; k < contact_values.size(); ++k)
+        contact_values[k] += free_translation[k % dim];
+    }
+
+
+
     // The free velocity: M~ v_free = F~, and its local components. The
     // substructured solver starts the solve with F~ and gives the free
     // velocity on the contact DoFs; it finishes it with F~ + H P once P is
@@ -1079,6 +1173,12 @@ namespace impactfe
           velocity     = &predicted_velocity;
           displacement = &predicted_displacement;
         }
+      // relative to the translation (FreeRhsOperator): v = t + M~^{-1} F~'
+      if (take_off_translation(*velocity, *displacement))
+        {
+          velocity     = &shifted_velocity;
+          displacement = &shifted_displacement;
+        }
       level.velocity_matrix.vmult(rhs, *velocity);
       if (level.displacement_factor != 0.)
         {
@@ -1100,11 +1200,13 @@ namespace impactfe
                                    std::chrono::steady_clock::now() - start)
                                    .count();
           ++stats.solves;
+          add_translation(contact_dof_values);
           local_components(contact_dof_values, local_free_velocity);
         }
       else
         {
           solve_step_matrix(level, rhs, v_free);
+          add_translation(v_free);
           contact.local_velocities(v_free, local_free_velocity);
         }
       // massless nodes slide with their mean velocity over the step:
@@ -1211,6 +1313,7 @@ namespace impactfe
           contact_dof_values.assign(n_contact_dofs, 0.);
           const auto start = std::chrono::steady_clock::now();
           coarse->substructured_solver->finish_solve(contact_dof_values, v);
+          add_translation(v);
           stats.solve_seconds += std::chrono::duration<double>(
                                    std::chrono::steady_clock::now() - start)
                                    .count();
@@ -1317,6 +1420,7 @@ namespace impactfe
             impulses_on_contact_dofs(lcp_P, contact_dof_values);
           const auto start = std::chrono::steady_clock::now();
           fine.substructured_solver->finish_solve(contact_dof_values, v);
+          add_translation(v);
           stats.solve_seconds += std::chrono::duration<double>(
                                    std::chrono::steady_clock::now() - start)
                                    .count();

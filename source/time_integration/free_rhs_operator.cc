@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/numbers.h>
 
 #include <impactfe/time_integration/free_rhs_operator.h>
 #include <impactfe/time_integration/time_integrator.h>
@@ -60,40 +61,151 @@ namespace impactfe
         block.force.resize(n);
         for (unsigned int i = 0; i < n; ++i)
           block.force[i] = c.force * f[i];
+
+        // the translation is taken off only where A t = M~ t: no damping
+        block.component.clear();
+        block.count = {{0, 0, 0}};
+        block.reference.fill(numbers::invalid_unsigned_int);
+        if (C == nullptr && b < op.dof_components.size() &&
+            !op.dof_components[b].empty())
+          {
+            AssertThrow(op.dof_components[b].size() == n,
+                        ExcMessage("FreeRhsOperator: one component per DoF."));
+            block.component = op.dof_components[b];
+            for (const unsigned char d : block.component)
+              {
+                AssertThrow(d < 3,
+                            ExcMessage("FreeRhsOperator: component "
+                                       "out of range."));
+                ++block.count[d];
+              }
+            // the reference DoF of each component: the first from the
+            // middle of the numbering on (an interior node, as a rule)
+            for (unsigned int i = n; i-- > n / 2;)
+              block.reference[block.component[i]] = i;
+            for (unsigned int i = n / 2; i-- > 0;)
+              if (block.reference[block.component[i]] ==
+                  numbers::invalid_unsigned_int)
+                block.reference[block.component[i]] = i;
+          }
       }
   }
+
+
+
+  namespace
+  {
+    // rhs = A (x - t) + B (y - s) + f on one block's rows; Component(k)
+    // gives the component of column k (constant 0 for one component).
+    template <typename Component>
+    void
+    apply_rows(const unsigned int           n,
+               const unsigned int          *start,
+               const unsigned int          *col,
+               const double                *ab,
+               const double                *xb,
+               const double                *yb,
+               const double                *force,
+               const std::array<double, 3> &t,
+               const std::array<double, 3> &s,
+               const Component             &component,
+               double                      *out)
+    {
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          double sum_x = 0., sum_y = 0.;
+          for (unsigned int k = start[i]; k < start[i + 1]; ++k)
+            {
+              const unsigned int j = col[k];
+              const unsigned int d = component(j);
+              sum_x += ab[2 * k] * (xb[j] - t[d]);
+              sum_y += ab[2 * k + 1] * (yb[j] - s[d]);
+            }
+          out[i] = sum_x + sum_y + force[i];
+        }
+    }
+  } // namespace
 
 
 
   void
   FreeRhsOperator::apply(const BlockVector<double> &x,
                          const BlockVector<double> &y,
-                         BlockVector<double>       &rhs) const
+                         BlockVector<double>       &rhs,
+                         Translations              &translation) const
   {
     AssertDimension(x.n_blocks(), blocks.size());
+    translation.resize(blocks.size());
     for (unsigned int b = 0; b < blocks.size(); ++b)
       {
-        const Block        &block = blocks[b];
-        const unsigned int  n     = block.force.size();
-        const unsigned int *start = block.row_start.data();
-        const unsigned int *col   = block.column.data();
-        const double       *ab    = block.values.data();
-        const double       *xb    = x.block(b).begin();
-        const double       *yb    = y.block(b).begin();
-        double             *out   = rhs.block(b).begin();
+        const Block       &block = blocks[b];
+        const unsigned int n     = block.force.size();
         AssertDimension(x.block(b).size(), n);
         AssertDimension(y.block(b).size(), n);
         AssertDimension(rhs.block(b).size(), n);
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            double sum_x = 0., sum_y = 0.;
-            for (unsigned int k = start[i]; k < start[i + 1]; ++k)
+        const double         *xb = x.block(b).begin();
+        const double         *yb = y.block(b).begin();
+        std::array<double, 3> t = {{0., 0., 0.}}, s = {{0., 0., 0.}};
+        const unsigned char  *component = block.component.data();
+        if (!block.component.empty())
+          for (unsigned int d = 0; d < 3; ++d)
+            if (block.count[d] > 0)
               {
-                sum_x += ab[2 * k] * xb[col[k]];
-                sum_y += ab[2 * k + 1] * yb[col[k]];
+                t[d] = xb[block.reference[d]];
+                s[d] = yb[block.reference[d]];
               }
-            out[i] = sum_x + sum_y + block.force[i];
-          }
+        translation[b] = t;
+        // one component (1D, or no translation): no lookup per entry
+        if (block.count[1] == 0 && block.count[2] == 0)
+          apply_rows(
+            n,
+            block.row_start.data(),
+            block.column.data(),
+            block.values.data(),
+            xb,
+            yb,
+            block.force.data(),
+            t,
+            s,
+            [](unsigned int) { return 0u; },
+            rhs.block(b).begin());
+        else
+          apply_rows(
+            n,
+            block.row_start.data(),
+            block.column.data(),
+            block.values.data(),
+            xb,
+            yb,
+            block.force.data(),
+            t,
+            s,
+            [component](unsigned int j) { return unsigned(component[j]); },
+            rhs.block(b).begin());
+      }
+  }
+
+
+
+  void
+  FreeRhsOperator::add_translation(const Translations  &translation,
+                                   BlockVector<double> &v) const
+  {
+    AssertDimension(translation.size(), blocks.size());
+    for (unsigned int b = 0; b < blocks.size(); ++b)
+      {
+        const Block &block = blocks[b];
+        if (block.component.empty())
+          continue;
+        double                      *vb = v.block(b).begin();
+        const std::array<double, 3> &t  = translation[b];
+        const std::size_t            n  = block.component.size();
+        if (block.count[1] == 0 && block.count[2] == 0)
+          for (std::size_t i = 0; i < n; ++i)
+            vb[i] += t[0];
+        else
+          for (std::size_t i = 0; i < n; ++i)
+            vb[i] += t[block.component[i]];
       }
   }
 
@@ -105,6 +217,7 @@ namespace impactfe
     std::size_t bytes = blocks.capacity() * sizeof(Block);
     for (const Block &block : blocks)
       bytes +=
+        block.component.capacity() +
         (block.row_start.capacity() + block.column.capacity()) *
           sizeof(unsigned int) +
         (block.values.capacity() + block.force.capacity()) * sizeof(double);

@@ -210,12 +210,13 @@ namespace impactfe
   }
 
   void
-  TimeIntegrator::free_rhs(const FreeRhsOperator &op,
-                           const MechanicalState &state,
-                           BlockVector<double>   &rhs) const
+  TimeIntegrator::free_rhs(const FreeRhsOperator         &op,
+                           const MechanicalState         &state,
+                           BlockVector<double>           &rhs,
+                           FreeRhsOperator::Translations &translation) const
   {
     const auto [x, y] = free_rhs_arguments(state);
-    op.apply(*x, *y, rhs);
+    op.apply(*x, *y, rhs, translation);
   }
 
 

@@ -2,6 +2,10 @@
 // * FreeRhsOperator (F~ = (M + a_C C + a_K K) x + b_K K y + gamma f in one
 //   pass) against deal.II's products, for the coefficients of all four
 //   schemes, on bodies with and without damping;
+// * F~ relative to the rigid translation (FreeRhsOperator::apply() and
+//   add_translation()) on a body that slides at 1 m/s: the free velocity
+//   equals the plain solve, and keeps the momentum, e_d^T M v = e_d^T (M x
+//   + gamma f) (K e_d = 0), to round-off;
 // * SparseCholesky::solve() against the residual of M~ x = b and against
 //   CHOLMOD's own solve (the multi-column path), on a 1D bar and 2D and 3D
 //   blocks, whose factors are simplicial or supernodal (both solved by our
@@ -14,6 +18,7 @@
 #include <impactfe/time_integration/free_rhs_operator.h>
 #include <impactfe/time_integration/time_integrator.h>
 
+#include <array>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -88,7 +93,8 @@ namespace
         const FreeRhsCoefficients c = integrator->free_rhs_coefficients();
         FreeRhsOperator           free_rhs;
         free_rhs.reinit(op, c);
-        free_rhs.apply(x, y, rhs);
+        FreeRhsOperator::Translations translation;
+        free_rhs.apply(x, y, rhs, translation); // no components: t = 0
 
         // The same with deal.II's products, term by term.
         Vector<double> expected(n), tmp(n);
@@ -114,6 +120,97 @@ namespace
                                 ": F~ equals deal.II's products",
                               "");
       }
+  }
+
+  // A block sliding at 1 m/s, displaced by 0.1 m, with a small vibration,
+  // theta-Euler at a Courant number of about 500 (c_K K dominates M~).
+  template <int dim>
+  void
+  check_translation(const std::string               &name,
+                    const std::vector<unsigned int> &cells)
+  {
+    const auto          body = make_body<dim>(cells, 0.);
+    const unsigned int  n    = body->n_dofs();
+    MechanicalOperators op;
+    op.mass.push_back(&body->mass_matrix());
+    op.stiffness.push_back(&body->stiffness_matrix());
+    op.damping.push_back(nullptr);
+    op.external_force.reinit(std::vector<types::global_dof_index>{n});
+    fill(op.external_force.block(0), 0.5);
+    std::array<Vector<double>, dim> unit;
+    op.dof_components.assign(1, std::vector<unsigned char>(n, 0));
+    BlockVector<double> x(std::vector<types::global_dof_index>{n}), y(x),
+      rhs(x);
+    fill(x.block(0), 1.);
+    fill(y.block(0), 2.);
+    x.block(0) *= 1e-3;
+    y.block(0) *= 1e-5;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        Tensor<1, dim> e;
+        e[d] = 1.;
+        unit[d].reinit(n);
+        body->fill_uniform(unit[d], e);
+        for (unsigned int i = 0; i < n; ++i)
+          if (unit[d][i] != 0.)
+            op.dof_components[0][i] = d;
+        x.block(0).add(d == 0 ? 1. : 0.2, unit[d]);
+        y.block(0).add(d == 0 ? 0.1 : -0.05, unit[d]);
+      }
+
+    TimeSteppingParameters ts;
+    ts.scheme                            = Scheme::theta_euler;
+    ts.time_step                         = 1e-2;
+    const auto                integrator = create_time_integrator(ts);
+    const FreeRhsCoefficients c          = integrator->free_rhs_coefficients();
+    SparseMatrix<double>      step_matrix(body->sparsity_pattern());
+    step_matrix.copy_from(body->mass_matrix());
+    step_matrix.add(integrator->stiffness_coefficient(),
+                    body->stiffness_matrix());
+    SparseCholesky cholesky;
+    cholesky.factorize(step_matrix, name);
+
+    FreeRhsOperator free_rhs;
+    free_rhs.reinit(op, c);
+    FreeRhsOperator::Translations translation;
+    free_rhs.apply(x, y, rhs, translation);
+    Vector<double> v = rhs.block(0);
+    cholesky.solve(v);
+    BlockVector<double> completed(rhs);
+    completed.block(0) = v;
+    free_rhs.add_translation(translation, completed);
+
+    // the plain solve, F~ by deal.II's products
+    Vector<double> plain(n), tmp(n);
+    body->mass_matrix().vmult(plain, x.block(0));
+    body->stiffness_matrix().vmult(tmp, x.block(0));
+    plain.add(c.velocity_stiffness, tmp);
+    body->stiffness_matrix().vmult(tmp, y.block(0));
+    plain.add(c.displacement_stiffness, tmp);
+    plain.add(c.force, op.external_force.block(0));
+    cholesky.solve(plain);
+    tmp = completed.block(0);
+    tmp -= plain;
+    impactfe_tests::check(tmp.linfty_norm() <= 1e-8 * plain.linfty_norm(),
+                          name + ": t + M~^{-1} F~(x - t, y - s) equals the "
+                                 "plain solve to 1e-8",
+                          "");
+
+    double largest = 0.;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        Vector<double> m_unit(n);
+        body->mass_matrix().vmult(m_unit, unit[d]);
+        const double before = m_unit * x.block(0) +
+                              c.force * (unit[d] * op.external_force.block(0));
+        const double after = m_unit * completed.block(0);
+        largest =
+          std::max(largest, std::abs(after - before) / (m_unit * unit[d]));
+      }
+    impactfe_tests::check(largest <= 1e-13,
+                          name + ": momentum of the free velocity, per unit "
+                                 "mass, kept to 1e-13 m/s",
+                          "");
   }
 
   template <int dim>
@@ -170,6 +267,9 @@ main()
   check_free_rhs<1>("1D bar, 320 cells", {320}, 0.);
   check_free_rhs<2>("2D block 6 x 3, damped", {6, 3}, 1e3);
   check_free_rhs<3>("3D bar 8 x 2 x 2, damped", {8, 2, 2}, 1e3);
+  check_translation<1>("1D bar, 320 cells, sliding", {320});
+  check_translation<2>("2D block 60 x 30, sliding", {60, 30});
+  check_translation<3>("3D block 12 x 6 x 6, sliding", {12, 6, 6});
   check_cholesky<1>("1D bar, 320 cells", {320}, true);
   check_cholesky<2>("2D block 6 x 3", {6, 3}, true);
   check_cholesky<2>("2D block 60 x 60", {60, 60}, false);

@@ -322,6 +322,8 @@ namespace impactfe
     body_integrals(const unsigned int body) const;
     /// F~ of the scheme from M, C, K and the load, combined once.
     FreeRhsOperator free_rhs_operator;
+    /// The translation free_rhs_operator took off the last F~.
+    FreeRhsOperator::Translations free_velocity_translation;
     /// Step matrices M~ per body and their factorisations.
     std::vector<std::unique_ptr<SparseMatrix<double>>> step_matrices;
     std::vector<std::unique_ptr<SparseCholesky>>       step_solvers;

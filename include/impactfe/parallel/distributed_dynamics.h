@@ -288,6 +288,24 @@ namespace impactfe
       /// with the substructured solver.
       DistributedVector u, v, u_old, v_old, v_free, rhs, correction,
         impulse_force, work;
+      /// F~ relative to the body's translation (as FreeRhsOperator): the
+      /// component of each owned DoF, one reference DoF per component
+      /// (invalid: none; a damped body takes off none), the arguments
+      /// less the translation, and the translation t of the last F~.
+      std::vector<unsigned char>             owned_components;
+      std::array<types::global_dof_index, 3> reference_dofs;
+      DistributedVector     shifted_velocity, shifted_displacement;
+      std::array<double, 3> free_translation = {{0., 0., 0.}};
+      /// Takes t and s off @p x and @p y into the shifted vectors (t in
+      /// free_translation); returns false (nothing done) for a damped body.
+      bool
+      take_off_translation(const DistributedVector &x,
+                           const DistributedVector &y);
+      /// x += t on the owned DoFs / on the contact DoFs' values.
+      void
+      add_translation(DistributedVector &x) const;
+      void
+      add_translation(std::vector<double> &contact_values) const;
       /// The last step's impulse as it acted: H P on the DoFs (with
       /// massless nodes, whose rows carry it) and per body in global
       /// coordinates; they outlive a contact search.

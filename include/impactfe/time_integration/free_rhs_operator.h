@@ -4,6 +4,7 @@
 #include <deal.II/lac/block_vector.h>
 #include <deal.II/lac/sparse_matrix.h>
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -39,20 +40,55 @@ namespace impactfe
    * vector, no separate products and sums, no thread dispatch, where three
    * deal.II products with their sums took most of a step's time on small
    * meshes (doc/performance.md).
+   *
+   * **Relative to the rigid translation.** A body that slides or flies
+   * far has x and y dominated by a translation t (t_d on every DoF of
+   * component d), for which K t = 0 holds in exact arithmetic only: the
+   * round-off of K's row sums times |t| put spurious forces into every
+   * step, and the momentum balance of a block sliding at 1 m/s on 2.5e5
+   * DoFs was off by 1.9e-7 after 11 steps. Since A t = M t = M~ t for a
+   * body without damping (a_K, c_K multiply K, and M's coefficient is 1 in
+   * both), the solution of M~ v = A x + B y + gamma f is v = t +
+   * M~^{-1} (A (x - t) + B (y - s) + gamma f) for any translations t and
+   * s: apply() takes off x and y of one reference DoF per component (any
+   * node's motion is within the vibrations of the body's translation; a
+   * mean would cost two more passes, 7 % of a 1D step) and
+   * add_translation() adds t back to the solution (the balance above:
+   * 4.2e-12). A body with damping is left as it is (C t need not be zero:
+   * Rayleigh's a M).
    */
   class FreeRhsOperator
   {
   public:
-    /** Combine the operators of every body with @p coefficients. */
+    /// Per body, the translation t_d taken off x per component d.
+    using Translations = std::vector<std::array<double, 3>>;
+
+    /**
+     * Combine the operators of every body with @p coefficients.
+     * operators.dof_components gives each DoF's component (empty for a
+     * body: no translation taken off).
+     */
     void
     reinit(const MechanicalOperators &operators,
            const FreeRhsCoefficients &coefficients);
 
-    /** rhs = A x + B y + gamma f. */
+    /**
+     * rhs = A (x - t) + B (y - s) + gamma f with t and s the values of x
+     * and y at the reference DoF of each body and component (zero for a
+     * body with damping), and t in
+     * @p translation: the solve of M~ v = rhs is then completed by
+     * add_translation().
+     */
     void
     apply(const BlockVector<double> &x,
           const BlockVector<double> &y,
-          BlockVector<double>       &rhs) const;
+          BlockVector<double>       &rhs,
+          Translations              &translation) const;
+
+    /** v += t per body and component (the translation of apply()). */
+    void
+    add_translation(const Translations  &translation,
+                    BlockVector<double> &v) const;
 
     /** Bytes held. */
     std::size_t
@@ -66,6 +102,12 @@ namespace impactfe
       /// Entries of A and B, interleaved: a_0, b_0, a_1, b_1, ...
       std::vector<double> values;
       std::vector<double> force;
+      /// Component of each DoF (empty: no translation taken off), and the
+      /// number of DoFs of each component.
+      std::vector<unsigned char>  component;
+      std::array<unsigned int, 3> count = {{0, 0, 0}};
+      /// A DoF of each component: t_d and s_d are x and y there.
+      std::array<unsigned int, 3> reference = {{0, 0, 0}};
     };
     std::vector<Block> blocks;
   };

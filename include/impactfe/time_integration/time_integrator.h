@@ -73,6 +73,9 @@ namespace impactfe
     std::vector<const SparseMatrix<double> *> damping;
     /// External load, constant in time.
     BlockVector<double> external_force;
+    /// The component of each DoF, per body (FreeRhsOperator: F~ relative
+    /// to the rigid translation); empty vectors for none.
+    std::vector<std::vector<unsigned char>> dof_components;
   };
 
 
@@ -189,11 +192,16 @@ namespace impactfe
     virtual std::pair<const BlockVector<double> *, const BlockVector<double> *>
     free_rhs_arguments(const MechanicalState &state) const;
 
-    /** F~ from the state at t_i, with the operator of the coefficients. */
+    /**
+     * F~ from the state at t_i, with the operator of the coefficients,
+     * relative to the translation of FreeRhsOperator::apply(): the solve
+     * with M~ is completed by op.add_translation(@p translation, v).
+     */
     void
-    free_rhs(const FreeRhsOperator &op,
-             const MechanicalState &state,
-             BlockVector<double>   &rhs) const;
+    free_rhs(const FreeRhsOperator         &op,
+             const MechanicalState         &state,
+             BlockVector<double>           &rhs,
+             FreeRhsOperator::Translations &translation) const;
 
     /**
      * The theta-schemes' update and gap term (ThetaStepRule); Newmark,
