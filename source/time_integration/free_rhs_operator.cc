@@ -154,34 +154,25 @@ namespace impactfe
                 t[d] = xb[block.reference[d]];
                 s[d] = yb[block.reference[d]];
               }
-        translation[b] = t;
+        translation[b]  = t;
+        const auto rows = [&](const auto &component_of) {
+          apply_rows(n,
+                     block.row_start.data(),
+                     block.column.data(),
+                     block.values.data(),
+                     xb,
+                     yb,
+                     block.force.data(),
+                     t,
+                     s,
+                     component_of,
+                     rhs.block(b).begin());
+        };
         // one component (1D, or no translation): no lookup per entry
         if (block.count[1] == 0 && block.count[2] == 0)
-          apply_rows(
-            n,
-            block.row_start.data(),
-            block.column.data(),
-            block.values.data(),
-            xb,
-            yb,
-            block.force.data(),
-            t,
-            s,
-            [](unsigned int) { return 0u; },
-            rhs.block(b).begin());
+          rows([](unsigned int) { return 0u; });
         else
-          apply_rows(
-            n,
-            block.row_start.data(),
-            block.column.data(),
-            block.values.data(),
-            xb,
-            yb,
-            block.force.data(),
-            t,
-            s,
-            [component](unsigned int j) { return unsigned(component[j]); },
-            rhs.block(b).begin());
+          rows([component](unsigned int j) { return unsigned(component[j]); });
       }
   }
 
