@@ -1083,7 +1083,6 @@ namespace impactfe
 
 
 
-    // @sect3{The time step}
     // t and s: x and y at the reference DoFs, summed over the ranks (the
     // owner's value); any translation would do (FreeRhsOperator).
     template <int dim>
@@ -1148,6 +1147,7 @@ namespace impactfe
 
 
 
+    // @sect3{The time step}
     // The free velocity: M~ v_free = F~, and its local components. The
     // substructured solver starts the solve with F~ and gives the free
     // velocity on the contact DoFs; it finishes it with F~ + H P once P is
