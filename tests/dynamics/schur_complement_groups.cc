@@ -8,7 +8,8 @@
 // - S (S^{-1} y) = y;
 // - S y in single precision within 1e-6 of S y;
 // - the parts of add_part_of_product() for 1, 2, 3 and 5 parts sum to the
-//   products (S^{-1} to 1e-14; S in single precision to 1e-6);
+//   products (S^{-1} to 1e-14; S in single precision to 1e-6), with groups
+//   and with one group;
 // - fewer bytes than the two dense |C| x |C| matrices;
 // and C from one body alone is one group.
 
@@ -57,6 +58,36 @@ namespace
     for (const double x : a)
       d = std::max(d, std::abs(x));
     return d;
+  }
+
+  // The parts of add_part_of_product() for 1, 2, 3 and 5 parts sum to
+  // S^{-1} y (to 1e-14) and to S y (in single precision, to 1e-6).
+  bool
+  parts_sum_to_products(const DenseSchurComplement &schur)
+  {
+    const unsigned int  n_c = schur.size();
+    std::vector<double> y(n_c), Sinv_y(n_c), S_y(n_c);
+    for (unsigned int a = 0; a < n_c; ++a)
+      y[a] = std::sin(1. + 3. * a);
+    schur.vmult_inverse(y.data(), Sinv_y.data());
+    schur.vmult(y.data(), S_y.data());
+    bool parts_ok = true;
+    for (const unsigned int n_parts : {1u, 2u, 3u, 5u})
+      {
+        std::vector<double> inverse_sum(n_c, 0.), schur_sum(n_c, 0.);
+        for (unsigned int part = 0; part < n_parts; ++part)
+          {
+            schur.add_part_of_product(
+              y.data(), inverse_sum.data(), part, n_parts, true);
+            schur.add_part_of_product(
+              y.data(), schur_sum.data(), part, n_parts, false);
+          }
+        parts_ok =
+          parts_ok &&
+          largest_difference(inverse_sum, Sinv_y) <= 1e-14 * largest(Sinv_y) &&
+          largest_difference(schur_sum, S_y) <= 1e-6 * largest(S_y);
+      }
+    return parts_ok;
   }
 } // namespace
 
@@ -138,23 +169,7 @@ main()
   check(largest_difference(S_y, S_y_single) <= 1e-6 * largest(S_y),
         "S y in single precision: within 1e-6 of S y");
 
-  bool parts_ok = true;
-  for (const unsigned int n_parts : {1u, 2u, 3u, 5u})
-    {
-      std::vector<double> inverse_sum(n_c, 0.), schur_sum(n_c, 0.);
-      for (unsigned int part = 0; part < n_parts; ++part)
-        {
-          schur.add_part_of_product(
-            y.data(), inverse_sum.data(), part, n_parts, true);
-          schur.add_part_of_product(
-            y.data(), schur_sum.data(), part, n_parts, false);
-        }
-      parts_ok =
-        parts_ok &&
-        largest_difference(inverse_sum, Sinv_y) <= 1e-14 * largest(Sinv_y) &&
-        largest_difference(schur_sum, S_y) <= 1e-6 * largest(S_y);
-    }
-  check(parts_ok,
+  check(parts_sum_to_products(schur),
         "the parts of the products for 1, 2, 3, 5 parts sum to the products");
 
   check(schur.memory_consumption() <
@@ -169,5 +184,9 @@ main()
   DenseSchurComplement single;
   single.compute(A, one_body, "body 2");
   check(single.n_groups() == 1, "one body: one group");
+  // one group: the parts are blocks of the lower triangle
+  check(parts_sum_to_products(single),
+        "one body: the parts of the products for 1, 2, 3, 5 parts sum to "
+        "the products");
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
 }
