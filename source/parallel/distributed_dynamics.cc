@@ -1381,7 +1381,12 @@ namespace impactfe
                 correction = 0.;
               break;
             }
+          const auto start = std::chrono::steady_clock::now();
           solve_contact_problem();
+          stats.contact_problem_seconds +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                          start)
+              .count();
           if (fine.substructured_solver)
             {
               // M~^{-1} H P on the contact DoFs: (M~^{-1})_CC (H P)

@@ -1674,7 +1674,8 @@ namespace impactfe
             << " per step taken); " << stats.active_set_iterations
             << " active set iterations, " << stats.products << " products W x, "
             << stats.cg_iterations << " CG iterations; solves with M~ "
-            << stats.solve_seconds << " s (rank 0)"
+            << stats.solve_seconds << " s, contact problems "
+            << stats.contact_problem_seconds << " s (rank 0)"
             << (searched.searches > 0 ?
                   "; contact searches " + format_number(searched.seconds) +
                     " s (rank 0)" :
@@ -1727,6 +1728,7 @@ namespace impactfe
         .add("active_set_iterations", double(stats.active_set_iterations))
         .add("cg_iterations", double(stats.cg_iterations))
         .add("solve_wall_seconds", stats.solve_seconds)
+        .add("contact_problem_wall_seconds", stats.contact_problem_seconds)
         .add("contact_schur_groups", double(stats.contact_schur_groups))
         .add("contact_operator", stats.contact_operator)
         .add("contact_preconditioner", stats.contact_preconditioner)

@@ -67,6 +67,10 @@ namespace impactfe
       record(const lcp::ContactVerification &check);
       /// Wall seconds in the solves with M~ (this rank).
       double solve_seconds = 0.;
+      /// Wall seconds in the contact problems, their products W x (and
+      /// the solves these make with the direct and AMG solvers) included
+      /// (this rank).
+      double contact_problem_seconds = 0.;
       /// The substructured solver: the groups of contact DoFs that its
       /// dense contact Schur complement does not couple (one per body
       /// with contacts, DenseSchurComplement::n_groups()).
