@@ -32,6 +32,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <impactfe/parallel/distributed_scene.h>
+#include <impactfe/utilities/blas_threads.h>
 #include <impactfe/utilities/mpi_errors.h>
 #include <impactfe/utilities/program.h>
 
@@ -47,7 +48,12 @@
 int
 main(int argc, char *argv[])
 {
+  // One core per rank: deal.II's threads are limited to one here, and so
+  // is the BLAS (OpenBLAS starts a thread per core, whose idle workers
+  // spin): otherwise one rank runs its dense products on two cores, and
+  // two ranks' BLAS workers take cores from each other.
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  impactfe::set_blas_thread_limit(1);
   try
     {
       AssertThrow(argc <= 2,
