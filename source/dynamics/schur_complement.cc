@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <type_traits>
 
 #include "../utilities/blas_lapack.h"
 
@@ -344,60 +345,42 @@ namespace impactfe
   namespace
   {
     // y += A x for the m x m symmetric block whose lower triangle starts
-    // at A (leading dimension lda), and y += op(A) x for a rows x cols
-    // block
+    // at A (leading dimension lda), or (@p transpose "N" or "T") y +=
+    // op(A) x for a rows x columns block
+    template <typename Number>
     void
     add_symmetric_block(const int     m,
-                        const double *A,
+                        const Number *A,
                         const int     lda,
-                        const double *x,
-                        double       *y)
+                        const Number *x,
+                        Number       *y)
     {
-      const double one  = 1.;
+      const Number one  = 1;
       const int    step = 1;
-      dsymv_("L", &m, &one, A, &lda, x, &step, &one, y, &step);
+      if constexpr (std::is_same_v<Number, double>)
+        dsymv_("L", &m, &one, A, &lda, x, &step, &one, y, &step);
+      else
+        ssymv_("L", &m, &one, A, &lda, x, &step, &one, y, &step);
     }
 
-    void
-    add_symmetric_block(const int    m,
-                        const float *A,
-                        const int    lda,
-                        const float *x,
-                        float       *y)
-    {
-      const float one  = 1.f;
-      const int   step = 1;
-      ssymv_("L", &m, &one, A, &lda, x, &step, &one, y, &step);
-    }
-
+    template <typename Number>
     void
     add_block(const char   *transpose,
               const int     rows,
               const int     columns,
-              const double *A,
+              const Number *A,
               const int     lda,
-              const double *x,
-              double       *y)
+              const Number *x,
+              Number       *y)
     {
-      const double one  = 1.;
+      const Number one  = 1;
       const int    step = 1;
-      dgemv_(
-        transpose, &rows, &columns, &one, A, &lda, x, &step, &one, y, &step);
-    }
-
-    void
-    add_block(const char  *transpose,
-              const int    rows,
-              const int    columns,
-              const float *A,
-              const int    lda,
-              const float *x,
-              float       *y)
-    {
-      const float one  = 1.f;
-      const int   step = 1;
-      sgemv_(
-        transpose, &rows, &columns, &one, A, &lda, x, &step, &one, y, &step);
+      if constexpr (std::is_same_v<Number, double>)
+        dgemv_(
+          transpose, &rows, &columns, &one, A, &lda, x, &step, &one, y, &step);
+      else
+        sgemv_(
+          transpose, &rows, &columns, &one, A, &lda, x, &step, &one, y, &step);
     }
 
     // y += the part of A x that the columns first <= j < end of A's lower
