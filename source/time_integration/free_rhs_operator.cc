@@ -64,7 +64,7 @@ namespace impactfe
 
         // the translation is taken off only where A t = M~ t: no damping
         block.component.clear();
-        block.count = {{0, 0, 0}};
+        block.several_components = false;
         block.reference.fill(numbers::invalid_unsigned_int);
         if (C == nullptr && b < op.dof_components.size() &&
             !op.dof_components[b].empty())
@@ -77,7 +77,7 @@ namespace impactfe
                 AssertThrow(d < 3,
                             ExcMessage("FreeRhsOperator: component "
                                        "out of range."));
-                ++block.count[d];
+                block.several_components |= d != 0;
               }
             // the reference DoF of each component: the first from the
             // middle of the numbering on (an interior node, as a rule)
@@ -149,7 +149,7 @@ namespace impactfe
         const unsigned char  *component = block.component.data();
         if (!block.component.empty())
           for (unsigned int d = 0; d < 3; ++d)
-            if (block.count[d] > 0)
+            if (block.reference[d] != numbers::invalid_unsigned_int)
               {
                 t[d] = xb[block.reference[d]];
                 s[d] = yb[block.reference[d]];
@@ -169,7 +169,7 @@ namespace impactfe
                      rhs.block(b).begin());
         };
         // one component (1D, or no translation): no lookup per entry
-        if (block.count[1] == 0 && block.count[2] == 0)
+        if (!block.several_components)
           rows([](unsigned int) { return 0u; });
         else
           rows([component](unsigned int j) { return unsigned(component[j]); });
@@ -191,7 +191,7 @@ namespace impactfe
         double                      *vb = v.block(b).begin();
         const std::array<double, 3> &t  = translation[b];
         const std::size_t            n  = block.component.size();
-        if (block.count[1] == 0 && block.count[2] == 0)
+        if (!block.several_components)
           for (std::size_t i = 0; i < n; ++i)
             vb[i] += t[0];
         else

@@ -102,11 +102,12 @@ namespace impactfe
       /// Entries of A and B, interleaved: a_0, b_0, a_1, b_1, ...
       std::vector<double> values;
       std::vector<double> force;
-      /// Component of each DoF (empty: no translation taken off), and the
-      /// number of DoFs of each component.
-      std::vector<unsigned char>  component;
-      std::array<unsigned int, 3> count = {{0, 0, 0}};
-      /// A DoF of each component: t_d and s_d are x and y there.
+      /// Component of each DoF (empty: no translation taken off), and
+      /// whether any is not 0 (else the row kernel needs no lookup).
+      std::vector<unsigned char> component;
+      bool                       several_components = false;
+      /// A DoF of each component (invalid for a component no DoF has):
+      /// t_d and s_d are x and y there.
       std::array<unsigned int, 3> reference = {{0, 0, 0}};
     };
     std::vector<Block> blocks;
