@@ -211,20 +211,31 @@ namespace impactfe
 
 
 
+    // y += A x for the m x m symmetric block whose lower triangle starts
+    // at A (leading dimension lda)
+    template <typename Number>
     void
-    symv(const types::blas_int n, const double *A, const double *x, double *y)
+    add_symmetric_block(const int     m,
+                        const Number *A,
+                        const int     lda,
+                        const Number *x,
+                        Number       *y)
     {
-      const double          one = 1., zero = 0.;
-      const types::blas_int step = 1;
-      dsymv_("L", &n, &one, A, &n, x, &step, &zero, y, &step);
+      const Number one  = 1;
+      const int    step = 1;
+      if constexpr (std::is_same_v<Number, double>)
+        dsymv_("L", &m, &one, A, &lda, x, &step, &one, y, &step);
+      else
+        ssymv_("L", &m, &one, A, &lda, x, &step, &one, y, &step);
     }
 
+    // y = A x for the n x n symmetric A (lower triangle)
+    template <typename Number>
     void
-    symv(const types::blas_int n, const float *A, const float *x, float *y)
+    symv(const types::blas_int n, const Number *A, const Number *x, Number *y)
     {
-      const float           one = 1.f, zero = 0.f;
-      const types::blas_int step = 1;
-      ssymv_("L", &n, &one, A, &n, x, &step, &zero, y, &step);
+      std::fill(y, y + n, Number(0));
+      add_symmetric_block(n, A, n, x, y);
     }
 
     void
@@ -344,25 +355,8 @@ namespace impactfe
 
   namespace
   {
-    // y += A x for the m x m symmetric block whose lower triangle starts
-    // at A (leading dimension lda), or (@p transpose "N" or "T") y +=
-    // op(A) x for a rows x columns block
-    template <typename Number>
-    void
-    add_symmetric_block(const int     m,
-                        const Number *A,
-                        const int     lda,
-                        const Number *x,
-                        Number       *y)
-    {
-      const Number one  = 1;
-      const int    step = 1;
-      if constexpr (std::is_same_v<Number, double>)
-        dsymv_("L", &m, &one, A, &lda, x, &step, &one, y, &step);
-      else
-        ssymv_("L", &m, &one, A, &lda, x, &step, &one, y, &step);
-    }
-
+    // y += op(A) x (@p transpose "N" or "T") for a rows x columns block
+    // (leading dimension lda)
     template <typename Number>
     void
     add_block(const char   *transpose,
