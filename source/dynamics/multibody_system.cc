@@ -139,8 +139,7 @@ namespace impactfe
   void
   MultibodySystem<dim>::solve_step_matrix(BlockVector<double> &x) const
   {
-    for (unsigned int b = 0; b < body_list.size(); ++b)
-      step_solvers[b]->solve(x.block(b));
+    SparseCholesky::solve_together(step_solvers, x);
   }
 
 

@@ -12,6 +12,26 @@
 
 namespace impactfe
 {
+  namespace
+  {
+    // A simplicial factor's arrays (SparseCholesky::Data) as the row
+    // kernels of its substitutions use them.
+    struct SimplicialRows
+    {
+      const int    *row_start, *row_column;
+      const double *row_value;
+      const int    *column_start, *column_row;
+      const double *column_value, *inverse_diagonal;
+      const int    *permutation;
+      // a bidiagonal L (a 1D body in its natural order): chain[i] =
+      // L_{i,i-1}, 0 where row i has no entry, chain[0] = chain[n] = 0;
+      // nullptr for any other factor
+      const double *chain;
+      double       *z;
+      std::size_t   n;
+    };
+  } // namespace
+
   // CHOLMOD's state: its common block, the factor, and the solution/work
   // arrays that cholmod_solve2 reuses from one call to the next (the
   // solves of several right-hand sides at once).
@@ -32,6 +52,7 @@ namespace impactfe
     std::vector<double>         row_value;
     std::vector<double>         inverse_diagonal;
     std::vector<int>            permutation;
+    std::vector<double>         chain;
     mutable std::vector<double> work;
     // A supernodal factor's values rounded to single precision and the
     // work vector of its solve (solve_single_precision(), made at its
@@ -40,6 +61,22 @@ namespace impactfe
     // The work space of solve_lower() and of solve() with a supernodal
     // factor (rows below a supernode), and solve()'s permuted vector.
     mutable std::vector<double> rows_below, super_work;
+
+    SimplicialRows
+    rows() const
+    {
+      return SimplicialRows{row_start.data(),
+                            row_column.data(),
+                            row_value.data(),
+                            column_start.data(),
+                            column_row.data(),
+                            column_value.data(),
+                            inverse_diagonal.data(),
+                            permutation.data(),
+                            chain.empty() ? nullptr : chain.data(),
+                            work.data(),
+                            inverse_diagonal.size()};
+    }
 
     Data()
     {
@@ -154,7 +191,27 @@ namespace impactfe
                            ": the matrix is not square."));
     data->free_all();
     UpperTriangle upper(matrix, drop_zeros);
-    data->factor = cholmod_analyze(&upper.view, &data->common);
+    // A tridiagonal matrix (a 1D body numbered along its cells) has no
+    // fill in its own order, and its factor is then a chain that
+    // solve_together() can run two at a time; CHOLMOD's orderings reverse
+    // it and put one end elsewhere, which costs no fill but breaks the
+    // chain.
+    bool tridiagonal = true;
+    for (unsigned int j = 0; j < matrix.m() && tridiagonal; ++j)
+      for (int p = upper.column_start[j]; p < upper.column_start[j + 1]; ++p)
+        tridiagonal =
+          tridiagonal && upper.row_index[p] + 1 >= static_cast<int>(j);
+    cholmod_common &common       = data->common;
+    const int       nmethods     = common.nmethods;
+    const int       first_method = common.method[0].ordering;
+    if (tridiagonal)
+      {
+        common.nmethods           = 1;
+        common.method[0].ordering = CHOLMOD_NATURAL;
+      }
+    data->factor              = cholmod_analyze(&upper.view, &common);
+    common.nmethods           = nmethods;
+    common.method[0].ordering = first_method;
     AssertThrow(data->factor != nullptr,
                 ExcMessage("Cholesky factorisation of " + name +
                            ": the analysis failed (CHOLMOD status " +
@@ -179,6 +236,7 @@ namespace impactfe
                      ": CHOLMOD status " + std::to_string(data->common.status) +
                        ".")));
     data->column_start.clear();
+    data->chain.clear();
     if (!data->factor->is_super)
       copy_simplicial_factor();
     else
@@ -395,6 +453,17 @@ namespace impactfe
     for (std::size_t k = 0; k < n; ++k)
       d.permutation[k] = perm != nullptr ? perm[k] : static_cast<int>(k);
     data->work.assign(n, 0.);
+    // A chain: every row holds at most its left neighbour.
+    d.chain.assign(n + 1, 0.);
+    for (std::size_t i = 0; i < n && !d.chain.empty(); ++i)
+      {
+        const int entries = d.row_start[i + 1] - d.row_start[i];
+        if (entries == 1 &&
+            d.row_column[d.row_start[i]] + 1 == static_cast<int>(i))
+          d.chain[i] = d.row_value[d.row_start[i]];
+        else if (entries != 0)
+          d.chain.clear();
+      }
   }
 
 
@@ -641,6 +710,137 @@ namespace impactfe
 
 
 
+  namespace
+  {
+    // The substitutions of a simplicial factor L D L^T, a row at a time.
+    // These recurrences are latency-bound: the term of the neighbour just
+    // computed (column i-1 of row i, row j+1 of column j: the whole of a
+    // 1D chain) is taken from a register, not through memory, and
+    // subtracted last, so that only it waits for the row before; the
+    // other terms, which the processor can sum ahead, go into two sums,
+    // which halves their own chain (a 2D strip's rows hold 15 entries).
+
+    // z_i <- z_i - sum_k L_ik z_k (k < i), and its value
+    DEAL_II_ALWAYS_INLINE inline double
+    forward_row(const SimplicialRows &f, const std::size_t i, double previous)
+    {
+      const int    *col = f.row_column;
+      const double *L   = f.row_value;
+      const double *z   = f.z;
+      int           end = f.row_start[i + 1];
+      const bool    neighbour =
+        end > f.row_start[i] && col[end - 1] + 1 == static_cast<int>(i);
+      if (neighbour)
+        --end;
+      double sum = z[i], other = 0.;
+      int    p = f.row_start[i];
+      for (; p + 2 <= end; p += 2)
+        {
+          sum -= L[p] * z[col[p]];
+          other -= L[p + 1] * z[col[p + 1]];
+        }
+      if (p < end)
+        sum -= L[p] * z[col[p]];
+      sum += other;
+      if (neighbour)
+        sum -= L[end] * previous;
+      f.z[i] = sum;
+      return sum;
+    }
+
+    // z_j <- z_j / D_j - sum_k L_kj z_k (k > j), and its value
+    DEAL_II_ALWAYS_INLINE inline double
+    backward_row(const SimplicialRows &f, const std::size_t j, double previous)
+    {
+      const int    *row   = f.column_row;
+      const double *L     = f.column_value;
+      const double *z     = f.z;
+      const int     begin = f.column_start[j], end = f.column_start[j + 1];
+      const bool    neighbour =
+        begin < end && row[begin] == static_cast<int>(j + 1);
+      double sum = z[j] * f.inverse_diagonal[j], other = 0.;
+      int    p = begin + (neighbour ? 1 : 0);
+      for (; p + 2 <= end; p += 2)
+        {
+          sum -= L[p] * z[row[p]];
+          other -= L[p + 1] * z[row[p + 1]];
+        }
+      if (p < end)
+        sum -= L[p] * z[row[p]];
+      sum += other;
+      if (neighbour)
+        sum -= L[begin] * previous;
+      f.z[j] = sum;
+      return sum;
+    }
+
+    inline void
+    gather(const SimplicialRows &f, const Vector<double> &x)
+    {
+      for (std::size_t k = 0; k < f.n; ++k)
+        f.z[k] = x[f.permutation[k]];
+    }
+
+    inline void
+    scatter(const SimplicialRows &f, Vector<double> &x)
+    {
+      for (std::size_t k = 0; k < f.n; ++k)
+        x[f.permutation[k]] = f.z[k];
+    }
+
+    // L D L^T z = P x, then x = P^T z, for two bidiagonal factors at
+    // once, their rows alternating: a chain's step (a multiplication and a
+    // subtraction, about 7 cycles) waits for the step before, so the one
+    // chain's step runs while the other's waits. Each factor's arithmetic
+    // is that of forward_row() and backward_row() (which add nothing but
+    // exact zeros besides), in the same order: the answers are those of
+    // separate solves, to the bit.
+    void
+    solve_two_chains(const SimplicialRows &a,
+                     Vector<double>       &x_a,
+                     const SimplicialRows &b,
+                     Vector<double>       &x_b)
+    {
+      gather(a, x_a);
+      gather(b, x_b);
+      double *const z_a = a.z, *const z_b = b.z;
+      const double *const l_a = a.chain, *const l_b = b.chain;
+      const double *const d_a = a.inverse_diagonal, *const d_b =
+                                                      b.inverse_diagonal;
+      const std::size_t both       = std::min(a.n, b.n);
+      double            previous_a = 0., previous_b = 0.;
+      for (std::size_t i = 0; i < both; ++i)
+        {
+          previous_a = z_a[i] = z_a[i] - l_a[i] * previous_a;
+          previous_b = z_b[i] = z_b[i] - l_b[i] * previous_b;
+        }
+      for (std::size_t i = both; i < a.n; ++i)
+        previous_a = z_a[i] = z_a[i] - l_a[i] * previous_a;
+      for (std::size_t i = both; i < b.n; ++i)
+        previous_b = z_b[i] = z_b[i] - l_b[i] * previous_b;
+      // backward: the longer chain's last rows alone first, then both
+      previous_a = previous_b = 0.;
+      std::size_t j_a = a.n, j_b = b.n;
+      for (; j_a > j_b; --j_a)
+        previous_a = z_a[j_a - 1] =
+          z_a[j_a - 1] * d_a[j_a - 1] - l_a[j_a] * previous_a;
+      for (; j_b > j_a; --j_b)
+        previous_b = z_b[j_b - 1] =
+          z_b[j_b - 1] * d_b[j_b - 1] - l_b[j_b] * previous_b;
+      for (; j_a > 0; --j_a, --j_b)
+        {
+          previous_a = z_a[j_a - 1] =
+            z_a[j_a - 1] * d_a[j_a - 1] - l_a[j_a] * previous_a;
+          previous_b = z_b[j_b - 1] =
+            z_b[j_b - 1] * d_b[j_b - 1] - l_b[j_b] * previous_b;
+        }
+      scatter(a, x_a);
+      scatter(b, x_b);
+    }
+  } // namespace
+
+
+
   void
   SparseCholesky::solve(Vector<double> &x) const
   {
@@ -649,75 +849,16 @@ namespace impactfe
     AssertDimension(x.size(), n);
     if (!data->column_start.empty())
       {
-        // L D L^T z = P x, then x = P^T z. These recurrences are
-        // latency-bound: the term of the neighbour just computed (column
-        // i-1 of row i, row j+1 of column j: the whole of a 1D chain) is
-        // taken from a register, not through memory, and subtracted last,
-        // so that only it waits for the row before; the other terms,
-        // which the processor can sum ahead, go into two sums, which
-        // halves their own chain (a 2D strip's rows hold 15 entries).
-        const Data &d    = *data;
-        const int  *perm = d.permutation.data();
-        double     *z    = d.work.data();
-        for (std::size_t k = 0; k < n; ++k)
-          z[k] = x[perm[k]];
-        {
-          const int    *start    = d.row_start.data();
-          const int    *col      = d.row_column.data();
-          const double *L        = d.row_value.data();
-          double        previous = 0.;
-          for (std::size_t i = 0; i < n; ++i)
-            {
-              int        end = start[i + 1];
-              const bool neighbour =
-                end > start[i] && col[end - 1] + 1 == static_cast<int>(i);
-              if (neighbour)
-                --end;
-              double sum = z[i], other = 0.;
-              int    p = start[i];
-              for (; p + 2 <= end; p += 2)
-                {
-                  sum -= L[p] * z[col[p]];
-                  other -= L[p + 1] * z[col[p + 1]];
-                }
-              if (p < end)
-                sum -= L[p] * z[col[p]];
-              sum += other;
-              if (neighbour)
-                sum -= L[end] * previous;
-              z[i]     = sum;
-              previous = sum;
-            }
-        }
-        {
-          const int    *start    = d.column_start.data();
-          const int    *row      = d.column_row.data();
-          const double *L        = d.column_value.data();
-          const double *inverse  = d.inverse_diagonal.data();
-          double        previous = 0.;
-          for (std::size_t j = n; j-- > 0;)
-            {
-              const int  begin = start[j];
-              const bool neighbour =
-                begin < start[j + 1] && row[begin] == static_cast<int>(j + 1);
-              double sum = z[j] * inverse[j], other = 0.;
-              int    p = begin + (neighbour ? 1 : 0);
-              for (; p + 2 <= start[j + 1]; p += 2)
-                {
-                  sum -= L[p] * z[row[p]];
-                  other -= L[p + 1] * z[row[p + 1]];
-                }
-              if (p < start[j + 1])
-                sum -= L[p] * z[row[p]];
-              sum += other;
-              if (neighbour)
-                sum -= L[begin] * previous;
-              z[j]     = sum;
-              previous = sum;
-            }
-        }
-        for (std::size_t k = 0; k < n; ++k)
-          x[perm[k]] = z[k];
+        // L D L^T z = P x, then x = P^T z
+        const SimplicialRows f = data->rows();
+        gather(f, x);
+        double previous = 0.;
+        for (std::size_t i = 0; i < n; ++i)
+          previous = forward_row(f, i, previous);
+        previous = 0.;
+        for (std::size_t j = n; j-- > 0;)
+          previous = backward_row(f, j, previous);
+        scatter(f, x);
         return;
       }
     // A supernodal factor: L L^T z = P x by supernodes (as
@@ -736,6 +877,42 @@ namespace impactfe
     supernodal_substitution(L, values, z, data->rows_below.data(), false, all);
     for (std::size_t k = 0; k < n; ++k)
       x[perm[k]] = z[k];
+  }
+
+
+
+  void
+  SparseCholesky::solve_together(
+    const std::vector<std::unique_ptr<SparseCholesky>> &factors,
+    BlockVector<double>                                &x)
+  {
+    AssertDimension(factors.size(), x.n_blocks());
+    // pairs of bidiagonal factors alternate their rows
+    // (solve_two_chains()); any other factor, or the last of an odd
+    // number, solves alone (alternating the general rows of two factors
+    // was slower: their loads and branches, not the chains, bound them)
+    int waiting = -1;
+    for (unsigned int b = 0; b < factors.size(); ++b)
+      {
+        const SparseCholesky &factor = *factors[b];
+        Assert(factor.data->factor != nullptr,
+               ExcMessage("factorize() first."));
+        AssertDimension(x.block(b).size(), factor.size());
+        if (!factor.bidiagonal())
+          factor.solve(x.block(b));
+        else if (waiting < 0)
+          waiting = b;
+        else
+          {
+            solve_two_chains(factors[waiting]->data->rows(),
+                             x.block(waiting),
+                             factor.data->rows(),
+                             x.block(b));
+            waiting = -1;
+          }
+      }
+    if (waiting >= 0)
+      factors[waiting]->solve(x.block(waiting));
   }
 
 
@@ -853,6 +1030,14 @@ namespace impactfe
   SparseCholesky::simplicial() const
   {
     return !data->column_start.empty();
+  }
+
+
+
+  bool
+  SparseCholesky::bidiagonal() const
+  {
+    return !data->chain.empty();
   }
 
 

@@ -57,6 +57,7 @@ namespace impactfe
               }
             block.row_start.push_back(block.column.size());
           }
+        set_up_diagonals(block);
         const Vector<double> &f = op.external_force.block(b);
         block.force.resize(n);
         for (unsigned int i = 0; i < n; ++i)
@@ -93,8 +94,78 @@ namespace impactfe
 
 
 
+  void
+  FreeRhsOperator::set_up_diagonals(Block &block)
+  {
+    for (auto &diagonal : block.diagonals)
+      diagonal.clear();
+    const std::size_t n = block.row_start.size() - 1;
+    if (n < 3)
+      return;
+    // deal.II stores a row's diagonal entry first: row i must hold
+    // columns i, i - 1 (not in row 0) and i + 1 (not in row n - 1), in
+    // this order, which is also the order of apply_rows()' sums
+    for (std::size_t i = 0; i < n; ++i)
+      {
+        std::array<unsigned int, 3> expected;
+        unsigned int                count = 0;
+        expected[count++]                 = i;
+        if (i > 0)
+          expected[count++] = i - 1;
+        if (i + 1 < n)
+          expected[count++] = i + 1;
+        if (block.row_start[i + 1] - block.row_start[i] != count)
+          return;
+        for (unsigned int c = 0; c < count; ++c)
+          if (block.column[block.row_start[i] + c] != expected[c])
+            return;
+      }
+    for (auto &diagonal : block.diagonals)
+      diagonal.assign(n, 0.);
+    for (std::size_t i = 0; i < n; ++i)
+      for (unsigned int k = block.row_start[i]; k < block.row_start[i + 1]; ++k)
+        {
+          const unsigned int r      = block.column[k] + 1 - i;
+          block.diagonals[r][i]     = block.values[2 * k];
+          block.diagonals[3 + r][i] = block.values[2 * k + 1];
+        }
+  }
+
+
+
   namespace
   {
+    // rhs = A (x - t) + B (y - s) + f on a tridiagonal block's rows, by
+    // its diagonals (Block::diagonals), summed in the order of
+    // apply_rows() below, so the result is the same to the bit.
+    void
+    apply_tridiagonal_rows(const std::size_t                         n,
+                           const std::array<std::vector<double>, 6> &diag,
+                           const double                             *x,
+                           const double                             *y,
+                           const double                             *force,
+                           const double                              t,
+                           const double                              s,
+                           double                                   *out)
+    {
+      const double *al = diag[0].data(), *ad = diag[1].data(),
+                   *au = diag[2].data(), *bl = diag[3].data(),
+                   *bd = diag[4].data(), *bu = diag[5].data();
+      out[0] = (ad[0] * (x[0] - t) + au[0] * (x[1] - t)) +
+               (bd[0] * (y[0] - s) + bu[0] * (y[1] - s)) + force[0];
+      for (std::size_t i = 1; i + 1 < n; ++i)
+        out[i] = (ad[i] * (x[i] - t) + al[i] * (x[i - 1] - t) +
+                  au[i] * (x[i + 1] - t)) +
+                 (bd[i] * (y[i] - s) + bl[i] * (y[i - 1] - s) +
+                  bu[i] * (y[i + 1] - s)) +
+                 force[i];
+      const std::size_t l = n - 1;
+      out[l]              = (ad[l] * (x[l] - t) + al[l] * (x[l - 1] - t)) +
+               (bd[l] * (y[l] - s) + bl[l] * (y[l - 1] - s)) + force[l];
+    }
+
+
+
     // rhs = A (x - t) + B (y - s) + f on one block's rows; Component(k)
     // gives the component of column k (constant 0 for one component).
     template <typename Component>
@@ -169,7 +240,16 @@ namespace impactfe
                      rhs.block(b).begin());
         };
         // one component (1D, or no translation): no lookup per entry
-        if (!block.several_components)
+        if (!block.diagonals[0].empty() && !block.several_components)
+          apply_tridiagonal_rows(n,
+                                 block.diagonals,
+                                 xb,
+                                 yb,
+                                 block.force.data(),
+                                 t[0],
+                                 s[0],
+                                 rhs.block(b).begin());
+        else if (!block.several_components)
           rows([](unsigned int) { return 0u; });
         else
           rows([component](unsigned int j) { return unsigned(component[j]); });
@@ -202,6 +282,15 @@ namespace impactfe
 
 
 
+  bool
+  FreeRhsOperator::tridiagonal(const unsigned int b) const
+  {
+    AssertIndexRange(b, blocks.size());
+    return !blocks[b].diagonals[0].empty();
+  }
+
+
+
   std::size_t
   FreeRhsOperator::memory_consumption() const
   {
@@ -212,6 +301,9 @@ namespace impactfe
         (block.row_start.capacity() + block.column.capacity()) *
           sizeof(unsigned int) +
         (block.values.capacity() + block.force.capacity()) * sizeof(double);
+    for (const Block &block : blocks)
+      for (const auto &diagonal : block.diagonals)
+        bytes += diagonal.capacity() * sizeof(double);
     return bytes;
   }
 } // namespace impactfe

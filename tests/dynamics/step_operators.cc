@@ -10,7 +10,9 @@
 //   CHOLMOD's own solve (the multi-column path), on a 1D bar and 2D and 3D
 //   blocks, whose factors are simplicial or supernodal (both solved by our
 //   substitutions; a supernodal factor's narrow supernodes by plain loops,
-//   its wide ones, which the 3D block has, by BLAS).
+//   its wide ones, which the 3D block has, by BLAS);
+// * SparseCholesky::solve_together() (two bidiagonal factors at a time)
+//   against each factor's own solve, to the bit, and the residual.
 #include <deal.II/grid/grid_generator.h>
 
 #include <impactfe/bodies/elastic_body.h>
@@ -21,6 +23,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "../tests.h"
@@ -93,6 +96,11 @@ namespace
         const FreeRhsCoefficients c = integrator->free_rhs_coefficients();
         FreeRhsOperator           free_rhs;
         free_rhs.reinit(op, c);
+        // the 1D bar's rows go by their diagonals, the others by entries
+        impactfe_tests::check(free_rhs.tridiagonal(0) == (dim == 1),
+                              name + ", " + to_string(scheme) +
+                                ": rows by diagonals in 1D only",
+                              "");
         FreeRhsOperator::Translations translation;
         free_rhs.apply(x, y, rhs, translation); // no components: t = 0
 
@@ -258,6 +266,71 @@ namespace
                           name + ": solve() equals CHOLMOD's solve",
                           "");
   }
+
+  // The step matrix of a body, factorised.
+  template <int dim>
+  std::unique_ptr<SparseCholesky>
+  step_factor(const ElasticBody<dim> &body, SparseMatrix<double> &matrix)
+  {
+    matrix.reinit(body.sparsity_pattern());
+    matrix.copy_from(body.mass_matrix());
+    matrix.add(1e-12, body.stiffness_matrix());
+    auto cholesky = std::make_unique<SparseCholesky>();
+    cholesky->factorize(matrix, "step matrix");
+    return cholesky;
+  }
+
+  // SparseCholesky::solve_together() on four bodies: 1D bars of 320, 200
+  // and 7 cells (bidiagonal factors: the first two are solved as a pair
+  // with rows alternating, of different lengths, the third alone, being
+  // the odd one) and a 2D block between them (simplicial, not a chain).
+  // Each block must equal the body's own solve() to the bit, and solve
+  // M~ x = b.
+  void
+  check_solve_together()
+  {
+    const auto                          bar_320   = make_body<1>({320}, 0.);
+    const auto                          block_6x3 = make_body<2>({6, 3}, 0.);
+    const auto                          bar_200   = make_body<1>({200}, 0.);
+    const auto                          bar_7     = make_body<1>({7}, 0.);
+    std::array<SparseMatrix<double>, 4> matrices;
+    std::vector<std::unique_ptr<SparseCholesky>> factors;
+    factors.push_back(step_factor(*bar_320, matrices[0]));
+    factors.push_back(step_factor(*block_6x3, matrices[1]));
+    factors.push_back(step_factor(*bar_200, matrices[2]));
+    factors.push_back(step_factor(*bar_7, matrices[3]));
+    const std::array<bool, 4> chain = {{true, false, true, true}};
+    for (unsigned int b = 0; b < 4; ++b)
+      impactfe_tests::check(factors[b]->bidiagonal() == chain[b],
+                            "solve_together: factor " + std::to_string(b) +
+                              (chain[b] ? " is" : " is not") + " bidiagonal",
+                            "");
+    std::vector<types::global_dof_index> sizes;
+    for (const auto &factor : factors)
+      sizes.push_back(factor->size());
+    BlockVector<double> b(sizes), x(sizes);
+    for (unsigned int k = 0; k < 4; ++k)
+      fill(b.block(k), 1. + k);
+    x = b;
+    SparseCholesky::solve_together(factors, x);
+    for (unsigned int k = 0; k < 4; ++k)
+      {
+        Vector<double> alone = b.block(k), residual(alone.size());
+        factors[k]->solve(alone);
+        alone -= x.block(k);
+        impactfe_tests::check(alone.linfty_norm() == 0.,
+                              "solve_together: block " + std::to_string(k) +
+                                " equals its own solve to the bit",
+                              "");
+        matrices[k].vmult(residual, x.block(k));
+        residual -= b.block(k);
+        impactfe_tests::check(residual.linfty_norm() <=
+                                1e-13 * b.block(k).linfty_norm(),
+                              "solve_together: block " + std::to_string(k) +
+                                ": |M~ x - b| <= 1e-13 |b|",
+                              "");
+      }
+  }
 } // namespace
 
 int
@@ -274,5 +347,6 @@ main()
   check_cholesky<2>("2D block 6 x 3", {6, 3}, true);
   check_cholesky<2>("2D block 60 x 60", {60, 60}, false);
   check_cholesky<3>("3D block 10 x 10 x 10", {10, 10, 10}, false);
+  check_solve_together();
   return impactfe_tests::n_failed_checks;
 }

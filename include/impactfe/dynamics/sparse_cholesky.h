@@ -1,6 +1,7 @@
 #ifndef impactfe_dynamics_sparse_cholesky_h
 #define impactfe_dynamics_sparse_cholesky_h
 
+#include <deal.II/lac/block_vector.h>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
 
@@ -68,6 +69,17 @@ namespace impactfe
     solve(Vector<double> &rhs_and_solution) const;
 
     /**
+     * x_b <- M~_b^{-1} x_b for every block b of @p x, M~_b the matrix of
+     * factors[b]: the same answers as factors[b]->solve(x.block(b)), but
+     * two simplicial factors at a time with their rows alternating, so
+     * that the processor runs one substitution's chain while the other's
+     * waits (the solves of the 1D bars are latency-bound).
+     */
+    static void
+    solve_together(const std::vector<std::unique_ptr<SparseCholesky>> &factors,
+                   BlockVector<double>                                &x);
+
+    /**
      * X <- M~^{-1} X for @p n_columns right-hand sides stored one after the
      * other (column-major, n rows each). The supernodal solve works on all
      * of them at once with dense blocks, much faster per column than
@@ -123,6 +135,14 @@ namespace impactfe
      */
     bool
     simplicial() const;
+
+    /**
+     * Whether L is bidiagonal (a tridiagonal matrix, a 1D body numbered
+     * along its cells, is factorised in its own order, which makes no
+     * fill): solve_together() solves two such factors at a time.
+     */
+    bool
+    bidiagonal() const;
 
     /** Entries of L (the cost of one solve pair is about 4 of these). */
     std::size_t

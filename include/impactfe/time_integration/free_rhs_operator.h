@@ -90,6 +90,13 @@ namespace impactfe
     add_translation(const Translations  &translation,
                     BlockVector<double> &v) const;
 
+    /**
+     * Whether body @p b's rows are applied by their diagonals (a
+     * tridiagonal pattern: a 1D body numbered along its cells).
+     */
+    bool
+    tridiagonal(const unsigned int b) const;
+
     /** Bytes held. */
     std::size_t
     memory_consumption() const;
@@ -109,8 +116,18 @@ namespace impactfe
       /// A DoF of each component (invalid for a component no DoF has):
       /// t_d and s_d are x and y there.
       std::array<unsigned int, 3> reference = {{0, 0, 0}};
+      /// A tridiagonal pattern (a 1D body numbered along its cells) also
+      /// keeps A's and B's three diagonals as arrays of their own:
+      /// diagonals[3 m + r][i] holds the entry of row i, column i - 1 + r
+      /// of A (m = 0) or B (m = 1), so that a row needs no column index
+      /// and the rows' loop vectorises. Empty for any other pattern.
+      std::array<std::vector<double>, 6> diagonals;
     };
     std::vector<Block> blocks;
+
+    /// Fill Block::diagonals if the block's pattern is tridiagonal.
+    static void
+    set_up_diagonals(Block &block);
   };
 } // namespace impactfe
 
