@@ -57,7 +57,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 # A scheme entry "<scheme>+mr" runs <scheme> with `Mass redistribution =
 # true` (the contact nodes carry no mass, ElasticBody::redistribute_mass()),
 # "<scheme>+ff<k>" with `Free-flight step factor = k` (steps in which no
-# contact can act are k h long); "+mr+ff<k>" both.
+# contact can act are k h long); "+mr+ff<k>" both. "<scheme>+courant" runs
+# <scheme> with `Theta rule = courant`: its "theta" is then kappa (`Theta
+# damping`), and each run's theta is 1/2 + kappa / C (C the mesh's Courant
+# number, summary.json's "theta").
 SCHEMES = [("theta", 0.5, "θ-method, θ = 0.5"),
            ("theta", 0.55, "θ-method, θ = 0.55"),
            ("theta-euler", 0.55, "θ-Euler, θ = 0.55"),
@@ -68,9 +71,14 @@ SCHEMES = [("theta", 0.5, "θ-method, θ = 0.5"),
            ("theta+mr", 0.5, "θ-method, θ = 0.5, mass redistribution"),
            ("modified-theta", 0.5, "modified θ, θ = 0.5"),
            ("modified-theta+ff4", 0.55, "modified θ, θ = 0.55, free flight 4 h"),
-           ("theta+mr+ff4", 0.51, "θ-method, θ = 0.51, mass redistribution, free flight 4 h")]
+           ("theta+mr+ff4", 0.51, "θ-method, θ = 0.51, mass redistribution, free flight 4 h"),
+           ("modified-theta+courant+ff4", 0.025,
+            "modified θ, θ = 1/2 + 0.025/C, free flight 4 h"),
+           ("theta+mr+courant+ff4", 0.025,
+            "θ-method, θ = 1/2 + 0.025/C, mass redistribution, free flight 4 h")]
 COLORS = ["tab:orange", "tab:red", "tab:blue", "tab:green", "tab:purple",
-          "magenta", "black", "darkgoldenrod", "lime", "teal", "gray"]
+          "magenta", "black", "darkgoldenrod", "lime", "teal", "gray", "crimson",
+          "deepskyblue"]
 PEER_COLORS = ["tab:brown", "tab:gray", "tab:olive", "tab:cyan", "tab:pink",
                "black", "gold", "navy"]
 
@@ -130,16 +138,25 @@ def scheme_key(scheme, theta):
 
 
 def time_stepping_overrides(scheme, theta, h, end_time=None):
+    # "<scheme>[+mr][+courant][+ff<k>]", the options in any order
+    scheme, *options = scheme.split("+")
     s = ""
-    if "+ff" in scheme:
-        scheme, factor = scheme.split("+ff")
-        s += f"subsection Time stepping\n  set Free-flight step factor = {int(factor)}\nend\n"
-    if scheme.endswith("+mr"):
-        scheme = scheme[:-len("+mr")]
-        s += "subsection Discretization\n  set Mass redistribution = true\nend\n"
+    courant_rule = False
+    for option in options:
+        if option.startswith("ff"):
+            s += ("subsection Time stepping\n  set Free-flight step factor = "
+                  f"{int(option[2:])}\nend\n")
+        elif option == "mr":
+            s += "subsection Discretization\n  set Mass redistribution = true\nend\n"
+        elif option == "courant":
+            courant_rule = True
+        else:
+            sys.exit(f"scheme option '+{option}' unknown (mr, courant, ff<k>)")
     s += "subsection Time stepping\n"
     s += f"  set Scheme = {scheme}\n"
-    if theta is not None:
+    if courant_rule:
+        s += f"  set Theta rule = courant\n  set Theta damping = {theta!r}\n"
+    elif theta is not None:
         s += f"  set Theta = {theta!r}\n"
     else:
         s += "  set Newmark beta = 0.25\n  set Newmark gamma = 0.5\n"

@@ -10,6 +10,7 @@
 #include <impactfe/bodies/cell_operators.h>
 #include <impactfe/bodies/elastic_body.h>
 
+#include <cmath>
 #include <sstream>
 
 namespace impactfe
@@ -438,6 +439,17 @@ namespace impactfe
   ElasticBody<dim>::material() const
   {
     return material_parameters;
+  }
+
+  template <int dim>
+  double
+  ElasticBody<dim>::cell_transit_time() const
+  {
+    double volume = 0.;
+    for (const auto &cell : mesh.active_cell_iterators())
+      volume += cell->measure();
+    const double cell_size = std::pow(volume / mesh.n_active_cells(), 1. / dim);
+    return cell_size / material_parameters.longitudinal_wave_speed<dim>();
   }
 
   template <int dim>

@@ -540,6 +540,11 @@ namespace impactfe
                            "Friction coefficient");
       second_mesh.parse_parameters(prm, "Mesh of the second body");
       scene.parse_parameters(prm);
+      // The distributed body does not yet compute its cell transit time.
+      AssertThrow(!scene.time_stepping.theta_from_courant,
+                  ExcMessage("Time stepping: 'Theta rule = courant' is not "
+                             "available in the distributed programs yet; "
+                             "set 'Theta rule = fixed' and 'Theta'."));
       mesh.parse_parameters(prm, "Mesh");
       // bodies read the obstacle only if they touch it
       if (!(two_bodies || several_bodies) || touches_obstacle)

@@ -6,7 +6,9 @@
 #include <impactfe/scenes/contact_scene.h>
 #include <impactfe/utilities/program.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 
 namespace impactfe
@@ -156,6 +158,11 @@ namespace impactfe
     for (const auto &b : body_list)
       b->setup();
     apply_loads();
+    // `Theta rule = courant`: theta from the shortest cell transit time.
+    double cell_transit_time = std::numeric_limits<double>::infinity();
+    for (const auto &b : body_list)
+      cell_transit_time = std::min(cell_transit_time, b->cell_transit_time());
+    parameters.time_stepping.apply_theta_rule(cell_transit_time);
 
     multibody_system =
       std::make_unique<MultibodySystem<dim>>(parameters.time_stepping,
@@ -256,6 +263,9 @@ namespace impactfe
     summary.add("program", program_name)
       .add("scheme", to_string(ts.scheme))
       .add("theta", ts.theta)
+      .add("theta_rule",
+           std::string(ts.theta_from_courant ? "courant" : "fixed"))
+      .add("courant_number", ts.courant_number)
       .add("time_step", ts.time_step)
       .add("setup_cpu_seconds", setup_cpu_seconds)
       .add("loop_cpu_seconds", loop_cpu_seconds);
@@ -435,6 +445,9 @@ namespace impactfe
     if (ts.scheme == Scheme::newmark)
       text << " (beta = " << ts.newmark_beta << ", gamma = " << ts.newmark_gamma
            << ")";
+    else if (ts.theta_from_courant)
+      text << " (theta = " << ts.theta << " from the Courant number "
+           << ts.courant_number << ")";
     else
       text << " (theta = " << ts.theta << ")";
     text << ", h = " << ts.time_step << time_unit << ", "

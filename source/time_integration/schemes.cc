@@ -13,6 +13,7 @@
 #include <impactfe/time_integration/time_integrator.h>
 #include <impactfe/utilities/program.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -54,6 +55,26 @@ namespace impactfe
                       Patterns::Double(),
                       "theta of the theta-schemes [-], in [0.5, 1]. 0.5 is "
                       "the trapezoidal rule; larger values damp.");
+    prm.declare_entry(
+      "Theta rule",
+      "fixed",
+      Patterns::Selection("fixed|courant"),
+      "fixed: theta is the entry 'Theta'. courant: theta = 1/2 + kappa / C "
+      "(at most 1), C = c_p h / dx the Courant number of the mesh (c_p the "
+      "P-wave speed, dx = (volume / number of cells)^(1/dim), the body with "
+      "the shortest dx / c_p), kappa the entry 'Theta damping'; 'Theta' is "
+      "then not used. The scheme's numerical damping, that of a "
+      "stiffness-proportional damping (theta - 1/2) h, is then kappa dx / "
+      "c_p at every time step: less damping at large steps (where "
+      "theta = 0.55 damps the physical modes), more at small ones (where "
+      "theta = 1/2 leaves the mesh's ringing in the contact forces). "
+      "Theta-schemes only.");
+    prm.declare_entry("Theta damping",
+                      "0.025",
+                      Patterns::Double(),
+                      "kappa of 'Theta rule = courant' [-], > 0: the "
+                      "numerical damping coefficient (theta - 1/2) h in units "
+                      "of the cell transit time dx / c_p.");
     prm.declare_entry("Newmark beta",
                       "0.25",
                       Patterns::Double(),
@@ -97,6 +118,8 @@ namespace impactfe
                               name == "modified-theta" ? Scheme::modified_theta :
                                                          Scheme::newmark;
     theta                   = prm.get_double("Theta");
+    theta_from_courant      = prm.get("Theta rule") == "courant";
+    theta_damping           = prm.get_double("Theta damping");
     newmark_beta            = prm.get_double("Newmark beta");
     newmark_gamma           = prm.get_double("Newmark gamma");
     time_step               = prm.get_double("Time step");
@@ -110,6 +133,12 @@ namespace impactfe
                 ExcMessage("Time stepping: 'Theta' must be in [0.5, 1] (the "
                            "schemes are unconditionally stable there), got " +
                            format_input(theta) + "."));
+    AssertThrow(!theta_from_courant || scheme != Scheme::newmark,
+                ExcMessage("Time stepping: 'Theta rule = courant' needs a "
+                           "theta-scheme, got 'Scheme = newmark'."));
+    AssertThrow(theta_damping > 0. && std::isfinite(theta_damping),
+                ExcMessage("Time stepping: 'Theta damping' must be > 0, got " +
+                           format_input(theta_damping) + "."));
     AssertThrow(newmark_beta > 0. && newmark_beta <= 0.5,
                 ExcMessage("Time stepping: 'Newmark beta' must be in "
                            "(0, 0.5], got " +
@@ -141,6 +170,24 @@ namespace impactfe
   TimeSteppingParameters::n_steps() const
   {
     return static_cast<unsigned int>(std::ceil(end_time / time_step - 1e-9));
+  }
+
+
+
+  void
+  TimeSteppingParameters::apply_theta_rule(const double cell_transit_time)
+  {
+    const bool valid =
+      cell_transit_time > 0. && std::isfinite(cell_transit_time);
+    if (valid)
+      courant_number = time_step / cell_transit_time;
+    if (!theta_from_courant)
+      return;
+    AssertThrow(valid,
+                ExcMessage("Time stepping: 'Theta rule = courant' needs the "
+                           "cells' wave transit time dx / c_p > 0, got " +
+                           format_number(cell_transit_time) + " s."));
+    theta = std::min(1., 0.5 + theta_damping / courant_number);
   }
 
 

@@ -76,6 +76,14 @@ main()
   run_case("time_step_longer_than_end_time",
            with("Time stepping", "Time step = 0.1\n  set End time = 0.02"));
   run_case("theta_not_a_number", with("Time stepping", "Theta = abc"));
+  // the Courant rule: kappa must be positive, and Newmark has no theta
+  run_case("theta_rule_unknown", with("Time stepping", "Theta rule = auto"));
+  run_case("theta_damping_zero",
+           with("Time stepping",
+                "Theta rule = courant\n  set Theta damping = 0"));
+  run_case("theta_rule_courant_newmark",
+           with("Time stepping",
+                "Theta rule = courant\n  set Scheme = newmark"));
   run_case("negative_time_step", with("Time stepping", "Time step = -1e-6"));
   run_case("zero_end_time", with("Time stepping", "End time = 0"));
   run_case("newmark_beta_zero", with("Time stepping", "Newmark beta = 0"));
@@ -294,6 +302,9 @@ main()
            with("Time stepping", "Scheme = newmark") +
              "subsection Discretization\n  set Mass redistribution = true\n"
              "end\n",
+           mpi);
+  run_case("mpi_theta_rule_courant",
+           with("Time stepping", "Theta rule = courant"),
            mpi);
   run_case("mpi_empty_contact_boundary",
            with("Mesh", "Contact boundary id = 7"),

@@ -82,6 +82,13 @@ namespace impactfe
     name() const;
     const MaterialParameters &
     material() const;
+    /**
+     * dx / c_p: the time a P-wave takes to cross a cell, with dx = (volume /
+     * number of cells)^(1/dim) the mean cell size and c_p the material's
+     * longitudinal wave speed. h over it is the mesh's Courant number.
+     */
+    double
+    cell_transit_time() const;
     /** The constitutive law of the body (from its MaterialParameters). */
     const ConstitutiveModel<dim> &
     constitutive_model() const;

@@ -42,6 +42,13 @@ namespace impactfe
     double newmark_gamma = 0.5;
     double time_step     = 1e-3;
     double end_time      = 1.;
+    /// `Theta rule = courant`: theta is set by apply_theta_rule() from the
+    /// cell transit time of the mesh, theta = 1/2 + kappa dx / (c_p h).
+    bool   theta_from_courant = false;
+    double theta_damping      = 0.025;
+    /// The Courant number c_p h / dx apply_theta_rule() found (0: not set
+    /// by the program).
+    double courant_number = 0.;
     /// Steps without contact are made this many times longer (see the
     /// entry `Free-flight step factor` and MultibodySystem::do_time_step()).
     unsigned int free_flight_step_factor = 1;
@@ -56,6 +63,20 @@ namespace impactfe
      * by less than a rounding error). */
     unsigned int
     n_steps() const;
+
+    /**
+     * With `Theta rule = courant`, sets theta = min(1, 1/2 + kappa / C),
+     * C = h / @p cell_transit_time, from the shortest time dx / c_p a
+     * P-wave takes to cross a cell of any body (the scene computes it, see
+     * ElasticBody::cell_transit_time()). The theta-method's damping of a
+     * mode of frequency omega is that of a stiffness-proportional damping of
+     * coefficient (theta - 1/2) h for omega h << 1 (damping ratio (theta -
+     * 1/2) omega h / 2); the rule makes it kappa dx / c_p at every h, a
+     * mesh-scale viscosity that vanishes as the mesh is refined. With the
+     * fixed rule it only records the Courant number.
+     */
+    void
+    apply_theta_rule(const double cell_transit_time);
   };
 
 
