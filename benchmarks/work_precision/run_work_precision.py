@@ -25,7 +25,9 @@ What is measured (see benchmarks/work_precision/README.md):
 - cpu_loop_seconds: the program's own CPU clock around the time loop
   (summary.json), without the output;
 - cheap runs (loop < 0.2 s) are repeated (best of --repeats) and the
-  smallest of each CPU figure is kept.
+  smallest of each CPU figure is kept; all schemes at one grid point (mesh
+  and step) run in turn, round after round, so that they share the
+  machine's state (measured_runs).
 Errors: 1D err_v, err_f, energy_ratio from summary.json (the program's
 definitions against the exact solution). 2D: err_force = the L1 norm in time
 of the total normal contact force minus that of a fine reference run,
@@ -166,27 +168,32 @@ def time_stepping_overrides(scheme, theta, h, end_time=None):
     return s + "end\n"
 
 
-def measured_run(build, program, prm, out_dir, overrides, repeats):
-    """Run, repeating cheap runs (loop CPU < 0.2 s) up to <repeats> times;
-    keep the smallest run and loop CPU. Returns (result, n_runs)."""
-    best = None
-    n = 0
-    while n < max(1, repeats):
-        result = runs.run_measured(build, program, prm, out_dir, overrides)
-        n += 1
-        if result["summary"] is None:
-            return result, n
-        if best is None:
-            best = result
-        else:
-            best["cpu_run_seconds"] = min(best["cpu_run_seconds"],
-                                          result["cpu_run_seconds"])
+def measured_runs(build, program, prm, cases, repeats):
+    """Run each case (out_dir, overrides) of one grid point, the cases in
+    turn: up to <repeats> rounds, in which every case whose runs so far
+    were cheap (loop CPU < 0.2 s) runs once more; keep each case's
+    smallest run and loop CPU. The schemes at one point so share the
+    machine's state (frequency, cache sharing, other load), which moves by
+    more than the schemes differ at the cheap end when each scheme runs its
+    whole grid on its own. Returns [(result, n_runs)] in the order of
+    <cases>."""
+    best = [None] * len(cases)
+    count = [0] * len(cases)
+    for _ in range(max(1, repeats)):
+        for i, (out_dir, overrides) in enumerate(cases):
+            b = best[i]
+            if b is not None and (b["summary"] is None
+                                  or b["summary"]["loop_cpu_seconds"] >= 0.2):
+                continue
+            result = runs.run_measured(build, program, prm, out_dir, overrides)
+            count[i] += 1
+            if b is None or result["summary"] is None:
+                best[i] = result
+                continue
+            b["cpu_run_seconds"] = min(b["cpu_run_seconds"], result["cpu_run_seconds"])
             for key in ("loop_cpu_seconds", "setup_cpu_seconds"):
-                best["summary"][key] = min(best["summary"][key],
-                                           result["summary"][key])
-        if result["summary"]["loop_cpu_seconds"] >= 0.2:
-            break
-    return best, n
+                b["summary"][key] = min(b["summary"][key], result["summary"][key])
+    return list(zip(best, count))
 
 
 def status_of(result):
@@ -353,16 +360,29 @@ def bars_data():
     return math.sqrt(E / rho), L
 
 
-def run_bars_case(args, scheme, theta, cells, courant, level, end_time):
+def bars_case(args, scheme, theta, cells, courant, end_time):
+    """(out_dir, overrides) of one 1D run."""
+    c, L = bars_data()
+    h = courant * (L / cells) / c
+    tag = f"{scheme}_{theta}_{cells}_{courant}"
+    return (os.path.join(args.runs, "two_bars_1d", tag),
+            f"subsection Geometry\n  set Number of cells per bar = {cells}\nend\n"
+            + time_stepping_overrides(scheme, theta, h, end_time))
+
+
+def run_bars_points(args, points, level, end_time):
+    """The 1D runs of <points> [(scheme, theta, cells, courant)], measured
+    together (measured_runs); returns their rows."""
+    cases = [bars_case(args, *p, end_time) for p in points]
+    measured = measured_runs(args.build, "two_bars_1d", BARS_PRM, cases, args.repeats)
+    return [bars_row(p, level, result, n) for p, (result, n) in zip(points, measured)]
+
+
+def bars_row(point, level, result, n):
+    scheme, theta, cells, courant = point
     c, L = bars_data()
     dx = L / cells
     h = courant * dx / c
-    tag = f"{scheme}_{theta}_{cells}_{courant}"
-    out = os.path.join(args.runs, "two_bars_1d", tag)
-    overrides = (f"subsection Geometry\n  set Number of cells per bar = {cells}\nend\n"
-                 + time_stepping_overrides(scheme, theta, h, end_time))
-    result, n = measured_run(args.build, "two_bars_1d", BARS_PRM, out, overrides,
-                             args.repeats)
     s = result["summary"] or {}
     row = {"code": "impactfe", "scheme": scheme,
            "theta": "" if theta is None else theta,
@@ -431,18 +451,26 @@ def merged_with_kept(args, path, new_rows):
     return kept + new_rows
 
 
+def scheme_major(rows):
+    """<rows> (measured point by point) in the order of SCHEMES, each
+    scheme's rows in the order they were run: the CSVs read scheme by
+    scheme."""
+    order = [scheme_key(s, t) for s, t, _ in SCHEMES]
+    return sorted(rows, key=lambda r: order.index(scheme_key(r["scheme"], row_theta(r))))
+
+
 def run_bars(args):
     if args.quick:
         cells_list, courants = [10, 20, 40, 80, 160], [0.9, 2.0]
     else:
         cells_list, courants = [10, 20, 40, 80, 160, 320, 640, 1280], [0.25, 0.5, 0.9, 2.0, 4.0]
     rows = []
-    for scheme, theta, _ in selected_schemes(args):
-        for level, cells in enumerate(cells_list):
-            for courant in courants:
-                rows.append(run_bars_case(args, scheme, theta, cells, courant,
-                                          level, BARS_END_TIME))
-    return extend_bars(args, rows)
+    for level, cells in enumerate(cells_list):
+        for courant in courants:
+            rows += run_bars_points(args, [(s, t, cells, courant)
+                                           for s, t, _ in selected_schemes(args)],
+                                    level, BARS_END_TIME)
+    return extend_bars(args, scheme_major(rows))
 
 
 def extend_bars(args, rows):
@@ -476,8 +504,8 @@ def extend_bars(args, rows):
             nxt = 2 * cells if 4 * cells < need else \
                 max(cells + 10, int(math.ceil(1.2 * need / 10.)) * 10)
             cells, level = nxt, level + 1
-            row = run_bars_case(args, scheme, theta, cells, courant, level,
-                                BARS_END_TIME)
+            row, = run_bars_points(args, [(scheme, theta, cells, courant)], level,
+                                   BARS_END_TIME)
             rows.append(row)
             mine.append(row)
             if row["status"] != "ok" or float(row["err_v"]) <= TARGET_ERR_V:
@@ -728,17 +756,20 @@ def run_scene(args, name):
              f"duration {duration:.6g}, norm {norm:.6g}; uncertainty (2h vs h) "
              f"{rows[1]['err_force']}")
 
-    for scheme, theta, _ in selected_schemes(args):
-        for level, mesh in enumerate(grid["meshes"]):
-            dx = dx_of(mesh)
-            for factor in grid["factors"]:
-                h = h_paper * factor * dx / dx_of(paper_mesh)
-                tag = f"{scheme}_{theta}_{mesh[0]}x{mesh[1]}_{factor}"
-                out = os.path.join(args.runs, name, tag)
-                result, n = measured_run(args.build, program, prm, out,
-                                         mesh_overrides(name, mesh) + sc["extra"]
-                                         + time_stepping_overrides(scheme, theta, h),
-                                         args.repeats)
+    grid_rows = []
+    for level, mesh in enumerate(grid["meshes"]):
+        dx = dx_of(mesh)
+        for factor in grid["factors"]:
+            h = h_paper * factor * dx / dx_of(paper_mesh)
+            schemes = selected_schemes(args)
+            outs = [os.path.join(args.runs, name, f"{scheme}_{theta}_{mesh[0]}x{mesh[1]}_{factor}")
+                    for scheme, theta, _ in schemes]
+            measured = measured_runs(
+                args.build, program, prm,
+                [(out, mesh_overrides(name, mesh) + sc["extra"]
+                  + time_stepping_overrides(scheme, theta, h))
+                 for out, (scheme, theta, _) in zip(outs, schemes)], args.repeats)
+            for out, (scheme, theta, _), (result, n) in zip(outs, schemes, measured):
                 err = err_time = err_impulse = None
                 if result["summary"] is not None:
                     force = read_force(out)
@@ -748,11 +779,12 @@ def run_scene(args, name):
                         err_time = l1_force_difference(force, same_force, end_time) / norm
                 row = scene_row(name, scheme, theta, level, mesh, dx, factor, h, c_p,
                                 result, n, err, err_time, err_impulse)
-                rows.append(row)
+                grid_rows.append(row)
                 progress(f"{name} {scheme:14s} θ={theta} {row['mesh']:>5s} h={h:<10.4g} "
                          f"C={row['courant']:>6s} err={row['err_force']:>10s} "
                          f"loop={row['cpu_loop_seconds']:>8s}s run={row['cpu_run_seconds']:>6s}s"
                          f" x{n} {row['status'] if row['status'] != 'ok' else ''}")
+    rows += scheme_major(grid_rows)
     return rows
 
 
