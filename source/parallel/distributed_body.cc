@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 namespace impactfe
@@ -500,6 +501,45 @@ namespace impactfe
     DistributedElasticBody<dim>::total_mass() const
     {
       return mass_total;
+    }
+
+
+
+    template <int dim>
+    double
+    DistributedElasticBody<dim>::cell_transit_time() const
+    {
+      // The parts are the material ids of all ranks: sum volume and cell
+      // count per id over the ranks, then take each part's mean cell.
+      unsigned int highest_id = 0;
+      for (const auto &cell : mesh.active_cell_iterators())
+        if (cell->is_locally_owned())
+          highest_id = std::max<unsigned int>(highest_id, cell->material_id());
+      highest_id = Utilities::MPI::max(highest_id, communicator());
+      std::vector<double> volume(highest_id + 1, 0.),
+        n_cells(highest_id + 1, 0.);
+      for (const auto &cell : mesh.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            volume[cell->material_id()] += cell->measure();
+            n_cells[cell->material_id()] += 1.;
+          }
+      Utilities::MPI::sum(volume, communicator(), volume);
+      Utilities::MPI::sum(n_cells, communicator(), n_cells);
+      double shortest = std::numeric_limits<double>::infinity();
+      for (unsigned int id = 0; id <= highest_id; ++id)
+        if (n_cells[id] > 0.)
+          {
+            const auto                part = part_materials.find(id);
+            const MaterialParameters &material =
+              part == part_materials.end() ? material_parameters : part->second;
+            const double cell_size =
+              std::pow(volume[id] / n_cells[id], 1. / dim);
+            shortest =
+              std::min(shortest,
+                       cell_size / material.longitudinal_wave_speed<dim>());
+          }
+      return shortest;
     }
 
 

@@ -540,11 +540,6 @@ namespace impactfe
                            "Friction coefficient");
       second_mesh.parse_parameters(prm, "Mesh of the second body");
       scene.parse_parameters(prm);
-      // The distributed body does not yet compute its cell transit time.
-      AssertThrow(!scene.time_stepping.theta_from_courant,
-                  ExcMessage("Time stepping: 'Theta rule = courant' is not "
-                             "available in the distributed programs yet; "
-                             "set 'Theta rule = fixed' and 'Theta'."));
       mesh.parse_parameters(prm, "Mesh");
       // bodies read the obstacle only if they touch it
       if (!(two_bodies || several_bodies) || touches_obstacle)
@@ -679,6 +674,7 @@ namespace impactfe
       const DistributedSceneParameters &parameters,
       const std::string                &file)
       : parameters(parameters)
+      , time_stepping(parameters.scene.time_stepping)
       , parameter_file(file)
       , comm(MPI_COMM_WORLD)
       , n_ranks(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD))
@@ -1077,6 +1073,7 @@ namespace impactfe
       for (unsigned int b = 0; b < parameters.body_materials.size(); ++b)
         body.set_part_material(b, parameters.body_materials[b]);
       body.setup();
+      time_stepping.apply_theta_rule(body.cell_transit_time());
       if (parameters.multibody())
         {
           contact.setup_from_contact_set(body,
@@ -1147,7 +1144,7 @@ namespace impactfe
       solver = std::make_unique<DistributedImpactSolver<dim>>(
         body,
         contact,
-        parameters.scene.time_stepping,
+        time_stepping,
         parameters.scene.contact_solver,
         parameters.linear_solver);
       solver->setup();
@@ -1160,8 +1157,10 @@ namespace impactfe
       normal[1] = 1.;
       if (!parameters.impact)
         {
-          tracker = std::make_unique<RigidBlockTracker<dim>>(
-            normal, direction(), parameters.scene.time_stepping.time_step);
+          tracker =
+            std::make_unique<RigidBlockTracker<dim>>(normal,
+                                                     direction(),
+                                                     time_stepping.time_step);
           tracker->start(launch_velocity());
         }
 
@@ -1378,7 +1377,7 @@ namespace impactfe
           p0[b]            = body_momentum(solver->velocity(), b);
           largest_momentum = std::max(largest_momentum, p0[b].norm());
         }
-      n_steps = parameters.scene.time_stepping.n_steps();
+      n_steps = time_stepping.n_steps();
       // the impulses are summed as h F per step, F the step's contact force,
       // as in the serial ContactMonitor: P / w with w the contact force
       // weight (w < 1 for Newmark and massless contact nodes, whose
@@ -1471,7 +1470,7 @@ namespace impactfe
         body.momentum(solver->velocity()) * direction() / mass;
       const double distance =
         body.momentum(solver->displacement()) * direction() / mass;
-      const auto &ts = parameters.scene.time_stepping;
+      const auto &ts = time_stepping;
       // the friction coefficients of the pairs and obstacle contacts, in
       // the order of the parameter file
       std::string pair_frictions, obstacle_frictions;
@@ -1499,8 +1498,11 @@ namespace impactfe
                                   "Block sliding on a plane in ")
           << dim << "D on " << n_ranks << " MPI rank"
           << (n_ranks > 1 ? "s" : "") << ", scheme " << to_string(ts.scheme)
-          << " (theta = " << ts.theta << "), h = " << ts.time_step << " s, "
-          << n_steps << " steps"
+          << " (theta = " << ts.theta
+          << (ts.theta_from_courant ?
+                " from the Courant number " + format_number(ts.courant_number) :
+                std::string())
+          << "), h = " << ts.time_step << " s, " << n_steps << " steps"
           << (stats.free_flight_steps > 0 ?
                 " (" + std::to_string(n_steps_taken) + " taken, " +
                   std::to_string(stats.free_flight_steps) + " of them " +
@@ -1711,6 +1713,10 @@ namespace impactfe
         .add("dimension", double(dim))
         .add("ranks", double(n_ranks))
         .add("scheme", to_string(ts.scheme))
+        .add("theta", ts.theta)
+        .add("theta_rule",
+             std::string(ts.theta_from_courant ? "courant" : "fixed"))
+        .add("courant_number", ts.courant_number)
         .add("time_step", ts.time_step)
         .add("cells", double(body.triangulation().n_global_active_cells()))
         .add("dofs", double(body.dof_handler().n_dofs()))

@@ -66,6 +66,9 @@ def main():
     ap.add_argument("--compare", required=True)
     ap.add_argument("--work", required=True)
     ap.add_argument("--rename", action="append", default=[])
+    ap.add_argument("--expect-theta", type=float,
+                    help="theta both runs' summary.json must give (to 5e-5; "
+                         "Theta rule = courant, worked out by hand)")
     ap.add_argument("--copy-parallel-prm", action="store_true",
                     help="run a copy of --parallel-prm in the work directory "
                          "(its mesh files are the serial run's output)")
@@ -86,6 +89,19 @@ def main():
     e_serial = serial.get("checks", serial)["impulse_balance_error"]
     e_mpi = mpi["impulse_balance_error"]
     print(f"impulse balance errors: serial {e_serial:.2e}, two ranks {e_mpi:.2e}")
+    # the same theta (Theta rule = courant: from each run's own mesh)
+    if "theta" in serial and "theta" in mpi:
+        print(f"theta: serial {serial['theta']:.12g}, two ranks "
+              f"{mpi['theta']:.12g}")
+        if abs(serial["theta"] - mpi["theta"]) > 1e-12:
+            print("the runs' theta differ")
+            return 1
+    if a.expect_theta is not None:
+        for name, summary in (("serial", serial), ("two ranks", mpi)):
+            if abs(summary.get("theta", float("nan")) - a.expect_theta) > 5e-5:
+                print(f"{name}: theta = {summary.get('theta')}, expected "
+                      f"{a.expect_theta}")
+                return 1
     return subprocess.call([sys.executable, a.compare,
                             os.path.join(a.work, "serial/results/history.csv"),
                             os.path.join(a.work, "mpi/results/history.csv"),

@@ -303,9 +303,6 @@ main()
              "subsection Discretization\n  set Mass redistribution = true\n"
              "end\n",
            mpi);
-  run_case("mpi_theta_rule_courant",
-           with("Time stepping", "Theta rule = courant"),
-           mpi);
   run_case("mpi_empty_contact_boundary",
            with("Mesh", "Contact boundary id = 7"),
            mpi);

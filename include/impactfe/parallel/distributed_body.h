@@ -123,6 +123,17 @@ namespace impactfe
       double
       total_mass() const;
 
+      /**
+       * The shortest time a longitudinal wave takes to cross a mean cell,
+       * dx / c_p [s], with dx = (V / N)^(1/dim) over the cells of one
+       * material id (one body of a merged mesh) and c_p of that part's
+       * material: the minimum over the parts. For one body it equals
+       * ElasticBody::cell_transit_time() (the same sums, over all ranks).
+       * Collective.
+       */
+      double
+      cell_transit_time() const;
+
       /// @p value at every node (all components) of the cells with
       /// material id @p part (all cells by default: one body); the other
       /// entries are left as they are.

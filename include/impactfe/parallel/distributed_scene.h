@@ -215,12 +215,16 @@ namespace impactfe
       body_size() const;
 
       const DistributedSceneParameters parameters;
-      const std::string                parameter_file;
-      MPI_Comm                         comm;
-      const unsigned int               n_ranks;
-      ConditionalOStream               pcout;
-      DistributedElasticBody<dim>      body;
-      DistributedContact<dim>          contact;
+      /// The time stepping of the run: the parameter file's, with theta
+      /// set from the mesh's Courant number in setup_system() when
+      /// 'Theta rule = courant'.
+      TimeSteppingParameters      time_stepping;
+      const std::string           parameter_file;
+      MPI_Comm                    comm;
+      const unsigned int          n_ranks;
+      ConditionalOStream          pcout;
+      DistributedElasticBody<dim> body;
+      DistributedContact<dim>     contact;
       /// Scene = two bodies: the candidates between the bodies and against
       /// the obstacle on the bodies' own meshes (the serial ContactSet),
       /// and where each body's vertices start in the merged mesh.
