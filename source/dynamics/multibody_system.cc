@@ -235,9 +235,8 @@ namespace impactfe
     coarse_step_solvers.clear();
     if (time_stepping.free_flight_step_factor > 1)
       {
-        TimeSteppingParameters coarse = time_stepping;
-        coarse.time_step *= time_stepping.free_flight_step_factor;
-        coarse_scheme = create_time_integrator(coarse);
+        coarse_scheme =
+          create_time_integrator(time_stepping.free_flight_parameters());
         factorize_step_matrices(*coarse_scheme,
                                 coarse_step_matrices,
                                 coarse_step_solvers);

@@ -153,10 +153,9 @@ namespace impactfe
       // the free-flight level: the same scheme with k h
       if (time.free_flight_step_factor > 1)
         {
-          TimeSteppingParameters coarse_time = time;
-          coarse_time.time_step *= time.free_flight_step_factor;
-          coarse         = std::make_unique<StepOperators>();
-          coarse->scheme = create_time_integrator(coarse_time);
+          coarse = std::make_unique<StepOperators>();
+          coarse->scheme =
+            create_time_integrator(time.free_flight_parameters());
           set_rule(*coarse);
           free_flight_factor = time.free_flight_step_factor;
         }

@@ -1497,12 +1497,8 @@ namespace impactfe
               parameters.impact ? "Impact on an obstacle in " :
                                   "Block sliding on a plane in ")
           << dim << "D on " << n_ranks << " MPI rank"
-          << (n_ranks > 1 ? "s" : "") << ", scheme " << to_string(ts.scheme)
-          << " (theta = " << ts.theta
-          << (ts.theta_from_courant ?
-                " from the Courant number " + format_number(ts.courant_number) :
-                std::string())
-          << "), h = " << ts.time_step << " s, " << n_steps << " steps"
+          << (n_ranks > 1 ? "s" : "") << ", scheme " << ts.scheme_description()
+          << ", h = " << ts.time_step << " s, " << n_steps << " steps"
           << (stats.free_flight_steps > 0 ?
                 " (" + std::to_string(n_steps_taken) + " taken, " +
                   std::to_string(stats.free_flight_steps) + " of them " +
@@ -1711,14 +1707,9 @@ namespace impactfe
              parameters.impact         ? "impact" :
                                          "sliding block")
         .add("dimension", double(dim))
-        .add("ranks", double(n_ranks))
-        .add("scheme", to_string(ts.scheme))
-        .add("theta", ts.theta)
-        .add("theta_rule",
-             std::string(ts.theta_from_courant ? "courant" : "fixed"))
-        .add("courant_number", ts.courant_number)
-        .add("time_step", ts.time_step)
-        .add("cells", double(body.triangulation().n_global_active_cells()))
+        .add("ranks", double(n_ranks));
+      ts.add_to_summary(summary);
+      summary.add("cells", double(body.triangulation().n_global_active_cells()))
         .add("dofs", double(body.dof_handler().n_dofs()))
         .add("contact_candidates", double(contact.n_candidates()))
         .add("n_steps", double(n_steps))

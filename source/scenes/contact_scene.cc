@@ -260,14 +260,9 @@ namespace impactfe
     const TimeSteppingParameters &ts = parameters.time_stepping;
     std::ostringstream            out;
     JsonObject                    summary;
-    summary.add("program", program_name)
-      .add("scheme", to_string(ts.scheme))
-      .add("theta", ts.theta)
-      .add("theta_rule",
-           std::string(ts.theta_from_courant ? "courant" : "fixed"))
-      .add("courant_number", ts.courant_number)
-      .add("time_step", ts.time_step)
-      .add("setup_cpu_seconds", setup_cpu_seconds)
+    summary.add("program", program_name);
+    ts.add_to_summary(summary);
+    summary.add("setup_cpu_seconds", setup_cpu_seconds)
       .add("loop_cpu_seconds", loop_cpu_seconds);
     const CostBreakdown &costs = multibody_system->cost_breakdown();
     // per step: per call of do_time_step() (a free-flight step is one)
@@ -441,17 +436,8 @@ namespace impactfe
   {
     const TimeSteppingParameters &ts = parameters.time_stepping;
     std::ostringstream            text;
-    text << "scheme " << to_string(ts.scheme);
-    if (ts.scheme == Scheme::newmark)
-      text << " (beta = " << ts.newmark_beta << ", gamma = " << ts.newmark_gamma
-           << ")";
-    else if (ts.theta_from_courant)
-      text << " (theta = " << ts.theta << " from the Courant number "
-           << ts.courant_number << ")";
-    else
-      text << " (theta = " << ts.theta << ")";
-    text << ", h = " << ts.time_step << time_unit << ", "
-         << run_summary().n_steps << " steps";
+    text << "scheme " << ts.scheme_description() << ", h = " << ts.time_step
+         << time_unit << ", " << run_summary().n_steps << " steps";
     if (ts.free_flight_step_factor > 1)
       text << " (" << run_summary().free_flight_steps << " of them "
            << ts.free_flight_step_factor << " h long)";

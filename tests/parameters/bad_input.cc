@@ -81,6 +81,9 @@ main()
   run_case("theta_damping_zero",
            with("Time stepping",
                 "Theta rule = courant\n  set Theta damping = 0"));
+  // the rule sets theta: a Theta of the user's would be dropped silently
+  run_case("theta_rule_courant_with_theta",
+           with("Time stepping", "Theta rule = courant\n  set Theta = 0.6"));
   run_case("theta_rule_courant_newmark",
            with("Time stepping",
                 "Theta rule = courant\n  set Scheme = newmark"));

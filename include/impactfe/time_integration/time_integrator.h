@@ -18,6 +18,7 @@ namespace impactfe
   using namespace dealii;
 
   class ContactSet;
+  class JsonObject;
 
   /** The time schemes of ../shared/spec/schemes.md. */
   enum class Scheme
@@ -77,6 +78,27 @@ namespace impactfe
      */
     void
     apply_theta_rule(const double cell_transit_time);
+
+    /**
+     * The parameters of the free-flight level: the step and the Courant
+     * number are `Free-flight step factor` times larger, theta is that of
+     * h (also under `Theta rule = courant`: see the measurement in the
+     * function body).
+     */
+    TimeSteppingParameters
+    free_flight_parameters() const;
+
+    /**
+     * "theta-euler (theta = 0.55)", "newmark (beta = 0.25, gamma = 0.5)" or
+     * "modified-theta (theta = 0.52 from the Courant number 1.4)": the
+     * scheme as the programs print it.
+     */
+    std::string
+    scheme_description() const;
+
+    /** Adds scheme, theta, theta_rule, courant_number and time_step. */
+    void
+    add_to_summary(JsonObject &summary) const;
   };
 
 
