@@ -7,7 +7,7 @@ the mass-redistribution variants) on the 1D two-bar impact, the two bars in
 usage (from anywhere; the script works from the repository top):
     /usr/bin/python3 benchmarks/work_precision/run_work_precision.py \
         [--build build] [--out doc] [--quick] [--only 1d,bars2d,cylinder,plate]
-        [--plot-only] [--repeats 3] [--extend-budget 120]
+        [--plot-only] [--repeats 3] [--repeat-below 0.2] [--extend-budget 120]
 
 --build DIR      executables DIR/bin/<program>; if DIR/lib exists it is put
                  in LD_LIBRARY_PATH (a copy of a build, e.g. /work/snap)
@@ -24,7 +24,8 @@ What is measured (see benchmarks/work_precision/README.md):
   libraries and MPI, ~0.3-0.5 s);
 - cpu_loop_seconds: the program's own CPU clock around the time loop
   (summary.json), without the output;
-- cheap runs (loop < 0.2 s) are repeated (best of --repeats) and the
+- cheap runs (loop < --repeat-below, default 0.2 s) are repeated (best
+  of --repeats) and the
   smallest of each CPU figure is kept; all schemes at one grid point (mesh
   and step) run in turn, round after round, so that they share the
   machine's state (measured_runs).
@@ -168,10 +169,10 @@ def time_stepping_overrides(scheme, theta, h, end_time=None):
     return s + "end\n"
 
 
-def measured_runs(build, program, prm, cases, repeats):
+def measured_runs(build, program, prm, cases, repeats, repeat_below):
     """Run each case (out_dir, overrides) of one grid point, the cases in
     turn: up to <repeats> rounds, in which every case whose runs so far
-    were cheap (loop CPU < 0.2 s) runs once more; keep each case's
+    were cheap (loop CPU < <repeat_below> s) runs once more; keep each case's
     smallest run and loop CPU. The schemes at one point so share the
     machine's state (frequency, cache sharing, other load), which moves by
     more than the schemes differ at the cheap end when each scheme runs its
@@ -183,7 +184,7 @@ def measured_runs(build, program, prm, cases, repeats):
         for i, (out_dir, overrides) in enumerate(cases):
             b = best[i]
             if b is not None and (b["summary"] is None
-                                  or b["summary"]["loop_cpu_seconds"] >= 0.2):
+                                  or b["summary"]["loop_cpu_seconds"] >= repeat_below):
                 continue
             result = runs.run_measured(build, program, prm, out_dir, overrides)
             count[i] += 1
@@ -374,7 +375,8 @@ def run_bars_points(args, points, level, end_time):
     """The 1D runs of <points> [(scheme, theta, cells, courant)], measured
     together (measured_runs); returns their rows."""
     cases = [bars_case(args, *p, end_time) for p in points]
-    measured = measured_runs(args.build, "two_bars_1d", BARS_PRM, cases, args.repeats)
+    measured = measured_runs(args.build, "two_bars_1d", BARS_PRM, cases, args.repeats,
+                             args.repeat_below)
     return [bars_row(p, level, result, n) for p, (result, n) in zip(points, measured)]
 
 
@@ -768,7 +770,8 @@ def run_scene(args, name):
                 args.build, program, prm,
                 [(out, mesh_overrides(name, mesh) + sc["extra"]
                   + time_stepping_overrides(scheme, theta, h))
-                 for out, (scheme, theta, _) in zip(outs, schemes)], args.repeats)
+                 for out, (scheme, theta, _) in zip(outs, schemes)], args.repeats,
+                args.repeat_below)
             for out, (scheme, theta, _), (result, n) in zip(outs, schemes, measured):
                 err = err_time = err_impulse = None
                 if result["summary"] is not None:
@@ -1223,8 +1226,12 @@ def main():
                         help="1D: no grid runs, only the extension runs, added to the "
                              "CSV in --out (use with a larger --extend-budget)")
     parser.add_argument("--repeats", type=int, default=None,
-                        help="best of this many runs when the loop takes < 0.2 s "
-                             "(default 3, --quick 1)")
+                        help="best of this many runs when the loop takes less "
+                             "than --repeat-below (default 3, --quick 1)")
+    parser.add_argument("--repeat-below", type=float, default=0.2,
+                        help="loop CPU seconds below which a run is repeated "
+                             "(default 0.2; larger values make the middle of the "
+                             "grid less noisy at more run time)")
     parser.add_argument("--extend-budget", type=float, default=None,
                         help="1D: largest predicted loop CPU seconds of one extension "
                              "run (default 120, --quick 0)")
