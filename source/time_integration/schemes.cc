@@ -209,9 +209,10 @@ namespace impactfe
     coarse.courant_number *= free_flight_step_factor;
     // theta stays that of h, also under the Courant rule: theta = 1/2 +
     // kappa / (k C) for k h (the damping coefficient of a step of h) gave
-    // energies 0.1-0.8 % closer to 1 but err_v 2-9 % larger on the 1D bars
-    // (the ringing left after the impact is damped less), and the same 2D
-    // force errors (doc/work_precision.md, 2026-12-03).
+    // energies 0.05-0.85 % closer to 1 but err_v larger at 38 of 40 points
+    // of the 1D bars, by up to 10 % (the ringing left after the impact is
+    // damped less), and the same 2D force errors (doc/work_precision.md,
+    // 2026-12-03).
     return coarse;
   }
 
