@@ -20,6 +20,14 @@
 
 namespace impactfe
 {
+  namespace
+  {
+    /// The entry 'Theta''s default; 'Theta rule = courant' accepts no other.
+    const std::string default_theta = "0.55";
+  } // namespace
+
+
+
   std::string
   to_string(const Scheme scheme)
   {
@@ -52,7 +60,7 @@ namespace impactfe
       "modified-theta (theta dynamics, gap at u + h(1-theta) v), or newmark "
       "(displacement-level Signorini; the baseline).");
     prm.declare_entry("Theta",
-                      "0.55",
+                      default_theta,
                       Patterns::Double(),
                       "theta of the theta-schemes [-], in [0.5, 1]. 0.5 is "
                       "the trapezoidal rule; larger values damp.");
@@ -136,8 +144,8 @@ namespace impactfe
                            "schemes are unconditionally stable there), got " +
                            format_input(theta) + "."));
     // The rule sets theta itself: a Theta the user chose would be dropped
-    // without a word. (The default cannot be told from an explicit 0.55.)
-    AssertThrow(!theta_from_courant || theta == 0.55,
+    // without a word. (The default cannot be told from an explicit one.)
+    AssertThrow(!theta_from_courant || theta == std::stod(default_theta),
                 ExcMessage("Time stepping: 'Theta' = " + format_input(theta) +
                            " is not used with 'Theta rule = courant', which "
                            "sets theta = 1/2 + kappa / C itself. Remove the "
