@@ -95,11 +95,12 @@ def program_environment(build):
 
 
 def run_measured(build, program, base_prm, out_dir, overrides="",
-                 remove=("contact_nodes.csv",)):
+                 remove=("contact_nodes.csv",), prefix=()):
     """Run <build>/bin/<program> like run(), but do not stop on failure and
     measure the CPU seconds (user + system) of the child process with
     resource.getrusage(RUSAGE_CHILDREN) around it. Files named in <remove>
-    are deleted afterwards (they can be large).
+    are deleted afterwards (they can be large). <prefix> is put before the
+    command (e.g. valgrind and its options).
 
     Returns {"summary": dict or None, "cpu_run_seconds": float,
     "returncode": int, "message": the exception text or "", "out_dir": ...}.
@@ -122,7 +123,7 @@ def run_measured(build, program, base_prm, out_dir, overrides="",
                 "  set VTU output = false\n  set Plot = false\n"
                 "  set Shape snapshot times =\nend\n")
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    proc = subprocess.run([executable, wrapper], env=program_environment(build),
+    proc = subprocess.run([*prefix, executable, wrapper], env=program_environment(build),
                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)

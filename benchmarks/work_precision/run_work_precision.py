@@ -282,17 +282,17 @@ def error_at_cost(front, budget):
 BUDGETS = 41
 
 
-def budget_table(fronts, own):
+def budget_table(fronts, own, error_of=error_at_cost):
     """Which scheme has the smallest error at equal CPU. fronts: {label:
     Pareto front}; own: the labels of impactfe's schemes (the budgets span
     their cheapest to their dearest run). Returns (table rows, the leader's
     label, the budgets the leader loses) over BUDGETS budgets evenly spaced
-    in log CPU. A scheme wins a budget if no other scheme's interpolated
-    error there is smaller."""
+    in log CPU. A scheme wins a budget if no other scheme's error there
+    (error_of(front, budget), by default interpolated) is smaller."""
     costs = [c for lab in own for c, _ in fronts[lab]]
     lo, hi = math.log(min(costs)), math.log(max(costs))
     budgets = [math.exp(lo + (hi - lo) * i / (BUDGETS - 1)) for i in range(BUDGETS)]
-    at = {lab: [error_at_cost(f, b) for b in budgets] for lab, f in fronts.items()}
+    at = {lab: [error_of(f, b) for b in budgets] for lab, f in fronts.items()}
     wins = {lab: 0 for lab in fronts}
     for i in range(BUDGETS):
         errs = [at[lab][i] for lab in fronts if at[lab][i] is not None]

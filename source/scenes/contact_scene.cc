@@ -6,6 +6,14 @@
 #include <impactfe/scenes/contact_scene.h>
 #include <impactfe/utilities/program.h>
 
+#if __has_include(<valgrind/callgrind.h>)
+#  include <valgrind/callgrind.h>
+#else
+#  define CALLGRIND_START_INSTRUMENTATION
+#  define CALLGRIND_STOP_INSTRUMENTATION
+#  define CALLGRIND_TOGGLE_COLLECT
+#endif
+
 #include <algorithm>
 #include <filesystem>
 #include <limits>
@@ -103,13 +111,21 @@ namespace impactfe
     // A free-flight step covers k steps of h (`Free-flight step factor`),
     // and is tried only where k steps of h are left before the end time.
     const unsigned int n_steps = parameters.time_stepping.n_steps();
+    // Under `valgrind --tool=callgrind --instr-atstart=no
+    // --collect-atstart=no` the instructions of the time steps alone are
+    // counted (the output's are not): a cost that does not depend on the
+    // machine's load (benchmarks/work_precision/count_instructions.py).
+    // Outside valgrind these macros cost a few instructions per step.
+    CALLGRIND_START_INSTRUMENTATION;
     loop_timer.start();
     loop_wall.start();
     for (unsigned int step = 0; step < n_steps;)
       {
         step_wall.start();
+        CALLGRIND_TOGGLE_COLLECT;
         const StepReport report =
           multibody_system->do_time_step(n_steps - step);
+        CALLGRIND_TOGGLE_COLLECT;
         step_wall.stop();
         ++n_steps_taken;
         step += report.n_substeps;
@@ -117,6 +133,7 @@ namespace impactfe
       }
     loop_wall.stop();
     loop_timer.stop();
+    CALLGRIND_STOP_INSTRUMENTATION;
     loop_cpu_seconds =
       loop_wall.seconds() > 0. ?
         loop_timer.seconds() * step_wall.seconds() / loop_wall.seconds() :

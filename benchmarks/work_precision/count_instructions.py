@@ -1,0 +1,237 @@
+#!/usr/bin/python3
+"""Work-precision of the 2D scenes with a cost that does not depend on the
+machine's load: the instructions of the time steps, counted by callgrind.
+
+usage (from anywhere; the script works from the repository top):
+    /usr/bin/python3 benchmarks/work_precision/count_instructions.py \
+        [--build build] [--out doc] [--only cylinder,plate,bars2d] [--jobs 2]
+        [--schemes modified-theta+courant+ff4:0.025,...] [--plot-only]
+
+Why: on this 2-core shared machine two variants that do the same work at a
+grid point (the same steps, free-flight steps and Lemke pivots) differed in
+their loop CPU seconds by factors 0.7-1.5, best of 3 or of 8, so the budget
+counts of run_work_precision.py between such variants follow the noise
+(doc/work_precision.md). callgrind counts the instructions executed, the same
+number on every run of the same binary and input whatever else the machine
+does; instructions are not seconds (cache misses and branch mispredictions
+cost more than an add), so this is a second measure beside the CPU seconds,
+not a replacement.
+
+What is counted: each grid run of <out>/<scene csv> (the rows of
+run_work_precision.py, same mesh, step and scheme) is run again under
+    valgrind --tool=callgrind --instr-atstart=no --collect-atstart=no
+and the program (ContactScene::run) switches instrumentation on around its
+time loop and collection on around each do_time_step() call, so the count is
+that of the time steps alone, without set-up and output (as the
+cpu_loop_seconds column, which takes the output's share off). Every run's
+n_steps and peak force must equal the CSV row's, else the script stops: the
+count is then of the run whose error the CSV gives.
+
+Writes <out>/work_precision_<scene>_instructions.csv, the figure
+<out>/work_precision_<scene>_instructions.png, and prints per scene the
+budget table twice: with run_work_precision.py's log-log interpolation along
+each scheme's Pareto front, and with the error of the best run that fits
+the budget (no interpolation: a user with a budget can only pick a run that
+exists). Several runs go at once (--jobs): counts do not depend on it.
+"""
+import argparse
+import concurrent.futures
+import math
+import os
+import re
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOP = os.path.abspath(os.path.join(HERE, "..", ".."))
+sys.path.insert(0, os.path.join(HERE, "..", "common"))
+sys.path.insert(0, HERE)
+import runs  # noqa: E402
+import run_work_precision as wp  # noqa: E402
+
+import matplotlib  # noqa: E402
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+VALGRIND = ["valgrind", "--tool=callgrind", "--instr-atstart=no",
+            "--collect-atstart=no", "--callgrind-out-file=/dev/null"]
+COLUMNS = ["scheme", "theta", "level", "mesh", "time_step", "n_steps",
+           "loop_instructions", "cpu_loop_seconds", "err_force"]
+
+
+def instructions_of(out_dir):
+    with open(os.path.join(out_dir, "stdout.txt")) as f:
+        m = re.search(r"Collected : (\d+)", f.read())
+    return int(m.group(1)) if m else None
+
+
+def grid_cases(args, name):
+    """(row, out_dir, overrides) for each grid row of the scene's CSV whose
+    scheme is selected; h recomputed from the grid as run_scene() does."""
+    sc = wp.SCENES[name]
+    prm, paper_mesh, h_paper, area, _ = wp.scene_geometry(name)
+    dx_of = lambda mesh: math.sqrt(area / sc["cells"](mesh))  # noqa: E731
+    wanted = None
+    if args.schemes:
+        wanted = {tuple(s.split(":")) for s in args.schemes.split(",")}
+    cases = []
+    for row in wp.read_csv(os.path.join(args.out, sc["csv"])):
+        if row["level"] == "" or row["code"] != "impactfe" or row["status"] != "ok":
+            continue
+        if wanted is not None and (row["scheme"], row["theta"]) not in wanted:
+            continue
+        mesh = tuple(int(n) for n in row["mesh"].split("x"))
+        factor = float(row["h_factor"])
+        h = h_paper * factor * dx_of(mesh) / dx_of(paper_mesh)
+        if abs(h / float(row["time_step"]) - 1) > 1e-5:
+            sys.exit(f"{name}: cannot recompute the step of row {row}")
+        theta = None if row["theta"] == "" else float(row["theta"])
+        out = os.path.join(args.runs, name,
+                           f"{row['scheme']}_{row['theta']}_{row['mesh']}_{row['h_factor']}")
+        cases.append((row, out, wp.mesh_overrides(name, mesh) + sc["extra"]
+                      + wp.time_stepping_overrides(row["scheme"], theta, h)))
+    return prm, cases
+
+
+def count_scene(args, name):
+    prm, cases = grid_cases(args, name)
+    program = wp.SCENES[name]["program"]
+
+    def one(case):
+        row, out, overrides = case
+        result = runs.run_measured(args.build, program, prm, out, overrides,
+                                   prefix=VALGRIND)
+        s = result["summary"]
+        if s is None:
+            sys.exit(f"{name}: run {out} failed: {result['message']}")
+        if (int(s["n_steps"]) != int(row["n_steps"])
+                or abs(float(s["peak_normal_force"]) / float(row["peak_force"]) - 1) > 1e-5):
+            sys.exit(f"{name}: run {out} differs from its CSV row (n_steps "
+                     f"{s['n_steps']} vs {row['n_steps']}, peak force "
+                     f"{s['peak_normal_force']} vs {row['peak_force']}): rerun "
+                     "run_work_precision.py with this build first")
+        n = instructions_of(out)
+        if n is None:
+            sys.exit(f"{name}: no callgrind count in {out}/stdout.txt")
+        wp.progress(f"{name} {row['scheme']:28s} θ={row['theta']:6s} {row['mesh']:>5s} "
+                    f"h={row['time_step']:<10s} {n / 1e6:10.1f} M instructions")
+        return {"scheme": row["scheme"], "theta": row["theta"], "level": row["level"],
+                "mesh": row["mesh"], "time_step": row["time_step"],
+                "n_steps": row["n_steps"], "loop_instructions": n,
+                "cpu_loop_seconds": row["cpu_loop_seconds"], "err_force": row["err_force"]}
+
+    # The dearest first, so that the two jobs end together.
+    cases.sort(key=lambda c: -float(c[0]["cpu_loop_seconds"] or 0))
+    with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
+        rows = list(pool.map(one, cases))
+    return sorted(rows, key=lambda r: (r["scheme"], r["theta"], int(r["level"]),
+                                       -float(r["time_step"])))
+
+
+def error_within_budget(points, budget):
+    """The smallest error of the runs that cost at most <budget>; None if
+    none does. points: the Pareto front [(cost, err)] (any point set gives
+    the same answer)."""
+    fitting = [e for c, e in points if c <= budget]
+    return min(fitting) if fitting else None
+
+
+def budget_lines(fronts, own, error_of, how):
+    rows, leader, losses = wp.budget_table(fronts, own, error_of)
+    lines = [f"\nBest err_force at equal instructions, {how}: {wp.BUDGETS} budgets "
+             "evenly spaced in log instructions from impactfe's cheapest to its "
+             "dearest run; a scheme wins a budget where no other is smaller (ties "
+             "count for both):\n",
+             wp.md_table(["scheme", f"budgets won (of {wp.BUDGETS})"], rows)]
+    if losses:
+        lines.append(f"\nBudgets that {leader} (most wins) loses:\n")
+        lines.append(wp.md_table(
+            ["10⁶ instructions", "its err_force", "smallest err_force", "by", "scheme"],
+            [[wp.fmt(b / 1e6, ".3g"), "no run this cheap" if mine is None
+              else wp.fmt(mine, ".3g"), wp.fmt(best, ".3g"),
+              "" if mine is None else f"{100 * (mine / best - 1):.1f} %", lab]
+             for b, mine, best, lab in losses]))
+    else:
+        lines.append(f"\n{leader} has the smallest error at every budget.")
+    return lines
+
+
+def report_scene(args, name, rows):
+    labeled = {}
+    for r in rows:
+        labeled.setdefault(wp.row_label(r), []).append(r)
+    order = [lab for _, _, lab in wp.SCHEMES]
+    labeled = dict(sorted(labeled.items(), key=lambda kv: order.index(kv[0])
+                          if kv[0] in order else len(order)))
+    fronts = {lab: runs.pareto_front([(float(r["loop_instructions"]), float(r["err_force"]))
+                                      for r in rs]) for lab, rs in labeled.items()}
+    lines = [f"\n### {wp.SCENES[name]['title']}: instructions of the time loop\n"]
+    lines += budget_lines(fronts, list(fronts), wp.error_at_cost,
+                          "interpolated log-log along each Pareto front")
+    lines += budget_lines(fronts, list(fronts), error_within_budget,
+                          "best run within the budget (no interpolation)")
+    # Instructions per CPU second: how far the two costs agree.
+    rates = sorted(float(r["loop_instructions"]) / float(r["cpu_loop_seconds"])
+                   for r in rows if float(r["cpu_loop_seconds"] or 0) > 0)
+    if rates:
+        lines.append(f"\nInstructions per loop CPU second of the CSV's runs: "
+                     f"{rates[0] / 1e9:.2f}–{rates[-1] / 1e9:.2f}·10⁹ (median "
+                     f"{rates[len(rates) // 2] / 1e9:.2f}·10⁹).")
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for lab, rs in labeled.items():
+        pts = sorted((float(r["loop_instructions"]), float(r["err_force"])) for r in rs)
+        ax.plot([p[0] for p in pts], [p[1] for p in pts], "o", ms=3,
+                color=wp.color_of(lab), alpha=0.5)
+        f = fronts[lab]
+        ax.plot([p[0] for p in f], [p[1] for p in f], "-", color=wp.color_of(lab), label=lab)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.set_xlabel("instructions of the time loop (callgrind)")
+    ax.set_ylabel("err_force (relative L1 against the reference)")
+    ax.set_title(f"{wp.SCENES[name]['title']}: error against instructions", fontsize=10)
+    ax.legend(fontsize=6)
+    fig.text(0.01, 0.005, wp.caption_line(args.build), fontsize=6)
+    fig.tight_layout(rect=(0, 0.02, 1, 1))
+    png = os.path.join(args.out, f"work_precision_{name}_instructions.png")
+    fig.savefig(png, dpi=120)
+    plt.close(fig)
+    return "\n".join(lines)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--build", default="build")
+    parser.add_argument("--out", default=os.path.join(TOP, "doc"))
+    parser.add_argument("--runs", default=os.path.join(TOP, "results/work_precision/callgrind"))
+    parser.add_argument("--only", default="cylinder,plate,bars2d")
+    parser.add_argument("--schemes", default="",
+                        help="count only these <scheme>:<theta> rows (the CSV's "
+                             "spelling); the others' counts in --out are kept")
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--plot-only", action="store_true",
+                        help="no runs: tables and figures from the instruction CSVs")
+    args = parser.parse_args()
+    args.build, args.out, args.runs = (os.path.abspath(p) for p in
+                                       (args.build, args.out, args.runs))
+    os.chdir(TOP)
+    for name in args.only.split(","):
+        if name not in wp.SCENES:
+            sys.exit(f"--only: unknown scene '{name}' ({', '.join(wp.SCENES)})")
+        path = os.path.join(args.out, f"work_precision_{name}_instructions.csv")
+        if args.plot_only:
+            rows = wp.read_csv(path)
+        else:
+            rows = count_scene(args, name)
+            if args.schemes and os.path.exists(path):
+                new = {(r["scheme"], r["theta"]) for r in rows}
+                rows = [r for r in wp.read_csv(path)
+                        if (r["scheme"], r["theta"]) not in new] + rows
+            wp.write_csv(path, COLUMNS, rows)
+        print(report_scene(args, name, rows))
+    print("RESULT " + " ".join(f"{n}_runs={len(wp.read_csv(os.path.join(args.out, f'work_precision_{n}_instructions.csv')))}"
+                               for n in args.only.split(",")))
+
+
+if __name__ == "__main__":
+    main()
