@@ -144,28 +144,6 @@ def error_within_budget(points, budget):
     return min(fitting) if fitting else None
 
 
-def budget_lines(fronts, own, error_of, how, stats, key):
-    rows, leader, losses = wp.budget_table(fronts, own, error_of)
-    stats[f"leader_{key}"] = leader
-    stats[f"leader_wins_{key}"] = dict(rows)[leader]
-    lines = [f"\nBest err_force at equal instructions, {how}: {wp.BUDGETS} budgets "
-             "evenly spaced in log instructions from impactfe's cheapest to its "
-             "dearest run; a scheme wins a budget where no other is smaller (ties "
-             "count for both):\n",
-             wp.md_table(["scheme", f"budgets won (of {wp.BUDGETS})"], rows)]
-    if losses:
-        lines.append(f"\nBudgets that {leader} (most wins) loses:\n")
-        lines.append(wp.md_table(
-            ["10⁶ instructions", "its err_force", "smallest err_force", "by", "scheme"],
-            [[wp.fmt(b / 1e6, ".3g"), "no run this cheap" if mine is None
-              else wp.fmt(mine, ".3g"), wp.fmt(best, ".3g"),
-              "" if mine is None else f"{100 * (mine / best - 1):.1f} %", lab]
-             for b, mine, best, lab in losses]))
-    else:
-        lines.append(f"\n{leader} has the smallest error at every budget.")
-    return lines
-
-
 def report_scene(args, name, rows):
     labeled = {}
     for r in rows:
@@ -177,12 +155,15 @@ def report_scene(args, name, rows):
                                       for r in rs]) for lab, rs in labeled.items()}
     lines = [f"\n### {wp.SCENES[name]['title']}: instructions of the time loop\n"]
     stats = {"runs": len(rows)}
-    lines += budget_lines(fronts, list(fronts), wp.error_at_cost,
-                          "interpolated log-log along each Pareto front", stats,
-                          "interpolated")
-    lines += budget_lines(fronts, list(fronts), error_within_budget,
-                          "best run within the budget (no interpolation)", stats,
-                          "within_budget")
+    for key, error_of, how in (
+            ("interpolated", wp.error_at_cost,
+             "every scheme's error interpolated log-log along its Pareto front"),
+            ("within_budget", error_within_budget,
+             "every scheme's best run that fits the budget (no interpolation)")):
+        text, stats[f"leader_{key}"], stats[f"leader_wins_{key}"] = wp.budget_section(
+            fronts, list(fronts), "err_force", error_of, cost="instructions",
+            cost_header="10⁶ instructions", cost_scale=1e6, how=how)
+        lines.append(text)
     # Two variants that do the same work at every point: their instruction
     # ratio against their CPU-second ratio.
     pair = [{(r["mesh"], r["time_step"]): r for r in rows
@@ -221,9 +202,7 @@ def report_scene(args, name, rows):
                 color=wp.color_of(lab), alpha=0.5)
         f = fronts[lab]
         ax.plot([p[0] for p in f], [p[1] for p in f], "-", color=wp.color_of(lab), label=lab)
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.grid(True, which="both", alpha=0.3)
+    wp.log_axes(ax)
     ax.set_xlabel("instructions of the time loop (callgrind)")
     ax.set_ylabel("err_force (relative L1 against the reference)")
     ax.set_title(f"{wp.SCENES[name]['title']}: error against instructions", fontsize=10)

@@ -314,13 +314,16 @@ def budget_table(fronts, own, error_of=error_at_cost):
     return rows, leader, losses
 
 
-def budget_section(fronts, own, err_name):
-    """Markdown: the budget table and the budgets its leader loses."""
-    rows, leader, losses = budget_table(fronts, own)
-    lines = [f"\nBest {err_name} at equal CPU (loop CPU): {BUDGETS} budgets evenly spaced "
-             "in log CPU from impactfe's cheapest to its dearest run; at each, every "
-             "scheme's error interpolated log-log along its Pareto front (none below its "
-             "cheapest run); a scheme wins a budget where no other is smaller (ties count "
+def budget_section(fronts, own, err_name, error_of=error_at_cost, cost="CPU (loop CPU)",
+                   cost_header="loop CPU s", cost_scale=1.,
+                   how="every scheme's error interpolated log-log along its Pareto "
+                       "front (none below its cheapest run)"):
+    """Markdown: the budget table and the budgets its leader loses; returns
+    (text, leader, its wins). The cost is shown divided by cost_scale."""
+    rows, leader, losses = budget_table(fronts, own, error_of)
+    lines = [f"\nBest {err_name} at equal {cost}: {BUDGETS} budgets evenly spaced "
+             f"in log {cost.split()[0]} from impactfe's cheapest to its dearest run; at "
+             f"each, {how}; a scheme wins a budget where no other is smaller (ties count "
              "for both):\n",
              md_table(["scheme", f"budgets won (of {BUDGETS})"], rows)]
     if not losses:
@@ -328,12 +331,13 @@ def budget_section(fronts, own, err_name):
     else:
         lines.append(f"\nBudgets that {leader} (most wins) loses:\n")
         lines.append(md_table(
-            ["loop CPU s", f"its {err_name}", f"smallest {err_name}", "by", "scheme"],
-            [[fmt(b, ".3g"), "no run this cheap" if mine is None else fmt(mine, ".3g"),
+            [cost_header, f"its {err_name}", f"smallest {err_name}", "by", "scheme"],
+            [[fmt(b / cost_scale, ".3g"),
+              "no run this cheap" if mine is None else fmt(mine, ".3g"),
               fmt(best, ".3g"),
               "" if mine is None else f"{100 * (mine / best - 1):.1f} %", lab]
              for b, mine, best, lab in losses]))
-    return "\n".join(lines)
+    return "\n".join(lines), leader, dict(rows)[leader]
 
 
 def md_table(header, rows):
@@ -990,7 +994,7 @@ def bars_tables(rows, peers):
     fronts = {label: runs.pareto_front(points(rs, "cpu_loop_seconds", "err_v"))
               for label, rs in list(groups(good).items()) + list(groups(ok_rows(peers)).items())}
     lines.append(budget_section({k: f for k, f in fronts.items() if f},
-                                [k for k in own if fronts[k]], "err_v"))
+                                [k for k in own if fronts[k]], "err_v")[0])
     # Energy at the finest level.
     finest = max(levels)
     table = []
@@ -1139,7 +1143,7 @@ def scene_tables(name, rows):
     fronts = {label: runs.pareto_front(points(rs, "cpu_loop_seconds", "err_force"))
               for label, rs in groups(grid_rows).items()}
     lines.append(budget_section({k: f for k, f in fronts.items() if f}, list(fronts),
-                                "err_force"))
+                                "err_force")[0])
     failed = [r for r in rows if r.get("level", "") != "" and r.get("status") != "ok"]
     if failed:
         lines.append(f"\nRuns with a non-zero exit code ({len(failed)}; those with "
