@@ -99,6 +99,25 @@ def grid_cases(args, name):
     return prm, cases
 
 
+def with_csv_errors(args, name, rows):
+    """<rows> with err_force and cpu_loop_seconds taken again from the
+    scene's CSV (run_work_precision.py, which may have rescored its errors
+    since the counts were made); a count whose row is gone or whose step
+    count differs stops the script."""
+    csv_rows = {(r["scheme"], r["theta"], r["mesh"], r["time_step"]): r
+                for r in wp.read_csv(os.path.join(args.out, wp.SCENES[name]["csv"]))
+                if r["level"] != "" and r["code"] == "impactfe"}
+    for row in rows:
+        key = (row["scheme"], row["theta"], row["mesh"], row["time_step"])
+        source = csv_rows.get(key)
+        if source is None or source["n_steps"] != row["n_steps"]:
+            sys.exit(f"{name}: the count of {key} has no row with its step count "
+                     f"in {wp.SCENES[name]['csv']}: count it again")
+        row["err_force"] = source["err_force"]
+        row["cpu_loop_seconds"] = source["cpu_loop_seconds"]
+    return rows
+
+
 def count_scene(args, name):
     prm, cases = grid_cases(args, name)
     program = wp.SCENES[name]["program"]
@@ -226,7 +245,8 @@ def main():
                              "spelling); the others' counts in --out are kept")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--plot-only", action="store_true",
-                        help="no runs: tables and figures from the instruction CSVs")
+                        help="no runs: tables and figures from the instruction CSVs, "
+                             "their errors taken again from the scenes' CSVs")
     args = parser.parse_args()
     args.build, args.out, args.runs = (os.path.abspath(p) for p in
                                        (args.build, args.out, args.runs))
@@ -237,7 +257,8 @@ def main():
             sys.exit(f"--only: unknown scene '{name}' ({', '.join(wp.SCENES)})")
         path = os.path.join(args.out, f"work_precision_{name}_instructions.csv")
         if args.plot_only:
-            rows = wp.read_csv(path)
+            rows = with_csv_errors(args, name, wp.read_csv(path))
+            wp.write_csv(path, COLUMNS, rows)
         else:
             rows = count_scene(args, name)
             if args.schemes and os.path.exists(path):
