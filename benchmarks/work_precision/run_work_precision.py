@@ -638,22 +638,44 @@ def read_force(out_dir):
 
 def step_force(out_dir, scheme):
     """The normal force of each step as err_force defines it for every
-    scheme: the normal impulse that changes the momentum in the step, over h.
-    That is the history's column (P / h), except with mass redistribution:
-    there the column is the force at the end of the step, F^{i+1} =
-    P / (h θ), and the step's impulse is h (θ F^{i+1} + (1 − θ) F^i)
-    (MultibodySystem::do_time_step(), the carry to the massless rows).
-    Read as it stands, F^{i+1} held on (t_i, t_{i+1}] is half a step early."""
+    scheme: the normal impulse that changes the momentum in the step, over
+    h. For the θ-schemes that is the history's column (P / h). With mass
+    redistribution the column is the force at the end of the step, F^{i+1}
+    = P / (h θ), and the step's impulse is h (θ F^{i+1} + (1 − θ) F^i) (the
+    carry to the massless rows, MultibodySystem::do_time_step()); for
+    Newmark the column is r^{i+1} and the impulse h (γ r^{i+1} + (1 − γ)
+    r^i). Read as it stands, such a column held on (t_i, t_{i+1}] is half
+    a step early."""
     t, f = read_force(out_dir)
-    if "mr" not in scheme.split("+")[1:]:
+    base, *options = scheme.split("+")
+    if base == "newmark":
+        weight = float(last_prm_value(os.path.join(out_dir, "run.prm"), "Newmark gamma"))
+    elif "mr" in options:
+        with open(os.path.join(out_dir, "summary.json")) as file:
+            weight = json.load(file)["theta"]
+    else:
         return t, f
-    with open(os.path.join(out_dir, "summary.json")) as file:
-        theta = json.load(file)["theta"]
     # A step that carries a force follows a step of the same length: a
     # free-flight step (k h) is taken only after a step without impulses.
     g = f.copy()
-    g[1:] = theta * f[1:] + (1. - theta) * f[:-1]
+    g[1:] = weight * f[1:] + (1. - weight) * f[:-1]
     return t, g
+
+
+def last_prm_value(path, name):
+    """The value of the last `set <name> = ...` in a parameter file (the
+    one that holds when an override follows the base file's entry)."""
+    value = None
+    with open(path) as f:
+        for line in f:
+            line = line.split("#", 1)[0].strip()
+            if line.startswith("set ") and "=" in line:
+                key, v = line[4:].split("=", 1)
+                if key.strip() == name:
+                    value = v.strip()
+    if value is None:
+        raise KeyError(f"{name} not in {path}")
+    return value
 
 
 def l1_force_difference(a, b, t_end):
