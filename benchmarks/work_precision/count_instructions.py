@@ -106,7 +106,7 @@ def with_csv_errors(args, name, rows):
     count differs stops the script."""
     csv_rows = {(r["scheme"], r["theta"], r["mesh"], r["time_step"]): r
                 for r in wp.read_csv(os.path.join(args.out, wp.SCENES[name]["csv"]))
-                if r["level"] != "" and r["code"] == "impactfe"}
+                if r["level"] != "" and r["code"] == "impactfe" and r["status"] == "ok"}
     for row in rows:
         key = (row["scheme"], row["theta"], row["mesh"], row["time_step"])
         source = csv_rows.get(key)
@@ -263,8 +263,8 @@ def main():
             rows = count_scene(args, name)
             if args.schemes and os.path.exists(path):
                 new = {(r["scheme"], r["theta"]) for r in rows}
-                rows = [r for r in wp.read_csv(path)
-                        if (r["scheme"], r["theta"]) not in new] + rows
+                rows = with_csv_errors(args, name, [r for r in wp.read_csv(path)
+                                                    if (r["scheme"], r["theta"]) not in new]) + rows
             wp.write_csv(path, COLUMNS, rows)
         text, stats[name] = report_scene(args, name, rows)
         print(text)

@@ -7,7 +7,8 @@ the mass-redistribution variants) on the 1D two-bar impact, the two bars in
 usage (from anywhere; the script works from the repository top):
     /usr/bin/python3 benchmarks/work_precision/run_work_precision.py \
         [--build build] [--out doc] [--quick] [--only 1d,bars2d,cylinder,plate]
-        [--plot-only] [--repeats 3] [--repeat-below 0.2] [--extend-budget 120]
+        [--plot-only] [--rescore] [--repeats 3] [--repeat-below 0.2]
+        [--extend-budget 120]
 
 --build DIR      executables DIR/bin/<program>; if DIR/lib exists it is put
                  in LD_LIBRARY_PATH (a copy of a build, e.g. /work/snap)
@@ -17,6 +18,8 @@ usage (from anywhere; the script works from the repository top):
                  and still plotted)
 --plot-only      no runs: redraw the figures and the tables of
                  <out>/work_precision.md from the CSVs in <out>
+--rescore        2D: no runs; the errors of the CSVs' rows computed again
+                 from the run files in --runs, then --plot-only
 
 What is measured (see benchmarks/work_precision/README.md):
 - cpu_run_seconds: user + system CPU of the whole process, from
@@ -32,7 +35,10 @@ What is measured (see benchmarks/work_precision/README.md):
 Errors: 1D err_v, err_f, energy_ratio from summary.json (the program's
 definitions against the exact solution). 2D: err_force = the L1 norm in time
 of the total normal contact force minus that of a fine reference run,
-divided by the reference's total normal impulse (a relative L1 error).
+divided by the reference's total normal impulse (a relative L1 error),
+with the force of each step its momentum-changing impulse / h
+(step_force(): the history's column for the θ-schemes, the θ- or γ-weighted
+mean of its end-of-step values with mass redistribution and for Newmark).
 
 Run files go to results/work_precision/ (git-ignored); the CSV, PNG and the
 generated part of work_precision.md go to --out (default doc).
@@ -848,13 +854,27 @@ def rescore_scene(args, name):
     prm, paper_mesh, h_paper, _, _ = scene_geometry(name)
     end_time = float(prm_value(prm, "End time"))
     base = os.path.join(args.runs, name)
+    rows = read_csv(os.path.join(args.out, sc["csv"]))
+    for tag, status in (("reference", "reference"),
+                        ("same_mesh_reference", "same-mesh reference")):
+        summary = os.path.join(base, tag, "summary.json")
+        if not os.path.isfile(summary):
+            sys.exit(f"{name}: no {tag} run in {base} to rescore against "
+                     "(--rescore needs the runs that made the CSV; --only names the scenes)")
+        with open(summary) as file:
+            n_steps = str(json.load(file)["n_steps"])
+        if not any(r["level"] == "" and r["status"].split(";")[0] == status
+                   and r["n_steps"] == n_steps for r in rows):
+            sys.exit(f"{name}: the {tag} run in {base} made {n_steps} steps, "
+                     "not the CSV's")
     ref_force = read_force(os.path.join(base, "reference"))
     norm = reference_impulse(ref_force)
     same_force = read_force(os.path.join(base, "same_mesh_reference"))
-    rows = read_csv(os.path.join(args.out, sc["csv"]))
     changed = 0
     for row in rows:
         if row.get("code", "impactfe") != "impactfe" or row["level"] == "":
+            continue
+        if row["n_steps"] == "":  # a failed run: no errors to compute
             continue
         theta = row_theta(row)
         for scheme, t, _ in SCHEMES:
