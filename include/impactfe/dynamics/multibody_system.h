@@ -29,8 +29,11 @@ namespace impactfe
   {
     unsigned int step = 0;
     double       time = 0.;
-    /// Sum over candidates of the normal contact force (impulse / step for
-    /// the theta-schemes, r^{i+1} for Newmark), positive in compression.
+    /// Sum over candidates of the normal contact force, positive in
+    /// compression: impulse / step for the theta-schemes; the force at the
+    /// end of the step for Newmark (r^{i+1}) and with massless contact
+    /// nodes (P / (h theta): the step's impulse is then
+    /// h (theta F^{i+1} + (1 - theta) F^i)).
     double normal_force = 0.;
     /// Magnitude of the sum of the tangential contact forces.
     double       tangential_force = 0.;
