@@ -111,17 +111,23 @@ END_MARK = "<!-- END GENERATED -->"
 # ---------------------------------------------------------------------------
 # Small utilities
 
-def prm_value(path, name):
-    """The value of `set <name> = ...` in a parameter file (first match,
-    comments removed)."""
+def prm_value(path, name, last=False):
+    """The value of `set <name> = ...` in a parameter file (comments
+    removed): the first match, or with <last> the last one (the one that
+    holds when an override follows the base file's entry)."""
+    found = None
     with open(path) as f:
         for line in f:
             line = line.split("#", 1)[0].strip()
             if line.startswith("set ") and "=" in line:
                 key, value = line[4:].split("=", 1)
                 if key.strip() == name:
-                    return value.strip()
-    raise KeyError(f"{name} not in {path}")
+                    found = value.strip()
+                    if not last:
+                        break
+    if found is None:
+        raise KeyError(f"{name} not in {path}")
+    return found
 
 
 def scheme_label(scheme, theta):
@@ -655,7 +661,7 @@ def step_force(out_dir, scheme):
     t, f = read_force(out_dir)
     base, *options = scheme.split("+")
     if base == "newmark":
-        weight = float(last_prm_value(os.path.join(out_dir, "run.prm"), "Newmark gamma"))
+        weight = float(prm_value(os.path.join(out_dir, "run.prm"), "Newmark gamma", last=True))
     elif "mr" in options:
         with open(os.path.join(out_dir, "summary.json")) as file:
             weight = json.load(file)["theta"]
@@ -666,22 +672,6 @@ def step_force(out_dir, scheme):
     g = f.copy()
     g[1:] = weight * f[1:] + (1. - weight) * f[:-1]
     return t, g
-
-
-def last_prm_value(path, name):
-    """The value of the last `set <name> = ...` in a parameter file (the
-    one that holds when an override follows the base file's entry)."""
-    value = None
-    with open(path) as f:
-        for line in f:
-            line = line.split("#", 1)[0].strip()
-            if line.startswith("set ") and "=" in line:
-                key, v = line[4:].split("=", 1)
-                if key.strip() == name:
-                    value = v.strip()
-    if value is None:
-        raise KeyError(f"{name} not in {path}")
-    return value
 
 
 def l1_force_difference(a, b, t_end):
@@ -1392,7 +1382,7 @@ def main():
     wall = time.time() - start
     run_info = (f"Figures drawn {datetime.date.today().isoformat()}"
                 + ("" if args.plot_only or args.rescore else
-                   f"; the last invocation ran "
+                   "; the last invocation ran "
                    + ("the 1D extension runs" if args.extend_only else
                       f"{', '.join(sorted(only))} "
                       f"{'(quick grid)' if args.quick else '(full grid)'}")
