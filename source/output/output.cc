@@ -15,6 +15,7 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 namespace impactfe
 {
@@ -155,9 +156,21 @@ namespace impactfe
 
 
 
+  // A key written twice makes a file that JSON readers take differently
+  // (Python keeps the last value, others the first): a programming error.
+  void
+  JsonObject::check_new_key(const std::string &key) const
+  {
+    for (const auto &entry : entries)
+      if (entry.first == key)
+        throw std::logic_error("summary.json: the key '" + key +
+                               "' is written twice.");
+  }
+
   JsonObject &
   JsonObject::add(const std::string &key, const double value)
   {
+    check_new_key(key);
     std::ostringstream s;
     if (std::isfinite(value))
       s << std::setprecision(10) << value;
@@ -170,6 +183,7 @@ namespace impactfe
   JsonObject &
   JsonObject::add(const std::string &key, const std::string &value)
   {
+    check_new_key(key);
     std::string escaped = "\"";
     for (const char c : value)
       {
@@ -184,6 +198,7 @@ namespace impactfe
   JsonObject &
   JsonObject::add(const std::string &key, const JsonObject &value)
   {
+    check_new_key(key);
     entries.emplace_back(key, "\x01" + std::to_string(entries.size()));
     nested.push_back(value);
     return *this;

@@ -72,7 +72,8 @@ namespace impactfe
 
   /**
    * A flat JSON object written in one go (`summary.json`): keys in the order
-   * they were added; values are numbers, strings, or nested objects.
+   * they were added, each at most once; values are numbers, strings, or
+   * nested objects.
    */
   class JsonObject
   {
@@ -89,6 +90,10 @@ namespace impactfe
     write(const std::string &file_name) const;
 
   private:
+    /// Throws std::logic_error if @p key is there already.
+    void
+    check_new_key(const std::string &key) const;
+
     std::vector<std::pair<std::string, std::string>> entries;
     std::vector<JsonObject>                          nested;
   };
