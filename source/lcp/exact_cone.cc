@@ -589,7 +589,9 @@ namespace impactfe
               angles[c] = std::atan2(ip.P[3 * c + 2], ip.P[3 * c + 1]);
         }
       else
-        solution.message += "; interior point route tried: " + ip.message;
+        solution.message += (solution.message.empty() ? "" : "; ") +
+                            std::string("interior point route tried: ") +
+                            ip.message;
     }
 
 

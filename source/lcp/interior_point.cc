@@ -693,10 +693,24 @@ namespace impactfe
       // (J^T J + lambda I) dP = -J^T F with a backtracking line search on
       // |F|: quadratic where the contact states are settled, and steps to
       // one of the solutions where redundant contacts make J singular.
-      last_report.residual = exact_cone_residual(problem, P, work);
-      if (last_report.residual > options.tolerance && n > 0 && w_scale > 0. &&
-          q_scale > 0.)
+      // The answer must pass verify_interior_point_answer() (1e-8) too: a
+      // tolerance looser than that (lcp-solve --tolerance 1e-6) stops the
+      // iterations at a point that can fail it. Then the Newton steps go on
+      // to a target a thousand times below the residual reached, twice at
+      // most.
+      double newton_target = options.tolerance;
+      for (unsigned int pass = 0; pass < 3; ++pass)
         {
+          last_report.residual = exact_cone_residual(problem, P, work);
+          if (pass > 0 &&
+              (verify_interior_point_answer(problem, P, problem.mu, 0).ok ||
+               !(last_report.residual < newton_target)))
+            break;
+          if (pass > 0)
+            newton_target = 1e-3 * last_report.residual;
+          if (!(last_report.residual > newton_target && n > 0 && w_scale > 0. &&
+                q_scale > 0.))
+            continue;
           const int           nn = static_cast<int>(N);
           std::vector<double> J(N * N), JtJ(N * N), F, F_trial, u, step(N),
             trial;
@@ -774,7 +788,7 @@ namespace impactfe
                   best          = P;
                   best_residual = residual_P;
                 }
-              if (best_residual <= 1e-2 * options.tolerance)
+              if (best_residual <= 1e-2 * newton_target)
                 break;
             }
           P                    = best;

@@ -28,6 +28,9 @@
 //    1e-6), and z,
 //    w solve the form as assemble_contact_lcp() writes it; no answer where
 //    there is no solution.
+// 9. A looser target (lcp-solve --tolerance 1e-4 or 1e-6, both measures)
+//    still returns an answer that passes the 1e-8 verification: the Newton
+//    steps go on past the target when the answer there fails it.
 #include <impactfe/lcp/exact_cone.h>
 #include <impactfe/lcp/interior_point.h>
 
@@ -508,6 +511,39 @@ namespace
             Status::solved,
           "opposite contacts both approaching: not solved");
   }
+
+  void
+  loose_tolerance()
+  {
+    dealii::deallog << "9. Targets looser than the verification" << std::endl;
+    for (const double tolerance : {1e-4, 1e-6})
+      {
+        lcp_test::Rng rng(20261205);
+        unsigned int  verified = 0, n = 0;
+        std::string   detail;
+        for (unsigned int trial = 0; trial < 20; ++trial)
+          {
+            const unsigned int   nc = 2 + rng.integer(19);
+            const ContactProblem p  = random_problem(rng, 3, nc, 0.);
+            ExactConeOptions     options;
+            options.route                = ExactConeRoute::interior_point;
+            options.tolerance            = tolerance;
+            options.cone_error_tolerance = tolerance;
+            ExactConeSolver        solver;
+            const ContactSolution &s = solver.solve(p, {}, options);
+            ++n;
+            if (s.lcp.status == Status::solved &&
+                verify_contact_solution(p, s.P, 1e-8).ok)
+              ++verified;
+            else if (detail.empty())
+              detail = s.message;
+          }
+        std::ostringstream name;
+        name << "tolerance " << tolerance << ": " << verified << " of " << n
+             << " random 3D problems solved and verified to 1e-8";
+        check(verified == n, name.str(), detail);
+      }
+  }
 } // namespace
 
 
@@ -524,5 +560,6 @@ main()
   exact_cone_solver();
   residual_by_hand();
   facet_form();
+  loose_tolerance();
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
 }
