@@ -171,6 +171,11 @@ namespace impactfe
                 ExcMessage("Time/Theta = " + format_number(theta) +
                            " must be in [0.5, 1]."));
     require_positive(time_step, "Time", "Time step");
+    // no step would end within the run (it made 0 steps and exited 0)
+    AssertThrow(time_step <= end_time,
+                ExcMessage("Time: 'Time step' = " + format_number(time_step) +
+                           " s is longer than 'End time' = " +
+                           format_number(end_time) + " s."));
     require_non_negative(friction_coefficient,
                          "Contact",
                          "Friction coefficient");

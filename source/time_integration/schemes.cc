@@ -20,14 +20,6 @@
 
 namespace impactfe
 {
-  namespace
-  {
-    /// The entry 'Theta''s default; 'Theta rule = courant' accepts no other.
-    const std::string default_theta = "0.55";
-  } // namespace
-
-
-
   std::string
   to_string(const Scheme scheme)
   {
@@ -60,7 +52,7 @@ namespace impactfe
       "modified-theta (theta dynamics, gap at u + h(1-theta) v), or newmark "
       "(displacement-level Signorini; the baseline).");
     prm.declare_entry("Theta",
-                      default_theta,
+                      "0.55",
                       Patterns::Double(),
                       "theta of the theta-schemes [-], in [0.5, 1]. 0.5 is "
                       "the trapezoidal rule; larger values damp.");
@@ -71,9 +63,10 @@ namespace impactfe
       "fixed: theta is the entry 'Theta'. courant: theta = 1/2 + kappa / C "
       "(at most 1), C = c_p h / dx the Courant number of the mesh (c_p the "
       "P-wave speed, dx = (volume / number of cells)^(1/dim), the body with "
-      "the shortest dx / c_p), kappa the entry 'Theta damping'; 'Theta' must "
-      "then be left unset (any other value than its default is an error). "
-      "Free-flight steps of k h use the theta of h. The scheme's numerical damping, that of a "
+      "the shortest dx / c_p), kappa the entry 'Theta damping'; the entry "
+      "'Theta' is then not used (the programs print theta and say so), so "
+      "that the rule can be chosen in a file that includes another with a "
+      "Theta. Free-flight steps of k h use the theta of h. The scheme's numerical damping, that of a "
       "stiffness-proportional damping (theta - 1/2) h, is then kappa dx / "
       "c_p at every time step: less damping at large steps (where "
       "theta = 0.55 damps the physical modes), more at small ones (where "
@@ -128,6 +121,7 @@ namespace impactfe
                               name == "modified-theta" ? Scheme::modified_theta :
                                                          Scheme::newmark;
     theta                   = prm.get_double("Theta");
+    theta_entry             = theta;
     theta_from_courant      = prm.get("Theta rule") == "courant";
     theta_damping           = prm.get_double("Theta damping");
     newmark_beta            = prm.get_double("Newmark beta");
@@ -143,13 +137,6 @@ namespace impactfe
                 ExcMessage("Time stepping: 'Theta' must be in [0.5, 1] (the "
                            "schemes are unconditionally stable there), got " +
                            format_input(theta) + "."));
-    // The rule sets theta itself: a Theta the user chose would be dropped
-    // without a word. (The default cannot be told from an explicit one.)
-    AssertThrow(!theta_from_courant || theta == std::stod(default_theta),
-                ExcMessage("Time stepping: 'Theta' = " + format_input(theta) +
-                           " is not used with 'Theta rule = courant', which "
-                           "sets theta = 1/2 + kappa / C itself. Remove the "
-                           "entry 'Theta' or set 'Theta rule = fixed'."));
     AssertThrow(!theta_from_courant || scheme != Scheme::newmark,
                 ExcMessage("Time stepping: 'Theta rule = courant' needs a "
                            "theta-scheme, got 'Scheme = newmark'."));
@@ -236,7 +223,8 @@ namespace impactfe
            << ")";
     else if (theta_from_courant)
       text << " (theta = " << theta << " from the Courant number "
-           << courant_number << ")";
+           << courant_number << "; the entry 'Theta' = " << theta_entry
+           << " is not used)";
     else
       text << " (theta = " << theta << ")";
     return text.str();

@@ -81,9 +81,6 @@ main()
   run_case("theta_damping_zero",
            with("Time stepping",
                 "Theta rule = courant\n  set Theta damping = 0"));
-  // the rule sets theta: a Theta of the user's would be dropped silently
-  run_case("theta_rule_courant_with_theta",
-           with("Time stepping", "Theta rule = courant\n  set Theta = 0.6"));
   run_case("theta_rule_courant_newmark",
            with("Time stepping",
                 "Theta rule = courant\n  set Scheme = newmark"));
@@ -265,6 +262,10 @@ main()
   run_case("taylor_theta_below_half", with("Time", "Theta = 0.3"), taylor);
   run_case("taylor_negative_time_step",
            with("Time", "Time step = -1e-7"),
+           taylor);
+  // no step would end within the run (it made 0 steps and exited 0)
+  run_case("taylor_time_step_longer_than_end_time",
+           with("Time", "Time step = 1e-3"),
            taylor);
   run_case("taylor_zero_yield_stress",
            with("Plasticity", "Yield stress = 0"),

@@ -47,6 +47,9 @@ namespace impactfe
     /// cell transit time of the mesh, theta = 1/2 + kappa dx / (c_p h).
     bool   theta_from_courant = false;
     double theta_damping      = 0.025;
+    /// The entry `Theta` as read: the rule does not use it, and
+    /// scheme_description() says so.
+    double theta_entry = 0.55;
     /// The Courant number c_p h / dx apply_theta_rule() found (0: not set
     /// by the program).
     double courant_number = 0.;
@@ -90,8 +93,8 @@ namespace impactfe
 
     /**
      * "theta-euler (theta = 0.55)", "newmark (beta = 0.25, gamma = 0.5)" or
-     * "modified-theta (theta = 0.52 from the Courant number 1.4)": the
-     * scheme as the programs print it.
+     * "modified-theta (theta = 0.52 from the Courant number 1.4; the entry
+     * 'Theta' = 0.55 is not used)": the scheme as the programs print it.
      */
     std::string
     scheme_description() const;
