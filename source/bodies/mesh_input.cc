@@ -7,12 +7,95 @@
 #include <impactfe/bodies/mesh_input.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <string>
 
 namespace impactfe
 {
+  namespace
+  {
+    std::string
+    trimmed(const std::string &text)
+    {
+      const auto first = text.find_first_not_of(" \t\r");
+      if (first == std::string::npos)
+        return "";
+      return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
+    }
+
+    // Reads @p file as ParameterHandler does (comments from '#', lines
+    // continued by a trailing backslash, `include` relative to the working
+    // directory) and records in @p setting_file the last file, in reading
+    // order, with a `set ... = value` whose value, or one of its
+    // comma-separated items, is @p value.
+    void
+    find_setting_file(const std::filesystem::path &file,
+                      const std::string           &value,
+                      std::filesystem::path       &setting_file,
+                      const unsigned int           depth = 0)
+    {
+      std::ifstream in(file);
+      if (!in || depth > 32)
+        return;
+      std::string line, raw;
+      while (std::getline(in, raw))
+        {
+          line += raw.substr(0, raw.find('#'));
+          if (!line.empty() && line.back() == '\\')
+            {
+              line.pop_back();
+              continue;
+            }
+          const std::string statement = trimmed(line);
+          line.clear();
+          if (statement.rfind("include", 0) == 0 && statement.size() > 7 &&
+              std::isspace(static_cast<unsigned char>(statement[7])))
+            find_setting_file(trimmed(statement.substr(7)),
+                              value,
+                              setting_file,
+                              depth + 1);
+          else if (statement.rfind("set", 0) == 0 && statement.size() > 3 &&
+                   std::isspace(static_cast<unsigned char>(statement[3])))
+            {
+              const auto equals = statement.find('=');
+              if (equals == std::string::npos)
+                continue;
+              const std::string assigned = statement.substr(equals + 1);
+              std::size_t       begin    = 0;
+              for (std::size_t end = 0; end != std::string::npos;
+                   begin           = end + 1)
+                {
+                            end = assigned.find(',', begin);
+                            if (trimmed(assigned.substr(begin, end - begin)) == value)
+                    {
+                                setting_file = file;
+                                break;
+                    }
+                }
+            }
+        }
+    }
+  } // namespace
+
+
+
+  std::filesystem::path
+  resolve_relative_to_setting_file(const std::string &file_name,
+                                   const std::string &parameter_file)
+  {
+    const std::filesystem::path path(file_name);
+    if (path.is_absolute() || parameter_file.empty())
+      return path;
+    std::filesystem::path setting_file = parameter_file;
+    find_setting_file(parameter_file, trimmed(file_name), setting_file);
+    return setting_file.parent_path() / path;
+  }
+
+
+
   void
   MeshParameters::declare_parameters(
     ParameterHandler  &prm,
@@ -24,8 +107,9 @@ namespace impactfe
                       "",
                       Patterns::Anything(),
                       "Mesh file of this body (Gmsh .msh, UCD .ucd, Abaqus "
-                      ".inp, VTK .vtk), relative to the parameter file's "
-                      "directory. Empty: the program's built-in geometry. "
+                      ".inp, VTK .vtk), relative to the directory of the "
+                      "parameter file that sets it (an included file's "
+                      "own). Empty: the program's built-in geometry. "
                       "Coordinates in [m].");
     prm.declare_entry("Mesh file format",
                       "auto",
@@ -61,9 +145,8 @@ namespace impactfe
   MeshParameters::read(Triangulation<dim> &triangulation,
                        const std::string  &parameter_file) const
   {
-    std::filesystem::path path(file_name);
-    if (path.is_relative())
-      path = std::filesystem::path(parameter_file).parent_path() / path;
+    const std::filesystem::path path =
+      resolve_relative_to_setting_file(file_name, parameter_file);
     AssertThrow(std::filesystem::exists(path),
                 ExcMessage("Mesh: the mesh file '" + path.string() +
                            "' does not exist."));

@@ -395,8 +395,8 @@ namespace impactfe
                         "",
                         Patterns::List(Patterns::FileName(), 0),
                         "Scene = bodies: one mesh file per body (body 1, 2, "
-                        "...), relative to the parameter file's directory "
-                        "[-].");
+                        "...), relative to the directory of the parameter "
+                        "file that sets it (an included file's own) [-].");
       prm.declare_entry("Initial velocities",
                         "",
                         Patterns::Anything(),

@@ -6,12 +6,30 @@
 
 #include <deal.II/grid/tria.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
 namespace impactfe
 {
   using namespace dealii;
+
+  /**
+   * The path of @p file_name, a file named in a parameter file, relative
+   * to the directory of the parameter file that names it: @p parameter_file
+   * or one of the files it includes (`include` statements, themselves
+   * relative to the working directory, as ParameterHandler reads them),
+   * whichever sets an entry to @p file_name last, as the entry's value or
+   * an item of its comma-separated list. So a file that includes
+   * parameter_files/cylinder_impact_mpi.prm from elsewhere still finds the
+   * mesh that file names. An absolute name is returned as it is; a name
+   * that no file sets is taken relative to @p parameter_file.
+   */
+  std::filesystem::path
+  resolve_relative_to_setting_file(const std::string &file_name,
+                                   const std::string &parameter_file);
+
+
 
   /**
    * Where a body's mesh comes from, and which boundary id carries its
@@ -41,9 +59,10 @@ namespace impactfe
 
     /**
      * Read the mesh file into @p triangulation (which must be empty). A
-     * relative file name is taken relative to the directory of
-     * @p parameter_file. Throws with the file name if it does not exist or
-     * cannot be read.
+     * relative file name is taken relative to the directory of the
+     * parameter file that sets it: @p parameter_file or a file it includes
+     * (resolve_relative_to_setting_file()). Throws with the file name if it
+     * does not exist or cannot be read.
      */
     template <int dim>
     void
