@@ -30,12 +30,14 @@
 // (two_bars_2d_mpi.prm, two_bars_3d_mpi.prm). What the distributed step
 // does and does not do yet is in doc/parallel.md.
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
 
 #include <impactfe/parallel/distributed_scene.h>
 #include <impactfe/utilities/blas_threads.h>
 #include <impactfe/utilities/mpi_errors.h>
 #include <impactfe/utilities/program.h>
 
+#include <iostream>
 #include <string>
 
 
@@ -56,13 +58,30 @@ main(int argc, char *argv[])
   impactfe::set_blas_thread_limit(1);
   try
     {
-      AssertThrow(argc <= 2,
-                  dealii::ExcMessage("Usage: contact_mpi [parameter "
-                                     "file]"));
-      const std::string                                 file = argc > 1 ?
-                                                                 std::string(argv[1]) :
-                                                                 std::string(IMPACTFE_SOURCE_DIR) +
-                                   "/parameter_files/block_sliding_mpi.prm";
+      const std::string default_file = std::string(IMPACTFE_SOURCE_DIR) +
+                                       "/parameter_files/block_sliding_mpi.prm";
+      const impactfe::CommandLine command_line =
+        impactfe::parse_command_line(argc, argv, "contact_mpi", default_file);
+      const bool rank_zero =
+        dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+      if (command_line.action == impactfe::CommandLine::Action::help)
+        {
+          if (rank_zero)
+            std::cout << impactfe::command_line_usage("contact_mpi",
+                                                      default_file);
+          return 0;
+        }
+      if (command_line.action ==
+          impactfe::CommandLine::Action::print_parameters)
+        {
+          dealii::ParameterHandler prm;
+          impactfe::distributed::DistributedSceneParameters::declare_parameters(
+            prm);
+          if (rank_zero)
+            prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
+          return 0;
+        }
+      const std::string &file = command_line.parameter_file;
       impactfe::distributed::DistributedSceneParameters parameters;
       parameters.read(file);
       if (parameters.dimension == 2)

@@ -29,7 +29,8 @@ namespace
   usage(std::ostream &out)
   {
     out
-      << "usage: lcp-solve [--solution] [--warm] [--form klarbring|facets|auto] [--facets k] FILE...\n"
+      << "usage: lcp-solve [options] FILE...\n"
+         "Options:\n"
          "  --solution   print the solution (z, or the contact impulses P) after each line\n"
          "  --warm       warm start: LCP files from the guess 'z_i > 0 where q_i < 0';\n"
          "               contact files from the states 'closed (stick) where V_N + b_N < 0,\n"
@@ -37,7 +38,8 @@ namespace
          "  --form F     LCP form for friction-contact files (default auto)\n"
          "  --facets k   facets of the friction cone in 3D (default 8)\n"
          "  --cone C     facets (default: the polygonal cone) or exact (the circular\n"
-         "               cone, by re-aligned facet LCPs; contact files)\n"
+         "               cone, by an interior point method and re-aligned facet\n"
+         "               LCPs; contact files)\n"
          "  --tolerance e  exact-cone error to reach with --cone exact, and the\n"
          "               relative natural-map residual (default 1e-10)\n"
          "  --threads t  BLAS threads (default 1: the times are one core's)\n"

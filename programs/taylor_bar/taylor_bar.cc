@@ -53,9 +53,11 @@ namespace TaylorBarProgram
     void
     run(const std::string &parameter_file);
 
-  private:
-    void
+    /// Every entry of the program's parameter files.
+    static void
     declare_parameters(ParameterHandler &prm);
+
+  private:
     void
     parse_parameters(ParameterHandler &prm);
     void
@@ -373,13 +375,29 @@ main(int argc, char *argv[])
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   try
     {
-      AssertThrow(argc <= 2,
-                  dealii::ExcMessage("Usage: " + std::string(argv[0]) +
-                                     " [parameter file]"));
-      TaylorBarProgram::TaylorBarProblem().run(
-        argc > 1 ?
-          std::string(argv[1]) :
-          std::string(IMPACTFE_SOURCE_DIR) + "/parameter_files/taylor_bar.prm");
+      const std::string default_file =
+        std::string(IMPACTFE_SOURCE_DIR) + "/parameter_files/taylor_bar.prm";
+      const impactfe::CommandLine command_line =
+        impactfe::parse_command_line(argc, argv, "taylor_bar", default_file);
+      const bool rank_zero =
+        dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+      if (command_line.action == impactfe::CommandLine::Action::help)
+        {
+          if (rank_zero)
+            std::cout << impactfe::command_line_usage("taylor_bar",
+                                                      default_file);
+          return 0;
+        }
+      if (command_line.action ==
+          impactfe::CommandLine::Action::print_parameters)
+        {
+          dealii::ParameterHandler prm;
+          TaylorBarProgram::TaylorBarProblem::declare_parameters(prm);
+          if (rank_zero)
+            prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
+          return 0;
+        }
+      TaylorBarProgram::TaylorBarProblem().run(command_line.parameter_file);
     }
   catch (...)
     {

@@ -314,9 +314,8 @@ namespace impactfe
 
     // @sect3{Parameters}
     void
-    DistributedSceneParameters::read(const std::string &file)
+    DistributedSceneParameters::declare_parameters(ParameterHandler &prm)
     {
-      ParameterHandler prm;
       prm.declare_entry("Dimension",
                         "3",
                         Patterns::Integer(2, 3),
@@ -485,7 +484,15 @@ namespace impactfe
       MaterialParameters::declare_parameters(prm, 2); // 2D: a superset
       ParallelSolverParameters::declare_parameters(prm);
       SlidingBoxParameters::declare_parameters(prm);
+    }
 
+
+
+    void
+    DistributedSceneParameters::read(const std::string &file)
+    {
+      ParameterHandler prm;
+      declare_parameters(prm);
       AssertThrow(std::filesystem::exists(file),
                   ExcMessage("The parameter file '" + file +
                              "' does not exist."));

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <iostream>
 #include <limits>
 #include <sstream>
 
@@ -69,17 +70,30 @@ namespace impactfe
   void
   ContactScene<dim>::run(int argc, char *argv[])
   {
-    AssertThrow(argc <= 2,
-                ExcMessage("Usage: " + std::string(argv[0]) +
-                           " [parameter file]"));
+    const std::string default_file = std::string(IMPACTFE_SOURCE_DIR) +
+                                     "/parameter_files/" + program_name +
+                                     ".prm";
+    const CommandLine command_line =
+      parse_command_line(argc, argv, program_name, default_file);
+    if (command_line.action == CommandLine::Action::help)
+      {
+        std::cout << command_line_usage(program_name, default_file);
+        return;
+      }
+    if (command_line.action == CommandLine::Action::print_parameters)
+      {
+        ParameterHandler prm;
+        declare_parameters(prm);
+        SceneParameters::declare_parameters(prm, "results/" + program_name);
+        prm.print_parameters(std::cout, ParameterHandler::PRM);
+        return;
+      }
     require_one_process(program_name,
                         "distributed runs are made by contact_mpi "
                         "(doc/parallel.md), which runs the 2D and 3D "
                         "scenes of the serial programs "
                         "(parameter_files/*_mpi.prm).");
-    run(argc > 1 ? std::string(argv[1]) :
-                   std::string(IMPACTFE_SOURCE_DIR) + "/parameter_files/" +
-                     program_name + ".prm");
+    run(command_line.parameter_file);
   }
 
 

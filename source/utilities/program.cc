@@ -151,6 +151,66 @@ namespace impactfe
 
 
 
+  std::string
+  command_line_usage(const std::string &program,
+                     const std::string &default_file)
+  {
+    return "Usage: " + program + " [parameter file]\n" + "       " + program +
+           " --print-parameters\n" + "       " + program + " --help\n" +
+           "Runs the parameter file (default: " + default_file +
+           ").\n"
+           "Its 'include' statements are relative to the current directory; "
+           "mesh and\n"
+           "data file names to the directory of the file that sets them.\n"
+           "--print-parameters writes every entry with its default and help "
+           "text\n"
+           "(units, ranges) in the parameter-file format, a template to "
+           "edit.\n"
+           "The output files are described in README.md, 'Output files'.\n";
+  }
+
+
+
+  CommandLine
+  parse_command_line(const int          argc,
+                     char              *argv[],
+                     const std::string &program,
+                     const std::string &default_file)
+  {
+    CommandLine command_line;
+    command_line.parameter_file = default_file;
+    for (int i = 1; i < argc; ++i)
+      {
+        const std::string argument = argv[i];
+        if (argument == "--help" || argument == "-h")
+          command_line.action = CommandLine::Action::help;
+        else if (argument == "--print-parameters")
+          command_line.action = CommandLine::Action::print_parameters;
+        else
+          {
+            // A name that starts with '-' is an option misspelt more often
+            // than a file; "./-x.prm" reaches such a file.
+            AssertThrow(argument.empty() || argument[0] != '-',
+                        dealii::ExcMessage(
+                          "unknown option '" + argument + "'.\n" +
+                          command_line_usage(program, default_file)));
+            AssertThrow(i == 1 && argc == 2,
+                        dealii::ExcMessage(
+                          "one parameter file at most, got " +
+                          std::to_string(argc - 1) + " arguments.\n" +
+                          command_line_usage(program, default_file)));
+            command_line.parameter_file = argument;
+          }
+      }
+    AssertThrow(argc <= 2,
+                dealii::ExcMessage("one argument at most, got " +
+                                   std::to_string(argc - 1) + ".\n" +
+                                   command_line_usage(program, default_file)));
+    return command_line;
+  }
+
+
+
   int
   report_exception(const std::exception &exc)
   {

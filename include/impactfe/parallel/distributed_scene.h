@@ -111,6 +111,10 @@ namespace impactfe
       /// The scene: the box (2D: its section), v0, phi, g, the bounds.
       SlidingBoxParameters box;
 
+      /// Every entry of contact_mpi's parameter files.
+      static void
+      declare_parameters(dealii::ParameterHandler &prm);
+
       /// Declare every entry, read @p file and check the values (throws with
       /// the entry named).
       void

@@ -150,6 +150,35 @@ namespace impactfe
   require_one_process(const std::string &program,
                       const std::string &alternative);
 
+  /**
+   * What a simulation program's command line asks: `program [parameter
+   * file]` runs (the file, or @p default_file without one), `--help` (or
+   * `-h`) prints the usage and `--print-parameters` every entry with its
+   * default and help text, in the parameter-file format. Another option or
+   * a second argument throws with the usage.
+   */
+  struct CommandLine
+  {
+    enum class Action
+    {
+      run,
+      help,
+      print_parameters
+    };
+    Action      action = Action::run;
+    std::string parameter_file;
+  };
+  CommandLine
+  parse_command_line(const int          argc,
+                     char              *argv[],
+                     const std::string &program,
+                     const std::string &default_file);
+
+  /** The usage parse_command_line() prints for `--help`. */
+  std::string
+  command_line_usage(const std::string &program,
+                     const std::string &default_file);
+
   /** The same for an exception of unknown type. */
   int
   report_unknown_exception();

@@ -1,0 +1,126 @@
+// The programs' command line: `--help` prints the usage and exits with 0,
+// `--print-parameters` writes every entry in the parameter-file format, and
+// that file is valid input with the defaults (two_bars_1d writes the same
+// history on it as on a file that sets nothing but the output); an unknown
+// option or a second file is refused with the usage and exit code 1, before
+// anything runs.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "../tests.h"
+
+namespace
+{
+  struct Program
+  {
+    const char *name;
+    std::string executable;
+  };
+
+  int
+  run(const std::string &command, const std::string &log)
+  {
+    const int status = std::system((command + " > " + log + " 2>&1").c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
+  std::string
+  text_of(const std::string &file)
+  {
+    std::ifstream      in(file);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  bool
+  contains(const std::string &text, const std::string &part)
+  {
+    return text.find(part) != std::string::npos;
+  }
+
+} // namespace
+
+int
+main()
+{
+  impactfe_tests::initlog();
+  const std::string mpi = std::string(MPIEXEC_TWO_RANKS) + " ";
+  for (const Program &program :
+       {Program{"two_bars_1d", TWO_BARS_1D_EXECUTABLE},
+        Program{"two_bars_2d", TWO_BARS_2D_EXECUTABLE},
+        Program{"two_bars_3d", TWO_BARS_3D_EXECUTABLE},
+        Program{"cylinder_impact", CYLINDER_IMPACT_EXECUTABLE},
+        Program{"oblique_plate", OBLIQUE_PLATE_EXECUTABLE},
+        Program{"oblique_plate_3d", OBLIQUE_PLATE_3D_EXECUTABLE},
+        Program{"block_on_plane", BLOCK_ON_PLANE_EXECUTABLE},
+        Program{"block_sliding_3d", BLOCK_SLIDING_3D_EXECUTABLE},
+        Program{"hertz_impact", HERTZ_IMPACT_EXECUTABLE},
+        Program{"hertz_on_block", HERTZ_ON_BLOCK_EXECUTABLE},
+        Program{"taylor_bar", TAYLOR_BAR_EXECUTABLE},
+        Program{"contact_mpi", mpi + BLOCK_SLIDING_MPI_EXECUTABLE}})
+    {
+      const std::string name      = program.name;
+      const std::string help      = name + "_help.log";
+      const int         help_code = run(program.executable + " --help", help);
+      impactfe_tests::check(
+        help_code == 0 &&
+          text_of(help).rfind("Usage: " + name + " [parameter file]\n", 0) == 0,
+        name + " --help: the usage, exit code 0");
+
+      const std::string prm = name + "_parameters.prm";
+      const int code = run(program.executable + " --print-parameters", prm);
+      const std::string listing = text_of(prm);
+      impactfe_tests::check(code == 0 &&
+                              listing.rfind("# Listing of Parameters", 0) ==
+                                0 &&
+                              contains(listing, "subsection Output"),
+                            name + " --print-parameters: a parameter file, "
+                                   "exit code 0");
+
+      const std::string bad = name + "_bad_option.log";
+      const int bad_code = run(program.executable + " --print-parameter", bad);
+      impactfe_tests::check(bad_code == 1 &&
+                              contains(text_of(bad),
+                                       "unknown option '--print-parameter'") &&
+                              contains(text_of(bad), "Usage: " + name),
+                            name + " --print-parameter: refused with the "
+                                   "usage, exit code 1");
+
+      const std::string two = name + "_two_files.log";
+      const int two_code    = run(program.executable + " a.prm b.prm", two);
+      impactfe_tests::check(two_code == 1 &&
+                              contains(text_of(two),
+                                       "one parameter file at most, got 2"),
+                            name + " a.prm b.prm: refused, exit code 1");
+    }
+
+  // The listing is input, and holds the defaults: two_bars_1d on it
+  // writes the history of a file that sets the output entries alone.
+  {
+    const std::string output = "\n  set VTU output = false\n"
+                               "  set Plot = false\nend\n";
+    std::ofstream("listing_run.prm")
+      << "include two_bars_1d_parameters.prm\nsubsection Output\n"
+      << "  set Output directory = listing_run" << output;
+    std::ofstream("default_run.prm")
+      << "subsection Output\n  set Output directory = default_run" << output;
+    const int listing_code =
+      run(std::string(TWO_BARS_1D_EXECUTABLE) + " listing_run.prm",
+          "listing_run.log");
+    const int default_code =
+      run(std::string(TWO_BARS_1D_EXECUTABLE) + " default_run.prm",
+          "default_run.log");
+    const std::string history = text_of("listing_run/history.csv");
+    impactfe_tests::check(listing_code == 0 && default_code == 0 &&
+                            contains(history, "contact_velocity") &&
+                            history == text_of("default_run/history.csv"),
+                          "two_bars_1d on its own listing: runs, and writes "
+                          "the defaults' history.csv");
+  }
+  return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
+}
