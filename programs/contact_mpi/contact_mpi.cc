@@ -62,25 +62,13 @@ main(int argc, char *argv[])
                                        "/parameter_files/block_sliding_mpi.prm";
       const impactfe::CommandLine command_line =
         impactfe::parse_command_line(argc, argv, "contact_mpi", default_file);
-      const bool rank_zero =
-        dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-      if (command_line.action == impactfe::CommandLine::Action::help)
-        {
-          if (rank_zero)
-            std::cout << impactfe::command_line_usage("contact_mpi",
-                                                      default_file);
-          return 0;
-        }
-      if (command_line.action ==
-          impactfe::CommandLine::Action::print_parameters)
-        {
-          dealii::ParameterHandler prm;
-          impactfe::distributed::DistributedSceneParameters::declare_parameters(
-            prm);
-          if (rank_zero)
-            prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
-          return 0;
-        }
+      if (impactfe::answer_informational_option(
+            command_line,
+            "contact_mpi",
+            default_file,
+            &impactfe::distributed::DistributedSceneParameters::
+              declare_parameters))
+        return 0;
       const std::string &file = command_line.parameter_file;
       impactfe::distributed::DistributedSceneParameters parameters;
       parameters.read(file);

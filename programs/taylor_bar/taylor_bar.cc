@@ -379,24 +379,12 @@ main(int argc, char *argv[])
         std::string(IMPACTFE_SOURCE_DIR) + "/parameter_files/taylor_bar.prm";
       const impactfe::CommandLine command_line =
         impactfe::parse_command_line(argc, argv, "taylor_bar", default_file);
-      const bool rank_zero =
-        dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-      if (command_line.action == impactfe::CommandLine::Action::help)
-        {
-          if (rank_zero)
-            std::cout << impactfe::command_line_usage("taylor_bar",
-                                                      default_file);
-          return 0;
-        }
-      if (command_line.action ==
-          impactfe::CommandLine::Action::print_parameters)
-        {
-          dealii::ParameterHandler prm;
-          TaylorBarProgram::TaylorBarProblem::declare_parameters(prm);
-          if (rank_zero)
-            prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
-          return 0;
-        }
+      if (impactfe::answer_informational_option(
+            command_line,
+            "taylor_bar",
+            default_file,
+            &TaylorBarProgram::TaylorBarProblem::declare_parameters))
+        return 0;
       TaylorBarProgram::TaylorBarProblem().run(command_line.parameter_file);
     }
   catch (...)

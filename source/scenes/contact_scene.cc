@@ -75,19 +75,12 @@ namespace impactfe
                                      ".prm";
     const CommandLine command_line =
       parse_command_line(argc, argv, program_name, default_file);
-    if (command_line.action == CommandLine::Action::help)
-      {
-        std::cout << command_line_usage(program_name, default_file);
-        return;
-      }
-    if (command_line.action == CommandLine::Action::print_parameters)
-      {
-        ParameterHandler prm;
-        declare_parameters(prm);
-        SceneParameters::declare_parameters(prm, "results/" + program_name);
-        prm.print_parameters(std::cout, ParameterHandler::PRM);
-        return;
-      }
+    if (answer_informational_option(
+          command_line, program_name, default_file, [&](ParameterHandler &prm) {
+            declare_parameters(prm);
+            SceneParameters::declare_parameters(prm, "results/" + program_name);
+          }))
+      return;
     require_one_process(program_name,
                         "distributed runs are made by contact_mpi "
                         "(doc/parallel.md), which runs the 2D and 3D "

@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/multithread_info.h>
 
 #include <impactfe/utilities/blas_threads.h>
@@ -207,6 +208,34 @@ namespace impactfe
                                    std::to_string(argc - 1) + ".\n" +
                                    command_line_usage(program, default_file)));
     return command_line;
+  }
+
+
+
+  bool
+  answer_informational_option(
+    const CommandLine                                     &command_line,
+    const std::string                                     &program,
+    const std::string                                     &default_file,
+    const std::function<void(dealii::ParameterHandler &)> &declare_parameters)
+  {
+    if (command_line.action == CommandLine::Action::run)
+      return false;
+    // The serial programs do not initialise MPI.
+    const bool rank_zero =
+      !dealii::Utilities::MPI::job_supports_mpi() ||
+      dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+    if (command_line.action == CommandLine::Action::help)
+      {
+        if (rank_zero)
+          std::cout << command_line_usage(program, default_file);
+        return true;
+      }
+    dealii::ParameterHandler prm;
+    declare_parameters(prm);
+    if (rank_zero)
+      prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
+    return true;
   }
 
 

@@ -1,7 +1,10 @@
 #ifndef impactfe_utilities_program_h
 #define impactfe_utilities_program_h
 
+#include <deal.II/base/parameter_handler.h>
+
 #include <exception>
+#include <functional>
 #include <string>
 
 namespace impactfe
@@ -178,6 +181,19 @@ namespace impactfe
   std::string
   command_line_usage(const std::string &program,
                      const std::string &default_file);
+
+  /**
+   * Carries out `--help` and `--print-parameters` of @p command_line on
+   * the standard output of rank 0 (MPI_COMM_WORLD; the only process of a
+   * serial run). @p declare_parameters declares every entry the program
+   * reads. Returns whether the program is done, i.e. had no file to run.
+   */
+  bool
+  answer_informational_option(
+    const CommandLine                                     &command_line,
+    const std::string                                     &program,
+    const std::string                                     &default_file,
+    const std::function<void(dealii::ParameterHandler &)> &declare_parameters);
 
   /** The same for an exception of unknown type. */
   int
