@@ -258,6 +258,16 @@ namespace CylinderImpact
         if (partner == numbers::invalid_unsigned_int)
           {
             mirror_pairs.clear();
+            AssertThrow(max_symmetry_error < 0.,
+                        ExcMessage(
+                          "Verification: 'Maximum symmetry error' = " +
+                          format_input(max_symmetry_error) +
+                          " asks for a symmetry check, but the mesh is not "
+                          "symmetric about x = " +
+                          format_input(x_c) + " (the vertex (" +
+                          format_input(vertices[v][0]) + ", " +
+                          format_input(vertices[v][1]) +
+                          ") has no mirror vertex); set it to -1."));
             return;
           }
         if (v <= partner)
@@ -320,13 +330,13 @@ namespace CylinderImpact
   CylinderImpactProblem::report_checks(std::ostream &out,
                                        JsonObject   &summary) const
   {
-    summary.add("symmetry_error", symmetry_error);
     if (mirror_pairs.empty())
       {
         out << "  Symmetry: not checked (the mesh is not symmetric)"
             << std::endl;
         return true;
       }
+    summary.add("symmetry_error", symmetry_error);
     out << "  Symmetry: max |u(x) - mirrored u(-x)| / max |u| = "
         << (symmetry_error < 1e-12 ? std::string("< 1e-12") :
                                      format_number(symmetry_error))

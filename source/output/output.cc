@@ -324,8 +324,11 @@ namespace impactfe
         records.emplace_back(state.time, b, name.str());
       }
 
-    // The record is rewritten whole each time, so it is always valid.
-    std::ofstream pvd(directory + "/solution.pvd");
+    // The record is written whole to a new file that then replaces the old
+    // one, so solution.pvd is always a valid collection.
+    const std::string pvd_name = directory + "/solution.pvd";
+    std::ofstream     pvd(pvd_name + ".new");
+    AssertThrow(pvd, ExcMessage("Output: cannot write " + pvd_name + ".new"));
     pvd << "<?xml version=\"1.0\"?>\n"
         << "<VTKFile type=\"Collection\" version=\"0.1\" "
            "byte_order=\"LittleEndian\">\n  <Collection>\n";
@@ -334,6 +337,13 @@ namespace impactfe
       pvd << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\""
           << part << "\" file=\"" << file << "\"/>\n";
     pvd << "  </Collection>\n</VTKFile>\n";
+    pvd.close();
+    AssertThrow(pvd, ExcMessage("Output: cannot write " + pvd_name + ".new"));
+    std::error_code error;
+    std::filesystem::rename(pvd_name + ".new", pvd_name, error);
+    AssertThrow(!error,
+                ExcMessage("Output: cannot write " + pvd_name + " (" +
+                           error.message() + ")"));
   }
 
 

@@ -78,10 +78,11 @@ namespace impactfe
                       "kappa of 'Theta rule = courant' [-], > 0: the "
                       "numerical damping coefficient (theta - 1/2) h in units "
                       "of the cell transit time dx / c_p.");
-    prm.declare_entry("Newmark beta",
-                      "0.25",
-                      Patterns::Double(),
-                      "Newmark beta [-], in (0, 0.5].");
+    prm.declare_entry(
+      "Newmark beta",
+      "0.25",
+      Patterns::Double(),
+      "Newmark beta [-], in [gamma / 2, 0.5] (unconditionally stable).");
     prm.declare_entry("Newmark gamma",
                       "0.5",
                       Patterns::Double(),
@@ -151,6 +152,15 @@ namespace impactfe
                 ExcMessage("Time stepping: 'Newmark gamma' must be in "
                            "[0.5, 1], got " +
                            format_input(newmark_gamma) + "."));
+    // Below gamma/2 Newmark is only conditionally stable, and the steps of
+    // the contact benchmarks are far above its limit.
+    AssertThrow(newmark_beta >= 0.5 * newmark_gamma,
+                ExcMessage("Time stepping: 'Newmark beta' = " +
+                           format_input(newmark_beta) +
+                           " is below 'Newmark gamma' / 2 = " +
+                           format_input(0.5 * newmark_gamma) +
+                           ": that Newmark scheme is only conditionally "
+                           "stable; take beta >= gamma / 2."));
     AssertThrow(free_flight_step_factor <= 1000,
                 ExcMessage("Time stepping: 'Free-flight step factor' must be "
                            "at most 1000, got " +

@@ -87,6 +87,8 @@ main()
   run_case("negative_time_step", with("Time stepping", "Time step = -1e-6"));
   run_case("zero_end_time", with("Time stepping", "End time = 0"));
   run_case("newmark_beta_zero", with("Time stepping", "Newmark beta = 0"));
+  run_case("newmark_beta_below_half_gamma",
+           with("Time stepping", "Newmark beta = 0.1"));
   run_case("free_flight_factor_zero",
            with("Time stepping", "Free-flight step factor = 0"));
   run_case("free_flight_factor_huge",
