@@ -276,9 +276,9 @@ namespace impactfe
                 ExcMessage("Obstacle: 'Normal' must not be zero."));
     if (type == Type::ball)
       require_positive(radius, "Obstacle", "Radius");
-    require_non_negative(friction_coefficient,
-                         "Obstacle",
-                         "Friction coefficient");
+    require_friction_coefficient(friction_coefficient,
+                                 "Obstacle",
+                                 "Friction coefficient");
   }
 
 

@@ -176,9 +176,9 @@ namespace impactfe
                 ExcMessage("Time: 'Time step' = " + format_number(time_step) +
                            " s is longer than 'End time' = " +
                            format_number(end_time) + " s."));
-    require_non_negative(friction_coefficient,
-                         "Contact",
-                         "Friction coefficient");
+    require_friction_coefficient(friction_coefficient,
+                                 "Contact",
+                                 "Friction coefficient");
     if (model == Model::three_dimensional)
       {
         AssertThrow(friction_coefficient == 0.,

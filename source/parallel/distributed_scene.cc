@@ -91,6 +91,7 @@ namespace impactfe
           value + "'.";
         const double mu = number_or_throw<double>(value, message);
         AssertThrow(mu >= 0., ExcMessage(message));
+        require_friction_coefficient(mu, "Bodies", entry);
         return {Utilities::trim(token.substr(0, at)), mu};
       }
 
@@ -173,7 +174,7 @@ namespace impactfe
                   ExcMessage("Bodies: 'Mesh files' must name at least two "
                              "files, got " +
                              std::to_string(files.size()) + "."));
-      require_non_negative(mu, "Bodies", "Friction coefficient");
+      require_friction_coefficient(mu, "Bodies", "Friction coefficient");
       AssertThrow(friction_between_bodies == 0. &&
                     discretization == "node-to-node",
                   ExcMessage("The subsections 'Second body', 'Mesh of the "
@@ -542,9 +543,9 @@ namespace impactfe
         second_material.parse_parameters(prm,
                                          dimension,
                                          "Material of the second body");
-      require_non_negative(friction_between_bodies,
-                           "Second body",
-                           "Friction coefficient");
+      require_friction_coefficient(friction_between_bodies,
+                                   "Second body",
+                                   "Friction coefficient");
       second_mesh.parse_parameters(prm, "Mesh of the second body");
       scene.parse_parameters(prm);
       mesh.parse_parameters(prm, "Mesh");

@@ -124,7 +124,7 @@ namespace impactfe
                                "): each of its lower nodes must lie above "
                                "the first block."));
         require_non_negative(gap_2, "Body 2", "Gap above body 1");
-        require_non_negative(mu_2, "Body 2", "Friction coefficient");
+        require_friction_coefficient(mu_2, "Body 2", "Friction coefficient");
       }
     prm.leave_subsection();
     print_figures = parse_figures_entry(prm);

@@ -86,6 +86,22 @@ namespace impactfe
 
 
 
+  void
+  require_friction_coefficient(const double       value,
+                               const std::string &subsection,
+                               const std::string &entry)
+  {
+    require_non_negative(value, subsection, entry);
+    AssertThrow(value <= 1e6,
+                dealii::ExcMessage(
+                  subsection + ": '" + entry + "' must be at most 1e6, got " +
+                  format_number(value) +
+                  " (the contact problem's friction rows would keep fewer "
+                  "digits than its verification needs)."));
+  }
+
+
+
   std::string
   format_figure(const double value, const double round_off)
   {

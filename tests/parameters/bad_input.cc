@@ -117,6 +117,9 @@ main()
   run_case("negative_friction",
            with("Obstacle", "Friction coefficient = -0.1"),
            cylinder);
+  run_case("friction_too_large_for_the_verification",
+           with("Obstacle", "Friction coefficient = 1e14"),
+           cylinder);
   run_case("negative_ball_radius",
            with("Obstacle", "Type = ball\n  set Radius = -1"),
            cylinder);

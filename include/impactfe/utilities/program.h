@@ -56,6 +56,17 @@ namespace impactfe
                        const std::string &entry);
 
   /**
+   * A Coulomb friction coefficient: in [0, 1e6]. Above that the friction
+   * rows of a contact problem (mu P_N against P_T) keep fewer digits than
+   * the solvers' verification asks for (at mu = 1e14 a cold Lemke start
+   * returned sliding nodes with no friction force).
+   */
+  void
+  require_friction_coefficient(const double       value,
+                               const std::string &subsection,
+                               const std::string &entry);
+
+  /**
    * Print an exception caught in main() to stderr and return the exit code
    * 1. For deal.II exceptions only the message is printed (what went wrong
    * and which entry, value or step), not the library's source location.
