@@ -151,10 +151,18 @@ namespace BlockOnPlane
 
     // Sliding against the rigid-block model: a single block that starts on
     // the plane with no normal velocity.
+    // A load that pulls the block off the plane leaves no sliding to
+    // compare with: the model's friction force mu N would change sign.
     const double a_t = (gravity + push / mass_1) * tangent;
-    if (!body_2 && initial_gap == 0. && velocity * normal == 0. &&
-        (velocity * tangent != 0. || a_t != 0.) &&
-        obstacle_parameters.type == ObstacleParameters::Type::plane)
+    const bool   slides_on_plane =
+      !body_2 && initial_gap == 0. && velocity * normal == 0. &&
+      (velocity * tangent != 0. || a_t != 0.) &&
+      obstacle_parameters.type == ObstacleParameters::Type::plane;
+    if (slides_on_plane && normal_load() < 0.)
+      out << "  Sliding against the rigid-block model: not checked, the "
+          << "load pulls the block off the plane (normal load "
+          << format_figure(normal_load()) << " N)" << std::endl;
+    if (slides_on_plane && normal_load() >= 0.)
       ok &= tracker->report_sliding(out,
                                     RigidSliding(velocity * tangent,
                                                  a_t,

@@ -121,7 +121,9 @@ namespace impactfe
     /**
      * Print the energy round-off, the active-set changes, the final phase
      * and the mean reaction against @p normal_load, with their checks, and
-     * add the figures to @p stability. Returns false if a check failed.
+     * add the figures to @p stability. A negative @p normal_load pulls the
+     * bodies off the obstacle: the gap drift is then not checked. Returns
+     * false if a check failed.
      */
     bool
     report(std::ostream            &out,
