@@ -188,6 +188,10 @@ namespace CylinderImpact
                            "got " +
                            std::to_string(n_core) + "."));
     require_positive(thickness, "Geometry", "Thickness");
+    require_mesh_fits_in_memory(double(n_core) * n_core + 4. * n_core * n_rings,
+                                2,
+                                "Geometry",
+                                "'Number of core cells' and 'Number of rings'");
     prm.enter_subsection("Initial conditions");
     impact_velocity = prm.get_double("Impact velocity");
     initial_gap     = prm.get_double("Initial gap");

@@ -151,6 +151,11 @@ namespace ObliquePlate3D
     n_layers = prm.get_integer("Number of layers");
     turn     = prm.get_double("Turn about the normal");
     prm.leave_subsection();
+    require_mesh_fits_in_memory(double(plate.nx) * plate.ny * n_layers,
+                                3,
+                                "Geometry",
+                                "'Number of cells across', 'Number of cells "
+                                "up' and 'Number of layers'");
     AssertThrow(std::isfinite(turn),
                 ExcMessage(
                   "Geometry: 'Turn about the normal' must be finite."));

@@ -120,6 +120,10 @@ namespace TwoBars1D
     area    = prm.get_double("Cross-section area");
     prm.leave_subsection();
     require_positive(area, "Geometry", "Cross-section area");
+    require_mesh_fits_in_memory(2. * n_cells,
+                                1,
+                                "Geometry",
+                                "'Number of cells per bar'");
   }
 
 

@@ -159,6 +159,11 @@ namespace TwoBars2D
     AssertThrow(height > 0. && thickness > 0.,
                 ExcMessage("Geometry: 'Bar height' and 'Thickness' must be > "
                            "0."));
+    require_mesh_fits_in_memory(2. * n_along * n_across,
+                                2,
+                                "Geometry",
+                                "'Number of cells along' and 'Number of cells "
+                                "across'");
     AssertThrow(n_across % 2 == 0,
                 ExcMessage("Geometry: 'Number of cells across' must be even, "
                            "got " +

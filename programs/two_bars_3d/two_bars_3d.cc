@@ -131,6 +131,13 @@ namespace TwoBars3D
     prm.leave_subsection();
     if (n_across_2 == 0)
       n_across_2 = n_across;
+    require_mesh_fits_in_memory(double(n_along) *
+                                  (double(n_across) * n_across +
+                                   double(n_across_2) * n_across_2),
+                                3,
+                                "Geometry",
+                                "'Number of cells along', 'Number of cells "
+                                "across' and 'Number of cells across bar 2'");
     AssertThrow(n_across_2 == n_across || node_to_face,
                 ExcMessage("Geometry: 'Number of cells across bar 2' = " +
                            std::to_string(n_across_2) +

@@ -132,6 +132,10 @@ namespace impactfe
     fine_angle       = prm.get_double("Fine zone angle");
     prm.leave_subsection();
     require_positive(radius, "Geometry", "Radius");
+    require_mesh_fits_in_memory(7. * std::pow(8., n_refinements),
+                                3,
+                                "Geometry",
+                                "'Number of refinements'");
     AssertThrow(pole_cell_factor > 0. && pole_cell_factor <= 1.,
                 dealii::ExcMessage(
                   "Geometry: 'Pole cell factor' must be in (0, 1], got " +

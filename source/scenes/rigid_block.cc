@@ -65,6 +65,11 @@ namespace impactfe
     require_positive(length, "Geometry", "Length");
     require_positive(height, "Geometry", "Height");
     require_positive(width, "Geometry", "Width");
+    require_mesh_fits_in_memory(double(nx) * ny * nz,
+                                3,
+                                "Geometry",
+                                "'Number of cells along x', 'Number of cells "
+                                "up' and 'Number of cells along z'");
     prm.enter_subsection("Initial conditions");
     speed = prm.get_double("Sliding speed");
     phi   = prm.get_double("Sliding direction");
@@ -123,6 +128,11 @@ namespace impactfe
                            "got " +
                            format_number(width) + " and " +
                            format_number(height) + "."));
+    require_mesh_fits_in_memory(double(n_across) * n_up,
+                                2,
+                                subsection,
+                                "'Number of cells across' and 'Number of "
+                                "cells up'");
   }
 
 

@@ -65,6 +65,11 @@ namespace impactfe
     ny          = prm.get_integer("Number of cells up");
     initial_gap = prm.get_double("Initial gap");
     prm.leave_subsection();
+    require_mesh_fits_in_memory(double(nx) * ny,
+                                2,
+                                "Geometry",
+                                "'Number of cells across' and 'Number of "
+                                "cells up'");
     AssertThrow(width > 0. && side_height > 0.,
                 ExcMessage("Geometry: 'Width' and 'Side height' must be > 0, "
                            "got " +

@@ -67,6 +67,25 @@ namespace impactfe
                                const std::string &entry);
 
   /**
+   * Throw unless a mesh of @p n_cells cells in @p dim dimensions can fit in
+   * this machine's physical memory and in deal.II's 32-bit indices. The
+   * estimate is a lower bound measured on the programs (peak resident memory
+   * per cell: 1 kB in 1D, 9 kB in 2D, 70 kB in 3D, of which half is counted),
+   * so a run that fits is never refused; a run that cannot fit stops at once
+   * with a message that names
+   * @p entries of @p subsection, instead of swapping or being killed while
+   * deal.II builds the mesh. A program that keeps more per cell (the
+   * finite-strain programs: 22 kB per axisymmetric cell) passes its own
+   * lower bound @p bytes_per_cell.
+   */
+  void
+  require_mesh_fits_in_memory(const double       n_cells,
+                              const unsigned int dim,
+                              const std::string &subsection,
+                              const std::string &entries,
+                              const double       bytes_per_cell = 0.);
+
+  /**
    * Print an exception caught in main() to stderr and return the exit code
    * 1. For deal.II exceptions only the message is printed (what went wrong
    * and which entry, value or step), not the library's source location.
