@@ -184,7 +184,8 @@ namespace HertzImpactProgram
   double
   HertzImpactProblem::measured_duration() const
   {
-    return ball.contact_duration(run_summary().last_contact);
+    return ball.contact_duration(run_summary().last_contact,
+                                 system().state().time);
   }
 
 

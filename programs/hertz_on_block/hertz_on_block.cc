@@ -337,7 +337,8 @@ namespace HertzOnBlockProgram
   {
     const HertzImpact        reference = hertz();
     const ContactRunSummary &run       = run_summary();
-    const double             duration = ball.contact_duration(run.last_contact);
+    const double             duration =
+      ball.contact_duration(run.last_contact, system().state().time);
     out << title() << ", " << scheme_description(" s") << std::endl
         << "  Mesh: ball " << body(0).triangulation().n_active_cells()
         << " + block " << body(1).triangulation().n_active_cells()

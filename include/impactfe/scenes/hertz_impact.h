@@ -93,9 +93,14 @@ namespace impactfe
     double
     pole_cell_size() const;
 
-    /** From the touch (initial gap / v) to @p last_contact (-1: none). */
+    /**
+     * From the touch (initial gap / v) to @p last_contact, the last step
+     * with a contact force; -1 if there was none, or if the contact had
+     * not ended at the run's end @p end_time (the duration is then not
+     * known).
+     */
     double
-    contact_duration(const double last_contact) const;
+    contact_duration(const double last_contact, const double end_time) const;
   };
 
 
@@ -104,7 +109,9 @@ namespace impactfe
    * A run's peak force, contact duration and largest approach against
    * @p reference: one line each on @p out ("Peak force: F N, Hertz F_H N,
    * relative error e") and the entries hertz_*, contact_duration,
-   * max_approach and *_error of summary.json.
+   * max_approach and *_error of summary.json. A @p duration < 0 is not
+   * measured (no contact, or a contact that had not ended): the line says
+   * why and summary.json has null for it and its error.
    */
   void
   report_against_hertz(const HertzImpact &reference,
@@ -117,7 +124,7 @@ namespace impactfe
   /**
    * The checks of `Verification/Maximum peak force error` and `Maximum
    * duration error` (-1: not checked), printed on @p out. Returns false if
-   * one fails.
+   * one fails; a duration that was not measured fails its check.
    */
   bool
   check_against_hertz(const HertzImpact &reference,
