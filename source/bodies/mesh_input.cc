@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 
 namespace impactfe
@@ -24,6 +25,105 @@ namespace impactfe
       if (first == std::string::npos)
         return "";
       return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
+    }
+
+    // The structure of an ASCII Gmsh file of format 1 or 2: each $Nodes
+    // ($NOD) and $Elements ($ELM) section has a count and then that many
+    // lines before its end marker, and a node line has an id and three
+    // coordinates. deal.II's reader stops on a broken section with a
+    // message about the next marker ("The string <$Nodes> is not
+    // recognized"); this says which section and line is wrong instead.
+    // Files of format 4 (other sections) are left to deal.II.
+    void
+    check_gmsh_sections(const std::filesystem::path &path)
+    {
+      std::ifstream input(path);
+      std::string   line;
+      unsigned int  line_number = 0;
+      const auto    where       = [&]() {
+        return "Mesh: '" + path.string() + "', line " +
+               std::to_string(line_number) + ": ";
+      };
+      while (std::getline(input, line))
+        {
+          ++line_number;
+          const std::string marker = trimmed(line);
+          if (marker == "$MeshFormat")
+            {
+              std::getline(input, line);
+              ++line_number;
+              std::istringstream format(line);
+              double             version   = 0.;
+              int                file_type = 0;
+              format >> version >> file_type;
+              if (!format || version >= 3. || file_type != 0)
+                return;
+              continue;
+            }
+          const bool nodes = marker == "$Nodes" || marker == "$NOD";
+          if (!nodes && marker != "$Elements" && marker != "$ELM")
+            continue;
+          const std::string end_marker = marker == "$Nodes" ? "$EndNodes" :
+                                         marker == "$NOD"   ? "$ENDNOD" :
+                                         marker == "$Elements" ?
+                                                            "$EndElements" :
+                                                            "$ENDELM";
+          std::getline(input, line);
+          ++line_number;
+          std::istringstream count_line(line);
+          long               count = -1;
+          count_line >> count;
+          AssertThrow(count_line && count >= 0,
+                      dealii::ExcMessage(where() + "the number of " +
+                                         (nodes ? "nodes" : "elements") +
+                                         " after " + marker +
+                                         " must be an integer >= 0, got '" +
+                                         trimmed(line) + "'."));
+          long n_lines = 0;
+          bool ended   = false;
+          while (std::getline(input, line))
+            {
+              ++line_number;
+              const std::string text = trimmed(line);
+              if (text == end_marker)
+                {
+                  ended = true;
+                  break;
+                }
+              AssertThrow(text.empty() || text[0] != '$',
+                          dealii::ExcMessage(where() + "found " + text +
+                                             " inside the " + marker +
+                                             " section, which has no " +
+                                             end_marker + "."));
+              ++n_lines;
+              if (nodes)
+                {
+                  std::istringstream fields(text);
+                  double             id = 0., x = 0., y = 0., z = 0.;
+                  fields >> id >> x >> y >> z;
+                  AssertThrow(!fields.fail(),
+                              dealii::ExcMessage(where() +
+                                                 "a node needs an id and three "
+                                                 "coordinates, got '" +
+                                                 text + "'."));
+                }
+            }
+          AssertThrow(ended,
+                      dealii::ExcMessage(
+                        "Mesh: '" + path.string() + "': the " + marker +
+                        " section announces " + std::to_string(count) + " " +
+                        (nodes ? "nodes" : "elements") +
+                        " and the file ends "
+                        "after " +
+                        std::to_string(n_lines) + " of them, with no " +
+                        end_marker + "."));
+          AssertThrow(n_lines == count,
+                      dealii::ExcMessage(
+                        where() + "the " + marker + " section announces " +
+                        std::to_string(count) + " " +
+                        (nodes ? "nodes" : "elements") + " but has " +
+                        std::to_string(n_lines) + " lines."));
+        }
     }
 
     // Reads @p file as ParameterHandler does (comments from '#', lines
@@ -176,15 +276,25 @@ namespace impactfe
     std::ifstream input(path);
     AssertThrow(input,
                 ExcMessage("Mesh: cannot open '" + path.string() + "'."));
+    if (chosen == "msh")
+      check_gmsh_sections(path);
     try
       {
         grid_in.read(input, grid_format);
       }
     catch (const std::exception &error)
       {
+        // deal.II's own message, without the source location and stack
+        // trace of its what().
+        std::ostringstream reason;
+        if (const auto *deal_error =
+              dynamic_cast<const dealii::ExceptionBase *>(&error))
+          deal_error->print_info(reason);
+        else
+          reason << error.what();
         AssertThrow(false,
                     ExcMessage("Mesh: cannot read '" + path.string() + "' as " +
-                               chosen + ": " + error.what()));
+                               chosen + ": " + trimmed(reason.str())));
       }
     AssertThrow(triangulation.n_active_cells() > 0,
                 ExcMessage("Mesh: the mesh file '" + path.string() +

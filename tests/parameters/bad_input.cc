@@ -147,6 +147,36 @@ main()
            with("Obstacle", "Normal = 0, 1, 0"),
            plate);
 
+  // Broken Gmsh files: the message names the section and the line, not
+  // the next marker (deal.II's reader said "The string <$Nodes> is not
+  // recognized", with its stack trace), and a quad with three nodes gets
+  // deal.II's message without the trace.
+  std::ofstream("short_node_line.msh")
+    << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n"
+       "2 1 0\n3 1 1 0\n4 0 1 0\n$EndNodes\n";
+  run_case("mesh_node_line_too_short",
+           with("Mesh", "Mesh file = short_node_line.msh"),
+           cylinder);
+  std::ofstream("truncated.msh")
+    << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n"
+       "2 1 0 0\n";
+  run_case("mesh_truncated_in_nodes",
+           with("Mesh", "Mesh file = truncated.msh"),
+           cylinder);
+  std::ofstream("node_count.msh")
+    << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n"
+       "2 1 0 0\n3 1 1 0\n$EndNodes\n";
+  run_case("mesh_node_count_wrong",
+           with("Mesh", "Mesh file = node_count.msh"),
+           cylinder);
+  std::ofstream("quad_with_three_nodes.msh")
+    << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n"
+       "2 1 0 0\n3 1 1 0\n4 0 1 0\n$EndNodes\n$Elements\n1\n"
+       "1 3 2 0 1 1 2 3\n$EndElements\n";
+  run_case("mesh_quad_with_three_nodes",
+           with("Mesh", "Mesh file = quad_with_three_nodes.msh"),
+           cylinder);
+
   // Meshes of simplices (GridIn reads them): Q1 needs quadrilaterals and
   // hexahedra. The tetrahedron used to crash block_sliding_3d.
   std::ofstream("triangle.msh")
