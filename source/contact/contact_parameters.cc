@@ -180,6 +180,11 @@ namespace impactfe
                            "circular cone), got " +
                            std::to_string(k) + "."));
     n_facets = static_cast<unsigned int>(k);
+    AssertThrow(dump_step == -1 || dump_step >= 1,
+                ExcMessage("Contact solver: 'Dump LCP of step' must be -1 "
+                           "(none) or a step number >= 1 (the first step is "
+                           "1), got " +
+                           std::to_string(dump_step) + "."));
     AssertThrow(exact_cone_tolerance > 0. &&
                   std::isfinite(exact_cone_tolerance),
                 ExcMessage("Contact solver: 'Exact cone tolerance' must be "

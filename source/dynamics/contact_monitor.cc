@@ -451,12 +451,15 @@ namespace impactfe
   ContactVerificationParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Verification");
-    max_impulse_balance_error = prm.get_double("Maximum impulse balance error");
-    max_penetration           = prm.get_double("Maximum penetration");
-    max_coulomb_excess        = prm.get_double("Maximum Coulomb excess");
-    max_energy_increase       = prm.get_double("Maximum energy increase");
-    min_energy_ratio          = prm.get_double("Minimum energy ratio");
-    max_energy_ratio          = prm.get_double("Maximum energy ratio");
+    const auto bound = [&prm](const std::string &entry) {
+      return get_check_bound(prm, "Verification", entry);
+    };
+    max_impulse_balance_error = bound("Maximum impulse balance error");
+    max_penetration           = bound("Maximum penetration");
+    max_coulomb_excess        = bound("Maximum Coulomb excess");
+    max_energy_increase       = bound("Maximum energy increase");
+    min_energy_ratio          = bound("Minimum energy ratio");
+    max_energy_ratio          = bound("Maximum energy ratio");
     prm.leave_subsection();
   }
 
@@ -476,7 +479,11 @@ namespace impactfe
     std::ostringstream bound_text;
     bound_text << std::setprecision(12) << bound;
     out << "  Check " << what << " " << relation << " " << bound_text.str()
-        << ": " << (ok ? "OK" : "FAILED") << std::endl;
+        << ": " << (ok ? "OK" : "FAILED");
+    // The value, which the summary may have printed rounded ("< 1e-12").
+    if (!ok)
+      out << " (" << std::setprecision(3) << value << ")";
+    out << std::endl;
     return ok;
   }
 

@@ -103,21 +103,22 @@ namespace impactfe
   StabilityBounds::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Verification");
-    final_phase_start = prm.get_double("Start of the final phase");
-    max_gap_drift     = prm.get_double("Maximum gap drift");
-    max_final_penetration =
-      prm.get_double("Maximum penetration in the final phase");
-    max_active_set_changes =
-      prm.get_double("Maximum active-set changes per step");
-    max_reaction_error       = prm.get_double("Maximum reaction error");
-    max_stick_time_error     = prm.get_double("Maximum stick time error");
-    max_distance_error       = prm.get_double("Maximum sliding distance error");
-    max_final_velocity_error = prm.get_double("Maximum final velocity error");
-    max_compression_error = prm.get_double("Maximum static compression error");
+    const auto bound = [&prm](const std::string &entry) {
+      return get_check_bound(prm, "Verification", entry);
+    };
+    final_phase_start        = prm.get_double("Start of the final phase");
+    max_gap_drift            = bound("Maximum gap drift");
+    max_final_penetration    = bound("Maximum penetration in the final phase");
+    max_active_set_changes   = bound("Maximum active-set changes per step");
+    max_reaction_error       = bound("Maximum reaction error");
+    max_stick_time_error     = bound("Maximum stick time error");
+    max_distance_error       = bound("Maximum sliding distance error");
+    max_final_velocity_error = bound("Maximum final velocity error");
+    max_compression_error    = bound("Maximum static compression error");
     max_energy_increase_in_round_offs =
-      prm.get_double("Maximum energy increase in round-offs");
-    min_restitution = prm.get_double("Minimum restitution");
-    max_restitution = prm.get_double("Maximum restitution");
+      bound("Maximum energy increase in round-offs");
+    min_restitution = bound("Minimum restitution");
+    max_restitution = bound("Maximum restitution");
     prm.leave_subsection();
   }
 

@@ -687,8 +687,11 @@ namespace impactfe
         const Tensor<2, 3> F = deformation_gradient(g, u, q);
         const double       J = determinant(F);
         AssertThrow(J > 0. && J0 > 0.,
-                    ExcMessage("Taylor bar: an element is inverted (det F = " +
-                               std::to_string(J) +
+                    ExcMessage("Taylor bar, step " +
+                               std::to_string(step_number) +
+                               " (from t = " + format_number(current_time) +
+                               " s): an element is inverted (det F = " +
+                               format_number(J > 0. ? J0 : J) +
                                "); reduce the time step or refine."));
         const double       scale = settings.f_bar ? std::cbrt(J0 / J) : 1.;
         const Tensor<2, 3> F_bar = scale * F;

@@ -55,6 +55,14 @@ namespace impactfe
     output.parse_parameters(prm);
     verification.parse_parameters(prm);
     n_threads = prm.get_integer("Number of threads");
+    // A step past the end would write nothing, and the user would look for
+    // a file that was never made.
+    const unsigned int n_steps = time_stepping.n_steps();
+    AssertThrow(contact_solver.dump_step <= static_cast<int>(n_steps),
+                ExcMessage("Contact solver: 'Dump LCP of step' = " +
+                           std::to_string(contact_solver.dump_step) +
+                           ", but the run has " + std::to_string(n_steps) +
+                           " steps ('End time' / 'Time step')."));
   }
 
 

@@ -157,16 +157,11 @@ namespace impactfe
                                    format_number(impact_velocity) + "."));
     require_non_negative(initial_gap, "Initial conditions", "Initial gap");
     prm.enter_subsection("Verification");
-    max_peak_force_error = prm.get_double("Maximum peak force error");
-    max_duration_error   = prm.get_double("Maximum duration error");
+    max_peak_force_error =
+      get_check_bound(prm, "Verification", "Maximum peak force error");
+    max_duration_error =
+      get_check_bound(prm, "Verification", "Maximum duration error");
     prm.leave_subsection();
-    for (const auto &[entry, bound] :
-         {std::make_pair("Maximum peak force error", max_peak_force_error),
-          std::make_pair("Maximum duration error", max_duration_error)})
-      AssertThrow(bound == -1. || bound >= 0.,
-                  dealii::ExcMessage(std::string("Verification: '") + entry +
-                                     "' must be >= 0 or -1 (no check), got " +
-                                     format_number(bound) + "."));
   }
 
 

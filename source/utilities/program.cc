@@ -88,6 +88,21 @@ namespace impactfe
 
 
 
+  double
+  get_check_bound(dealii::ParameterHandler &prm,
+                  const std::string        &subsection,
+                  const std::string        &entry)
+  {
+    const double bound = prm.get_double(entry);
+    AssertThrow(bound == -1. || (bound >= 0. && std::isfinite(bound)),
+                dealii::ExcMessage(subsection + ": '" + entry +
+                                   "' must be >= 0 or -1 (no check), got " +
+                                   format_number(bound) + "."));
+    return bound;
+  }
+
+
+
   void
   require_friction_coefficient(const double       value,
                                const std::string &subsection,

@@ -307,6 +307,18 @@ main()
   run_case("hertz_negative_peak_force_bound",
            with("Verification", "Maximum peak force error = -0.5"),
            hertz_on_block);
+  // every verification bound: -1 is "no check", another negative value
+  // is refused (it used to switch the check off without a word)
+  run_case("negative_penetration_bound",
+           with("Verification", "Maximum penetration = -0.5"));
+  run_case("negative_gap_drift_bound",
+           with("Verification", "Maximum gap drift = -2"),
+           block);
+  // a dump of step 0 or of a step after the end would write nothing
+  run_case("dump_lcp_of_step_zero",
+           with("Contact solver", "Dump LCP of step = 0"));
+  run_case("dump_lcp_of_step_after_the_end",
+           with("Contact solver", "Dump LCP of step = 2000000000"));
 
   // taylor_bar: the finite-strain program's own entries.
   const std::string taylor = TAYLOR_BAR_EXECUTABLE;
@@ -332,6 +344,12 @@ main()
            taylor);
   run_case("taylor_newton_not_converged",
            with("Discretisation", "Maximum Newton iterations = 1"),
+           taylor);
+  // 3000 m/s and h = 1e-6 s: the first Newton iterate turns the front
+  // cells inside out; the message names the step
+  run_case("taylor_inverted_element",
+           with("Initial conditions", "Impact velocity = 3000") +
+             "subsection Time\n  set Time step = 1e-6\nend\n",
            taylor);
   run_case("taylor_3d_with_friction",
            with("Geometry", "Model = 3d") +

@@ -101,8 +101,9 @@ namespace impactfe
   };
 
   /**
-   * Print `Check <what> <relation> <bound>: OK|FAILED` (nothing if the bound
-   * is negative) and return false if it failed.
+   * Print `Check <what> <relation> <bound>: OK` or `...: FAILED (<value>)`
+   * (nothing if the bound is negative: -1, "no check", the only negative
+   * value get_check_bound() accepts) and return false if it failed.
    */
   bool
   print_check(std::ostream      &out,

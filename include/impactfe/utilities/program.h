@@ -56,6 +56,18 @@ namespace impactfe
                        const std::string &entry);
 
   /**
+   * A verification bound of the entered subsection @p subsection: the entry
+   * @p entry read as a number that must be >= 0, or -1 for "no check". Any
+   * other negative value would switch the check off without a word; it is
+   * refused with "<subsection>: '<entry>' must be >= 0 or -1 (no check), got
+   * <value>."
+   */
+  double
+  get_check_bound(dealii::ParameterHandler &prm,
+                  const std::string        &subsection,
+                  const std::string        &entry);
+
+  /**
    * A Coulomb friction coefficient: in [0, 1e6]. Above that the friction
    * rows of a contact problem (mu P_N against P_T) keep fewer digits than
    * the solvers' verification asks for (at mu = 1e14 a cold Lemke start
