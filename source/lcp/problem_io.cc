@@ -57,6 +57,31 @@ namespace impactfe
           return pos >= tokens.size();
         }
 
+        /// After the data: text (a comment, as Siconos files often end
+        /// with) may follow, a number may not. A number there means the
+        /// header announced fewer values than the file holds (a wrong n or
+        /// n_c, or a global problem M, H, q, b, mu read as a local one: the
+        /// reader would take H's header for q), and reading on would solve
+        /// another problem than the file's. @p allowed_flag: one last "0"
+        /// or "1" is accepted, the flag that Siconos' older writers put
+        /// after a friction-contact problem (most files of its collection
+        /// end with it).
+        void
+        expect_no_more_numbers(const std::string &header,
+                               const std::string &hint,
+                               const bool         allowed_flag)
+        {
+          std::size_t n = 0;
+          for (bool ok = true; ok; ++n)
+            peek_number(n, ok);
+          --n;
+          if (n == 0 || (allowed_flag && n == 1 &&
+                         (peek_text() == "0" || peek_text() == "1")))
+            return;
+          error(std::to_string(n) + " more number(s) after the data that " +
+                header + " announces; " + hint);
+        }
+
         /// The next token as text ("" at the end), without consuming it.
         const std::string &
         peek_text(const std::size_t offset = 0) const
@@ -468,6 +493,9 @@ namespace impactfe
           file.lcp.q.resize(n);
           for (auto &v : file.lcp.q)
             v = t.number("an entry of q");
+          t.expect_no_more_numbers("the LCP size n = " + std::to_string(n),
+                                   "is n right?",
+                                   false);
           return file;
         }
       if (is_fc)
@@ -493,6 +521,12 @@ namespace impactfe
                 t.error("negative friction coefficient");
             }
           p.gap_term.assign(p.n_contacts, 0.);
+          t.expect_no_more_numbers(
+            "d = " + std::to_string(p.n_directions) +
+              ", n_c = " + std::to_string(p.n_contacts),
+            "is n_c right, or is it a global problem (M, H, q, b, mu), "
+            "which is read from FCLib files only?",
+            true);
           return file;
         }
       t.error(

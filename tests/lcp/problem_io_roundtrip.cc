@@ -120,6 +120,25 @@ main()
                   << std::endl;
   dealii::deallog << read_error("2\n2\n2\n4\n4\n") << std::endl;
   dealii::deallog << read_error("hello world\n") << std::endl;
+  // more numbers than the header announces (n = 2 but three entries of q;
+  // one contact but two friction coefficients; a global problem, M, H, q,
+  // b, mu, whose H would be read as q); text after the data is a comment
+  // (see 1.), and one 0 or 1 after a contact problem the flag of Siconos'
+  // older writers: no error
+  dealii::deallog << read_error("2\n0\n2\n2\n2\t2\n1 0\n0 1\n-1 -1 -1\n")
+                  << std::endl;
+  dealii::deallog << read_error("2\n1\n0\n2\n2\n2\t2\n1 0\n0 1\n-1 0\n"
+                                "0.3 0.3\n# mu\n")
+                  << std::endl;
+  dealii::deallog << read_error("2\n1\n0\n2\n2\n2\t2\n1 0\n0 1\n-1 0\n"
+                                "0.3\n# 2 more lines\n")
+                  << std::endl;
+  dealii::deallog << read_error("2\n1\n0\n2\n2\n2\t2\n1 0\n0 1\n-1 0\n"
+                                "0.3\n1\n")
+                  << std::endl;
+  dealii::deallog << read_error("2\n1\n0\n2\n2\n2\t2\n1 0\n0 1\n0\n2\n2\n"
+                                "2\t2\n1 0\n0 1\n-1 0\n0 0\n0.3\n0\n")
+                  << std::endl;
   {
     bool thrown = false;
     try

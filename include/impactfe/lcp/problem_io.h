@@ -17,7 +17,10 @@
 //                                 "i : value" lines (compressed column; rows
 //                                 for origin 3), or "triplet: m-by-n, nzmax: X
 //                                 nnz: Y" and "i j : value" lines
-// Anything after the data (Siconos files often end with a comment) is ignored.
+// Text after the data (Siconos files often end with a comment) is ignored;
+// numbers are refused (a wrong size, or a global problem M, H, q, b, mu
+// taken for a local one), but for the one flag, 0 or 1, that Siconos'
+// older writers put after a friction-contact problem.
 #ifndef impactfe_lcp_problem_io_h
 #define impactfe_lcp_problem_io_h
 
