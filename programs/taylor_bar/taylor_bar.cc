@@ -37,7 +37,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <iomanip>
 #include <iostream>
 
@@ -342,10 +341,7 @@ namespace TaylorBarProgram
   {
     ParameterHandler prm;
     declare_parameters(prm);
-    AssertThrow(std::filesystem::exists(parameter_file),
-                ExcMessage("The parameter file '" + parameter_file +
-                           "' does not exist."));
-    prm.parse_input(parameter_file);
+    read_parameter_file(prm, parameter_file);
     parse_parameters(prm);
     set_thread_limit(1);
     setup_system();

@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -494,10 +493,7 @@ namespace impactfe
     {
       ParameterHandler prm;
       declare_parameters(prm);
-      AssertThrow(std::filesystem::exists(file),
-                  ExcMessage("The parameter file '" + file +
-                             "' does not exist."));
-      prm.parse_input(file);
+      read_parameter_file(prm, file);
       dimension      = prm.get_integer("Dimension");
       two_bodies     = prm.get("Scene") == "two bodies";
       several_bodies = prm.get("Scene") == "bodies";

@@ -171,10 +171,7 @@ namespace impactfe
     ParameterHandler prm;
     declare_parameters(prm);
     SceneParameters::declare_parameters(prm, "results/" + program_name);
-    AssertThrow(std::filesystem::exists(file),
-                ExcMessage("The parameter file '" + file +
-                           "' does not exist."));
-    prm.parse_input(file);
+    read_parameter_file(prm, file);
     parameters.parse_parameters(prm);
     parse_parameters(prm);
   }

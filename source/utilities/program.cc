@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <ctime>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <new>
@@ -84,6 +85,28 @@ namespace impactfe
                 dealii::ExcMessage(subsection + ": '" + entry +
                                    "' must be >= 0, got " +
                                    format_number(value) + "."));
+  }
+
+
+
+  void
+  read_parameter_file(dealii::ParameterHandler &prm, const std::string &file)
+  {
+    AssertThrow(std::filesystem::exists(file),
+                dealii::ExcMessage("The parameter file '" + file +
+                                   "' does not exist."));
+    AssertThrow(!std::filesystem::is_directory(file),
+                dealii::ExcMessage("The parameter file '" + file +
+                                   "' is a directory."));
+    const std::string extension = std::filesystem::path(file).extension();
+    AssertThrow(extension == ".prm" || extension == ".json" ||
+                  extension == ".xml",
+                dealii::ExcMessage(
+                  "The parameter file '" + file +
+                  "' must end in .prm, .json or .xml (the extension tells "
+                  "deal.II its format), got '" +
+                  extension + "'."));
+    prm.parse_input(file);
   }
 
 

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -38,9 +39,10 @@ namespace
   run_case(const std::string &name,
            const std::string &prm_text,
            const std::string &executable = TWO_BARS_1D_EXECUTABLE,
-           const std::string &cut_at     = "")
+           const std::string &cut_at     = "",
+           const std::string &extension  = ".prm")
   {
-    const std::string prm = name + ".prm";
+    const std::string prm = name + extension;
     if (!prm_text.empty())
       std::ofstream(prm) << prm_text;
     const std::string command =
@@ -108,6 +110,14 @@ main()
   run_case("misspelt_entry", with("Time stepping", "Tme step = 1e-6"));
   run_case("misspelt_subsection", with("Time steping", "Time step = 1e-6"));
   run_case("missing_file", "");
+  // deal.II's messages for these do not name the file
+  std::filesystem::create_directory("parameter_file_is_a_directory.prm");
+  run_case("parameter_file_is_a_directory", "");
+  run_case("parameter_file_extension",
+           with("Time stepping", "Theta = 0.55"),
+           TWO_BARS_1D_EXECUTABLE,
+           "",
+           ".txt");
 
   // The 2D programs: meshes, obstacles, friction, contact boundaries.
   const std::string cylinder = CYLINDER_IMPACT_EXECUTABLE;

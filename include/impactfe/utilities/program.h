@@ -56,6 +56,15 @@ namespace impactfe
                        const std::string &entry);
 
   /**
+   * prm.parse_input(@p file), after checks whose failure deal.II would
+   * report without the file's name: the file must exist, be a file (not a
+   * directory) and end in .prm, .json or .xml. deal.II's own parse errors
+   * name the file and line.
+   */
+  void
+  read_parameter_file(dealii::ParameterHandler &prm, const std::string &file);
+
+  /**
    * A verification bound of the entered subsection @p subsection: the entry
    * @p entry read as a number that must be >= 0, or -1 for "no check". Any
    * other negative value would switch the check off without a word; it is
