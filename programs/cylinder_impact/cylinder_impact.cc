@@ -202,8 +202,7 @@ namespace CylinderImpact
                            format_number(impact_velocity) + "."));
     require_non_negative(initial_gap, "Initial conditions", "Initial gap");
     prm.enter_subsection("Verification");
-    max_symmetry_error =
-      get_check_bound(prm, "Verification", "Maximum symmetry error");
+    max_symmetry_error = get_verification_bound(prm, "Maximum symmetry error");
     prm.leave_subsection();
   }
 

@@ -451,15 +451,14 @@ namespace impactfe
   ContactVerificationParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Verification");
-    const auto bound = [&prm](const std::string &entry) {
-      return get_check_bound(prm, "Verification", entry);
-    };
-    max_impulse_balance_error = bound("Maximum impulse balance error");
-    max_penetration           = bound("Maximum penetration");
-    max_coulomb_excess        = bound("Maximum Coulomb excess");
-    max_energy_increase       = bound("Maximum energy increase");
-    min_energy_ratio          = bound("Minimum energy ratio");
-    max_energy_ratio          = bound("Maximum energy ratio");
+    max_impulse_balance_error =
+      get_verification_bound(prm, "Maximum impulse balance error");
+    max_penetration    = get_verification_bound(prm, "Maximum penetration");
+    max_coulomb_excess = get_verification_bound(prm, "Maximum Coulomb excess");
+    max_energy_increase =
+      get_verification_bound(prm, "Maximum energy increase");
+    min_energy_ratio = get_verification_bound(prm, "Minimum energy ratio");
+    max_energy_ratio = get_verification_bound(prm, "Maximum energy ratio");
     prm.leave_subsection();
   }
 
@@ -482,7 +481,11 @@ namespace impactfe
         << ": " << (ok ? "OK" : "FAILED");
     // The value, which the summary may have printed rounded ("< 1e-12").
     if (!ok)
-      out << " (" << std::setprecision(3) << value << ")";
+      {
+        std::ostringstream value_text; // out's precision stays the caller's
+        value_text << std::setprecision(3) << value;
+        out << " (" << value_text.str() << ")";
+      }
     out << std::endl;
     return ok;
   }

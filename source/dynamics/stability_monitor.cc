@@ -103,22 +103,25 @@ namespace impactfe
   StabilityBounds::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Verification");
-    const auto bound = [&prm](const std::string &entry) {
-      return get_check_bound(prm, "Verification", entry);
-    };
-    final_phase_start        = prm.get_double("Start of the final phase");
-    max_gap_drift            = bound("Maximum gap drift");
-    max_final_penetration    = bound("Maximum penetration in the final phase");
-    max_active_set_changes   = bound("Maximum active-set changes per step");
-    max_reaction_error       = bound("Maximum reaction error");
-    max_stick_time_error     = bound("Maximum stick time error");
-    max_distance_error       = bound("Maximum sliding distance error");
-    max_final_velocity_error = bound("Maximum final velocity error");
-    max_compression_error    = bound("Maximum static compression error");
+    final_phase_start = prm.get_double("Start of the final phase");
+    max_gap_drift     = get_verification_bound(prm, "Maximum gap drift");
+    max_final_penetration =
+      get_verification_bound(prm, "Maximum penetration in the final phase");
+    max_active_set_changes =
+      get_verification_bound(prm, "Maximum active-set changes per step");
+    max_reaction_error = get_verification_bound(prm, "Maximum reaction error");
+    max_stick_time_error =
+      get_verification_bound(prm, "Maximum stick time error");
+    max_distance_error =
+      get_verification_bound(prm, "Maximum sliding distance error");
+    max_final_velocity_error =
+      get_verification_bound(prm, "Maximum final velocity error");
+    max_compression_error =
+      get_verification_bound(prm, "Maximum static compression error");
     max_energy_increase_in_round_offs =
-      bound("Maximum energy increase in round-offs");
-    min_restitution = bound("Minimum restitution");
-    max_restitution = bound("Maximum restitution");
+      get_verification_bound(prm, "Maximum energy increase in round-offs");
+    min_restitution = get_verification_bound(prm, "Minimum restitution");
+    max_restitution = get_verification_bound(prm, "Maximum restitution");
     prm.leave_subsection();
   }
 

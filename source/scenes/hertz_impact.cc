@@ -158,9 +158,8 @@ namespace impactfe
     require_non_negative(initial_gap, "Initial conditions", "Initial gap");
     prm.enter_subsection("Verification");
     max_peak_force_error =
-      get_check_bound(prm, "Verification", "Maximum peak force error");
-    max_duration_error =
-      get_check_bound(prm, "Verification", "Maximum duration error");
+      get_verification_bound(prm, "Maximum peak force error");
+    max_duration_error = get_verification_bound(prm, "Maximum duration error");
     prm.leave_subsection();
   }
 

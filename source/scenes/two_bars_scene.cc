@@ -75,8 +75,8 @@ namespace impactfe
                            "0, got " +
                            format_number(impact_velocity) + "."));
     prm.enter_subsection("Verification");
-    max_err_v = get_check_bound(prm, "Verification", "Maximum err_v");
-    max_err_f = get_check_bound(prm, "Verification", "Maximum err_f");
+    max_err_v = get_verification_bound(prm, "Maximum err_v");
+    max_err_f = get_verification_bound(prm, "Maximum err_f");
     prm.leave_subsection();
   }
 

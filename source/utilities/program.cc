@@ -112,13 +112,12 @@ namespace impactfe
 
 
   double
-  get_check_bound(dealii::ParameterHandler &prm,
-                  const std::string        &subsection,
-                  const std::string        &entry)
+  get_verification_bound(dealii::ParameterHandler &prm,
+                         const std::string        &entry)
   {
     const double bound = prm.get_double(entry);
     AssertThrow(bound == -1. || (bound >= 0. && std::isfinite(bound)),
-                dealii::ExcMessage(subsection + ": '" + entry +
+                dealii::ExcMessage("Verification: '" + entry +
                                    "' must be >= 0 or -1 (no check), got " +
                                    format_number(bound) + "."));
     return bound;

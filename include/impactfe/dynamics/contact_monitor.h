@@ -103,7 +103,7 @@ namespace impactfe
   /**
    * Print `Check <what> <relation> <bound>: OK` or `...: FAILED (<value>)`
    * (nothing if the bound is negative: -1, "no check", the only negative
-   * value get_check_bound() accepts) and return false if it failed.
+   * value get_verification_bound() accepts) and return false if it failed.
    */
   bool
   print_check(std::ostream      &out,

@@ -65,16 +65,15 @@ namespace impactfe
   read_parameter_file(dealii::ParameterHandler &prm, const std::string &file);
 
   /**
-   * A verification bound of the entered subsection @p subsection: the entry
-   * @p entry read as a number that must be >= 0, or -1 for "no check". Any
-   * other negative value would switch the check off without a word; it is
-   * refused with "<subsection>: '<entry>' must be >= 0 or -1 (no check), got
-   * <value>."
+   * A bound of the subsection "Verification", which the caller has entered:
+   * the entry @p entry read as a number that must be >= 0, or -1 for "no
+   * check". Any other negative value would switch the check off without a
+   * word; it is refused with "Verification: '<entry>' must be >= 0 or -1 (no
+   * check), got <value>."
    */
   double
-  get_check_bound(dealii::ParameterHandler &prm,
-                  const std::string        &subsection,
-                  const std::string        &entry);
+  get_verification_bound(dealii::ParameterHandler &prm,
+                         const std::string        &entry);
 
   /**
    * A Coulomb friction coefficient: in [0, 1e6]. Above that the friction
