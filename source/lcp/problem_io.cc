@@ -1,6 +1,8 @@
 #include <impactfe/lcp/fclib_io.h>
 #include <impactfe/lcp/problem_io.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -55,6 +57,13 @@ namespace impactfe
         at_end() const
         {
           return pos >= tokens.size();
+        }
+
+        /// The number of tokens not yet read.
+        std::size_t
+        remaining() const
+        {
+          return tokens.size() - pos;
         }
 
         /// After the data: text (a comment, as Siconos files often end
@@ -336,6 +345,27 @@ namespace impactfe
         const long size0 = t.integer("the number of matrix rows", 0, max_size);
         const long size1 =
           t.integer("the number of matrix columns", 0, max_size);
+        // The matrix is stored dense whatever the file's storage: check
+        // that it can be before allocating it (a header of n = 20000 took
+        // 3.2 GB before the reader found the entries missing).
+        const double entries = double(size0) * double(size1);
+        if (storage == 0 && double(t.remaining()) < entries + 2.)
+          t.error("the header announces a dense " + std::to_string(size0) +
+                  "-by-" + std::to_string(size1) + " matrix (" +
+                  std::to_string(size0 * size1) +
+                  " entries), but the file holds only " +
+                  std::to_string(t.remaining()) + " more numbers and words");
+        const double pages     = double(sysconf(_SC_PHYS_PAGES));
+        const double page_size = double(sysconf(_SC_PAGESIZE));
+        if (pages > 0. && page_size > 0. && 8. * entries > pages * page_size)
+          {
+            std::ostringstream need;
+            need << std::setprecision(3) << 8. * entries / 1e9
+                 << " GB stored dense, more than this machine's "
+                 << pages * page_size / 1e9 << " GB of memory";
+            t.error("the header announces a " + std::to_string(size0) + "-by-" +
+                    std::to_string(size1) + " matrix: " + need.str());
+          }
         DenseMatrix M(size0, size1, 0.);
         if (storage == 2)
           {

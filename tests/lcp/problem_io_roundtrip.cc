@@ -120,6 +120,20 @@ main()
                   << std::endl;
   dealii::deallog << read_error("2\n2\n2\n4\n4\n") << std::endl;
   dealii::deallog << read_error("hello world\n") << std::endl;
+  // a header whose matrix the file cannot hold, or this machine could not
+  // store dense, is refused before the matrix is allocated (n = 20000 took
+  // 3.2 GB before the reader found the entries missing); the second
+  // message ends with this machine's memory, cut off here
+  dealii::deallog << read_error("20000\n0\n20000\n20000\n20000 20000\n"
+                                "1 0\n0 1\n")
+                  << std::endl;
+  {
+    const std::string message =
+      read_error("1000000\n2\n1000000\n1000000\n2\n1000000-by-1000000, "
+                 "nzmax: 1 nnz: 1, 1-norm: 1\n");
+    dealii::deallog << message.substr(0, message.find("this machine's"))
+                    << "..." << std::endl;
+  }
   // more numbers than the header announces (n = 2 but three entries of q;
   // one contact but two friction coefficients; a global problem, M, H, q,
   // b, mu, whose H would be read as q); text after the data is a comment

@@ -99,6 +99,23 @@ main()
                             name + " a.prm b.prm: refused, exit code 1");
     }
 
+  // lcp-solve's --facets follows the programs' 'Number of facets' (even,
+  // in [4, 256]); it took 2 and odd numbers, which the programs refuse
+  for (const char *k : {"2", "5", "258", "8x"})
+    {
+      const std::string log = std::string("lcp_solve_facets_") + k + ".log";
+      const int code = run(std::string(LCP_SOLVE_EXECUTABLE) + " --facets " +
+                             k + " no_such_problem.dat",
+                           log);
+      impactfe_tests::check(code == 2 &&
+                              contains(text_of(log),
+                                       "--facets needs an even integer in "
+                                       "[4, 256], got '" +
+                                         std::string(k) + "'"),
+                            std::string("lcp-solve --facets ") + k +
+                              ": refused, exit code 2");
+    }
+
   // The listing is input, and holds the defaults: two_bars_1d on it
   // writes the history of a file that sets the output entries alone.
   {
