@@ -123,6 +123,7 @@ namespace TaylorBarProgram
                 ExcMessage("Verification/Elastic rebound check needs "
                            "Material/Poisson's ratio = 0 (a 1D bar)."));
     n_steps = settings.n_steps();
+    output.check_shape_times(false, n_steps, settings.time_step);
   }
 
 

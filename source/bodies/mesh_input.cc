@@ -5,14 +5,17 @@
 #include <deal.II/grid/tria_description.h>
 
 #include <impactfe/bodies/mesh_input.h>
+#include <impactfe/utilities/program.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace impactfe
 {
@@ -27,13 +30,317 @@ namespace impactfe
       return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
     }
 
+    // The words of a file, with the number of the line each is on.
+    class WordReader
+    {
+    public:
+      WordReader(std::istream &input, unsigned int &line_number)
+        : input(input)
+        , line_number(line_number)
+      {}
+
+      // The words left on the current line or, if none, those of the next
+      // line that has any; none at the end of the file.
+      std::vector<std::string>
+      next_line()
+      {
+        std::vector<std::string> line_words;
+        std::string              word;
+        while (words >> word)
+          line_words.push_back(word);
+        if (!line_words.empty())
+          return line_words;
+        std::string line;
+        while (line_words.empty() && std::getline(input, line))
+          {
+            ++line_number;
+            words.clear();
+            words.str(line);
+            while (words >> word)
+              line_words.push_back(word);
+          }
+        return line_words;
+      }
+
+      // The next word, or an empty string at the end of the file.
+      std::string
+      next()
+      {
+        std::string word;
+        while (!(words >> word))
+          {
+            std::string line;
+            if (!std::getline(input, line))
+              return "";
+            ++line_number;
+            words.clear();
+            words.str(line);
+          }
+        return word;
+      }
+
+      // Read @p line_words again before the rest of the file.
+      void
+      push_back(const std::vector<std::string> &line_words)
+      {
+        std::string line;
+        for (const std::string &w : line_words)
+          line += w + " ";
+        words.clear();
+        words.str(line);
+      }
+
+    private:
+      std::istream      &input;
+      unsigned int      &line_number;
+      std::istringstream words;
+    };
+
+    // The nodes of Gmsh's linear elements (and the point), by type number;
+    // 0 for the types deal.II does not read.
+    unsigned int
+    gmsh_nodes_per_element(const long type)
+    {
+      switch (type)
+        {
+          case 1: // line
+            return 2;
+          case 2: // triangle
+          case 4: // tetrahedron
+            return type == 2 ? 3 : 4;
+          case 3: // quadrilateral
+            return 4;
+          case 5: // hexahedron
+            return 8;
+          case 6: // prism
+            return 6;
+          case 7: // pyramid
+            return 5;
+          case 15: // point
+            return 1;
+          default:
+            return 0;
+        }
+    }
+
+    // The $Nodes and $Elements sections of an ASCII Gmsh file of format 4.0
+    // or 4.1 (entity blocks, each with its own count), read from
+    // @p input just after the $MeshFormat line. deal.II's reader trusts
+    // the counts: with a wrong one it writes nodes past the end of its
+    // array (a crash later) or reads until memory runs out, so a count
+    // that does not match the section is refused here.
+    void
+    check_gmsh4_sections(std::istream                &input,
+                         const std::filesystem::path &path,
+                         unsigned int                &line_number,
+                         const double                 version)
+    {
+      WordReader reader(input, line_number);
+      const auto where = [&]() {
+        return "Mesh: '" + path.string() + "' (Gmsh format " +
+               (version == 4. ? std::string("4.0") : std::string("4.1")) +
+               "), line " + std::to_string(line_number) + ": ";
+      };
+      // The next word as an integer >= 0 that the section calls @p what.
+      const auto count = [&](const char *what) {
+        const std::string word = reader.next();
+        char             *end  = nullptr;
+        const long        value =
+          word.empty() ? -1 : std::strtol(word.c_str(), &end, 10);
+        AssertThrow(!word.empty() && *end == '\0' && value >= 0,
+                    dealii::ExcMessage(
+                      where() + "expected " + std::string(what) +
+                      " (an integer >= 0), got " +
+                      (word.empty() ? std::string("the end of the file") :
+                                      "'" + word + "'") +
+                      "."));
+        return value;
+      };
+      const auto number = [&](const char *what) {
+        const std::string word = reader.next();
+        char             *end  = nullptr;
+        if (!word.empty())
+          std::strtod(word.c_str(), &end);
+        AssertThrow(!word.empty() && *end == '\0',
+                    dealii::ExcMessage(where() + "expected " +
+                                       std::string(what) + " (a number), got " +
+                                       (word.empty() ?
+                                          std::string("the end of the file") :
+                                          "'" + word + "'") +
+                                       "."));
+      };
+      const auto expect_end = [&](const std::string &end_marker,
+                                  const std::string &announced) {
+        const std::string word = reader.next();
+        AssertThrow(word == end_marker,
+                    dealii::ExcMessage(where() + "expected " + end_marker +
+                                       " after the " + announced + ", got " +
+                                       (word.empty() ?
+                                          std::string("the end of the file") :
+                                          "'" + word + "'") +
+                                       "."));
+      };
+      const bool four_one = version == 4.1;
+      // A section's first line has 4 numbers (4.1) or 2 (4.0); a single
+      // one is the count of format 2, under a header that says 4.
+      std::string header;
+      const auto  check_header = [&](const std::string &section) {
+        const std::vector<std::string> words = reader.next_line();
+        header.clear();
+        for (const std::string &w : words)
+          header += (header.empty() ? "" : " ") + w;
+        const std::size_t expected = four_one ? 4 : 2;
+        AssertThrow(words.size() != 1,
+                    dealii::ExcMessage(
+                      where() + "the " + section + " section starts with '" +
+                      header +
+                      "', a single count as in Gmsh's format 2, but the "
+                       "$MeshFormat line says format 4 (entity blocks); if "
+                       "the file is in format 2, that line should read "
+                       "'2.2 0 8'."));
+        AssertThrow(words.size() == expected,
+                    dealii::ExcMessage(where() + "the " + section +
+                                       " section must start with " +
+                                       std::to_string(expected) +
+                                       " numbers, got '" + header + "'."));
+        reader.push_back(words);
+      };
+      for (std::string word = reader.next(); !word.empty();
+           word             = reader.next())
+        if (word == "$Entities")
+          {
+                        // Points, curves, surfaces, volumes: a tag, a point (4.1) or a
+            // bounding box, physical tags, and (but for points) the tags
+            // of the bounding entities.
+            long n_entities[4];
+            for (long &n : n_entities)
+              n = count("the number of entities of a dimension");
+            for (unsigned int entity_dim = 0; entity_dim < 4; ++entity_dim)
+              for (long entity = 0; entity < n_entities[entity_dim]; ++entity)
+                {
+                              number("an entity tag");
+                              const unsigned int n_coordinates =
+                    (four_one && entity_dim == 0) ? 3 : 6;
+                              for (unsigned int i = 0; i < n_coordinates; ++i)
+                    number("an entity's coordinate");
+                  for (long n = count("the number of physical tags"); n > 0;
+                       --n)
+                    number("a physical tag");
+                  if (entity_dim > 0)
+                    for (long n = count("the number of bounding entities");
+                         n > 0;
+                         --n)
+                      number("a bounding entity tag");
+                }
+            expect_end("$EndEntities", "entities");
+          }
+        else if (word == "$Nodes")
+          {
+                        check_header("$Nodes");
+                        const long n_blocks = count("the number of entity blocks");
+                        const long n_nodes  = count("the number of nodes");
+                        if (four_one)
+              {
+                            count("the smallest node tag");
+                            count("the largest node tag");
+              }
+            long n_read = 0;
+                        for (long block = 0; block < n_blocks; ++block)
+              {
+                            number("an entity block's dimension or tag");
+                            number("an entity block's dimension or tag");
+                            const long parametric = count("the 'parametric' flag");
+                            AssertThrow(parametric == 0,
+                            dealii::ExcMessage(
+                              where() +
+                              "a node block with parametric coordinates; "
+                                          "save the mesh without them "
+                                          "(Mesh.SaveParametric = 0)."));
+                            const long in_block = count("the number of nodes of a block");
+                            AssertThrow(in_block <= n_nodes - n_read,
+                            dealii::ExcMessage(
+                              where() + "the node blocks hold more than the " +
+                              std::to_string(n_nodes) +
+                              " nodes that $Nodes announces."));
+                            if (four_one)
+                  for (long node = 0; node < in_block; ++node)
+                    count("a node tag");
+                for (long node = 0; node < in_block; ++node)
+                  {
+                                if (!four_one)
+                      count("a node tag");
+                    number("a node's x coordinate");
+                                number("a node's y coordinate");
+                                number("a node's z coordinate");
+                  }
+                n_read += in_block;
+              }
+            AssertThrow(n_read == n_nodes,
+                        dealii::ExcMessage(
+                          where() + "$Nodes announces " +
+                          std::to_string(n_nodes) + " nodes and its " +
+                          std::to_string(n_blocks) + " blocks hold " +
+                          std::to_string(n_read) + "."));
+                        expect_end("$EndNodes", std::to_string(n_nodes) + " nodes");
+          }
+        else if (word == "$Elements")
+          {
+                        check_header("$Elements");
+                        const long n_blocks   = count("the number of entity blocks");
+                        const long n_elements = count("the number of elements");
+                        if (four_one)
+              {
+                            count("the smallest element tag");
+                            count("the largest element tag");
+              }
+            long n_read = 0;
+                        for (long block = 0; block < n_blocks; ++block)
+              {
+                            number("an entity block's dimension or tag");
+                            number("an entity block's dimension or tag");
+                            const long         type = count("an element type");
+                            const unsigned int n_element_nodes =
+                              gmsh_nodes_per_element(type);
+                            AssertThrow(n_element_nodes > 0,
+                            dealii::ExcMessage(
+                              where() + "element type " + std::to_string(type) +
+                              " is not a linear one (impactfe reads Q1 "
+                                          "meshes: quadrilaterals, hexahedra, and lines "
+                                          "or points for boundary ids)."));
+                            const long in_block =
+                              count("the number of elements of a block");
+                            AssertThrow(in_block <= n_elements - n_read,
+                            dealii::ExcMessage(
+                              where() +
+                              "the element blocks hold more than the " +
+                              std::to_string(n_elements) +
+                              " elements that $Elements announces."));
+                            for (long element = 0; element < in_block; ++element)
+                  {
+                                count("an element tag");
+                                for (unsigned int i = 0; i < n_element_nodes; ++i)
+                      count("a node tag of an element");
+                  }
+                            n_read += in_block;
+              }
+            AssertThrow(n_read == n_elements,
+                        dealii::ExcMessage(
+                          where() + "$Elements announces " +
+                          std::to_string(n_elements) + " elements and its " +
+                          std::to_string(n_blocks) + " blocks hold " +
+                          std::to_string(n_read) + "."));
+                        expect_end("$EndElements",
+                       std::to_string(n_elements) + " elements");
+          }
+    }
+
     // The structure of an ASCII Gmsh file of format 1 or 2: each $Nodes
     // ($NOD) and $Elements ($ELM) section has a count and then that many
     // lines before its end marker, and a node line has an id and three
     // coordinates. deal.II's reader stops on a broken section with a
     // message about the next marker ("The string <$Nodes> is not
     // recognized"); this says which section and line is wrong instead.
-    // Files of format 4 (other sections) are left to deal.II.
+    // Files of format 4 go to check_gmsh4_sections().
     void
     check_gmsh_sections(const std::filesystem::path &path)
     {
@@ -56,7 +363,17 @@ namespace impactfe
               double             version   = 0.;
               int                file_type = 0;
               format >> version >> file_type;
-              if (!format || version >= 3. || file_type != 0)
+              AssertThrow(!format || file_type == 0,
+                          dealii::ExcMessage(
+                            where() + "'" + trimmed(line) +
+                            "': a binary Gmsh file; deal.II reads ASCII "
+                            "ones (save with Mesh.Binary = 0)."));
+              if (format && (version == 4. || version == 4.1))
+                {
+                  check_gmsh4_sections(input, path, line_number, version);
+                  return;
+                }
+              if (!format || version >= 3.)
                 return;
               continue;
             }
@@ -126,53 +443,41 @@ namespace impactfe
         }
     }
 
-    // Reads @p file as ParameterHandler does (comments from '#', lines
-    // continued by a trailing backslash, `include` relative to the working
-    // directory) and records in @p setting_file the last file, in reading
-    // order, with a `set ... = value` whose value, or one of its
-    // comma-separated items, is @p value.
+    // Reads @p file as ParameterHandler does (parameter_file_statements(),
+    // `include` relative to the working directory) and records in
+    // @p setting_file the last file, in reading order, with a `set ... =
+    // value` whose value, or one of its comma-separated items, is @p value.
+    // read_parameter_file() has refused include cycles before this runs;
+    // the depth limit guards callers that did not read the file with it.
     void
     find_setting_file(const std::filesystem::path &file,
                       const std::string           &value,
                       std::filesystem::path       &setting_file,
                       const unsigned int           depth = 0)
     {
-      std::ifstream in(file);
-      if (!in || depth > 32)
+      if (depth > 64)
         return;
-      std::string line, raw;
-      while (std::getline(in, raw))
+      for (const auto &statement : parameter_file_statements(file))
         {
-          line += raw.substr(0, raw.find('#'));
-          if (!line.empty() && line.back() == '\\')
+          const std::string &text     = statement.second;
+          const std::string  included = included_file(text);
+          if (!included.empty())
+            find_setting_file(included, value, setting_file, depth + 1);
+          else if (text.rfind("set", 0) == 0 && text.size() > 3 &&
+                   std::isspace(static_cast<unsigned char>(text[3])))
             {
-              line.pop_back();
-              continue;
-            }
-          const std::string statement = trimmed(line);
-          line.clear();
-          if (statement.rfind("include", 0) == 0 && statement.size() > 7 &&
-              std::isspace(static_cast<unsigned char>(statement[7])))
-            find_setting_file(trimmed(statement.substr(7)),
-                              value,
-                              setting_file,
-                              depth + 1);
-          else if (statement.rfind("set", 0) == 0 && statement.size() > 3 &&
-                   std::isspace(static_cast<unsigned char>(statement[3])))
-            {
-              const auto equals = statement.find('=');
+              const auto equals = text.find('=');
               if (equals == std::string::npos)
                 continue;
-              const std::string assigned = statement.substr(equals + 1);
-              std::size_t       begin    = 0;
-              for (std::size_t end = 0; end != std::string::npos;
-                   begin           = end + 1)
+              const std::string assigned = text.substr(equals + 1);
+              for (std::size_t begin = 0, end = 0; end != std::string::npos;
+                   begin = end + 1)
                 {
-                            end = assigned.find(',', begin);
-                            if (trimmed(assigned.substr(begin, end - begin)) == value)
+                  end = assigned.find(',', begin);
+                  if (trimmed(assigned.substr(begin, end - begin)) == value)
                     {
-                                setting_file = file;
-                                break;
+                      setting_file = file;
+                      break;
                     }
                 }
             }

@@ -258,22 +258,26 @@ namespace impactfe
                              prm.get(entry) + "'."));
       std::vector<double> values(3, 0.);
       for (unsigned int d = 0; d < std::min<std::size_t>(parts.size(), 3); ++d)
-        values[d] = Utilities::string_to_double(parts[d]);
+        values[d] = parse_list_number(parts[d], "Obstacle", entry);
       return values;
     };
-    point                = read_vector("Point on plane", type == Type::plane);
-    normal               = read_vector("Normal", type == Type::plane);
-    center               = read_vector("Center", type == Type::ball);
-    radius               = prm.get_double("Radius");
-    expression           = prm.get("Level set");
-    friction_coefficient = prm.get_double("Friction coefficient");
+    point = read_vector("Point on plane", type == Type::plane);
+    const std::string normal_text = prm.get("Normal");
+    normal                        = read_vector("Normal", type == Type::plane);
+    center                        = read_vector("Center", type == Type::ball);
+    radius                        = prm.get_double("Radius");
+    expression                    = prm.get("Level set");
+    friction_coefficient          = prm.get_double("Friction coefficient");
     prm.leave_subsection();
 
     double normal_norm = 0.;
     for (const double x : normal)
       normal_norm += x * x;
     AssertThrow(type != Type::plane || normal_norm > 0.,
-                ExcMessage("Obstacle: 'Normal' must not be zero."));
+                ExcMessage("Obstacle: 'Normal' must not be zero, nor so "
+                           "short that its squared length is 0 in double "
+                           "precision; got '" +
+                           normal_text + "'."));
     if (type == Type::ball)
       require_positive(radius, "Obstacle", "Radius");
     require_friction_coefficient(friction_coefficient,

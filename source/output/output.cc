@@ -90,6 +90,31 @@ namespace impactfe
 
 
   void
+  OutputParameters::check_shape_times(const bool         writes_shapes,
+                                      const unsigned int n_steps,
+                                      const double       time_step) const
+  {
+    if (shape_times.empty())
+      return;
+    AssertThrow(writes_shapes,
+                ExcMessage("Output: 'Shape snapshot times' is for the 2D "
+                           "programs (shapes.csv holds edges of plane "
+                           "meshes); this run writes no shapes, so leave "
+                           "it empty."));
+    // ShapeWriter::write_if_due() takes a time within half a step.
+    const double last_time = n_steps * time_step;
+    AssertThrow(shape_times.back() <= last_time + 0.5 * time_step,
+                ExcMessage("Output: 'Shape snapshot times' has " +
+                           format_number(shape_times.back()) +
+                           " s, after the run's last step at " +
+                           format_number(last_time) +
+                           " s ('End time'): that shape would never be "
+                           "written."));
+  }
+
+
+
+  void
   create_output_directory(const std::string &directory)
   {
     std::error_code error;
@@ -97,6 +122,37 @@ namespace impactfe
     AssertThrow(!error && std::filesystem::is_directory(directory),
                 ExcMessage("Output: cannot create the output directory '" +
                            directory + "': " + error.message()));
+  }
+
+
+
+  void
+  remove_previous_run_output(const std::string              &directory,
+                             const std::vector<std::string> &body_names)
+  {
+    std::error_code not_removed; // then writing it fails with a message
+    for (const char *name :
+         {"summary.json", "history.png", "solution.pvd", "shapes.csv"})
+      std::filesystem::remove(directory + "/" + name, not_removed);
+    // "<body>-" and five or more digits (setw(5)) and ".vtu"
+    const auto is_body_vtu = [&](const std::string &file) {
+      for (const std::string &body : body_names)
+        if (file.size() >= body.size() + 10 && file.rfind(body + "-", 0) == 0 &&
+            file.compare(file.size() - 4, 4, ".vtu") == 0 &&
+            std::all_of(file.begin() + body.size() + 1,
+                        file.end() - 4,
+                        [](const char c) { return c >= '0' && c <= '9'; }))
+          return true;
+      return false;
+    };
+    std::vector<std::filesystem::path> stale;
+    for (const auto &entry :
+         std::filesystem::directory_iterator(directory, not_removed))
+      if (entry.is_regular_file(not_removed) &&
+          is_body_vtu(entry.path().filename().string()))
+        stale.push_back(entry.path());
+    for (const auto &file : stale)
+      std::filesystem::remove(file, not_removed);
   }
 
 
@@ -123,10 +179,15 @@ namespace impactfe
     for (unsigned int i = 0; i < values.size(); ++i)
       {
         AssertThrow(std::isfinite(values[i]),
-                    ExcMessage("Output: the value of column '" +
-                               column_names[i] +
-                               "' is not finite; the run is stopped before "
-                               "it writes it."));
+                    ExcMessage(
+                      "Output: the value of column '" + column_names[i] +
+                      "' is not finite" +
+                      (column_names[0] == "time" && i > 0 ?
+                         " at time " + format_number(values[0]) + " s" :
+                         std::string()) +
+                      " (the state overflowed or diverged: check "
+                      "'Time step', 'End time' and the data); the "
+                      "run is stopped before it writes it."));
         append_csv_number(line, values[i], i + 1 == values.size() ? '\n' : ',');
       }
     out.write(line.data(), line.size());

@@ -154,7 +154,8 @@ namespace impactfe
           per_body.emplace_back();
           for (const std::string &v :
                Utilities::split_string_list(prm.get(entry.name)))
-            per_body.back().push_back(Utilities::string_to_double(v));
+            per_body.back().push_back(
+              parse_list_number(v, "Bodies", entry.name));
         }
       prm.leave_subsection();
       bool has_material_lists = false;
@@ -509,19 +510,23 @@ namespace impactfe
       prm.enter_subsection("Initial conditions");
       const std::string velocity = prm.get("Initial velocity");
       prm.leave_subsection();
-      const auto numbers = [](const std::string &list) {
+      const auto numbers = [](const std::string &list,
+                              const std::string &subsection,
+                              const std::string &entry) {
         std::vector<double> values;
         for (const std::string &v : Utilities::split_string_list(list))
-          values.push_back(Utilities::string_to_double(v));
+          values.push_back(parse_list_number(v, subsection, entry));
         return values;
       };
-      initial_velocity = numbers(velocity);
+      initial_velocity =
+        numbers(velocity, "Initial conditions", "Initial velocity");
       prm.enter_subsection("Second body");
       const std::string second_velocity_text = prm.get("Initial velocity");
       const std::string normal_text          = prm.get("Contact normal");
-      discretization               = prm.get("Contact discretization");
-      second_velocity              = numbers(second_velocity_text);
-      contact_normal               = numbers(normal_text);
+      discretization = prm.get("Contact discretization");
+      second_velocity =
+        numbers(second_velocity_text, "Second body", "Initial velocity");
+      contact_normal = numbers(normal_text, "Second body", "Contact normal");
       friction_between_bodies      = prm.get_double("Friction coefficient");
       second_body_has_own_material = prm.get_bool("Own material");
       prm.leave_subsection();
@@ -535,10 +540,11 @@ namespace impactfe
       const bool touches_obstacle = obstacle_boundary_ids[0] >= 0 ||
                                     obstacle_boundary_ids[1] >= 0 ||
                                     !obstacle_contacts.empty();
-      if (second_body_has_own_material)
-        second_material.parse_parameters(prm,
-                                         dimension,
-                                         "Material of the second body");
+      // Read and range-checked even when unused ('Own material' = false or
+      // another scene): a wrong value there must not pass unnoticed.
+      second_material.parse_parameters(prm,
+                                       dimension,
+                                       "Material of the second body");
       require_friction_coefficient(friction_between_bodies,
                                    "Second body",
                                    "Friction coefficient");
@@ -664,6 +670,8 @@ namespace impactfe
                              "programs, whose meshes contact_mpi reads; "
                              "contact_mpi's own meshes come from files or "
                              "the built-in box."));
+      // contact_mpi writes no shapes.csv
+      scene.output.check_shape_times(false, 0, 0.);
       AssertThrow(dimension == 3 || std::abs(std::sin(box.phi)) < 1e-12,
                   ExcMessage("Initial conditions: 'Sliding direction' must "
                              "be 0 or pi in 2D (the block slides along x), "

@@ -105,8 +105,8 @@ namespace impactfe
     velocity = get_velocity();
     prm.leave_subsection();
     prm.enter_subsection("Loads");
-    gravity = get_vector(prm, "Gravity");
-    push    = get_vector(prm, "Push force");
+    gravity = get_vector(prm, "Loads", "Gravity");
+    push    = get_vector(prm, "Loads", "Push force");
     prm.leave_subsection();
     prm.enter_subsection("Body 2");
     body_2 = prm.get_bool("Enabled");

@@ -174,6 +174,9 @@ namespace impactfe
     read_parameter_file(prm, file);
     parameters.parse_parameters(prm);
     parse_parameters(prm);
+    parameters.output.check_shape_times(dim == 2,
+                                        parameters.time_stepping.n_steps(),
+                                        parameters.time_stepping.time_step);
   }
 
 
@@ -221,11 +224,10 @@ namespace impactfe
     set_initial_state(multibody_system->state());
 
     create_output_directory(parameters.output.directory);
-    // A summary.json of an earlier run would stand beside this run's files
-    // until this run writes its own, and stay there if this one fails.
-    std::error_code not_removed; // then writing it fails with a message
-    std::filesystem::remove(parameters.output.directory + "/summary.json",
-                            not_removed);
+    std::vector<std::string> body_names;
+    for (const auto &b : body_list)
+      body_names.push_back(b->name());
+    remove_previous_run_output(parameters.output.directory, body_names);
     if (parameters.output.write_meshes)
       for (const auto &b : body_list)
         write_mesh_file(b->triangulation(),

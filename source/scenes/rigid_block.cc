@@ -160,13 +160,19 @@ namespace impactfe
 
 
   Tensor<1, 2>
-  get_vector(ParameterHandler &prm, const std::string &entry)
+  get_vector(ParameterHandler  &prm,
+             const std::string &subsection,
+             const std::string &entry)
   {
     const std::vector<std::string> parts =
       Utilities::split_string_list(prm.get(entry));
+    AssertThrow(parts.size() == 2,
+                ExcMessage(subsection + ": '" + entry +
+                           "' needs 2 components, got '" + prm.get(entry) +
+                           "'."));
     Tensor<1, 2> v;
     for (unsigned int d = 0; d < 2; ++d)
-      v[d] = Utilities::string_to_double(parts[d]);
+      v[d] = parse_list_number(parts[d], subsection, entry);
     return v;
   }
 

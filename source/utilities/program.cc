@@ -7,11 +7,14 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <new>
@@ -63,6 +66,26 @@ namespace impactfe
 
 
 
+  double
+  parse_list_number(const std::string &text,
+                    const std::string &subsection,
+                    const std::string &entry)
+  {
+    const auto   begin = text.find_first_not_of(" \t");
+    const auto   last  = text.find_last_not_of(" \t");
+    const auto   item  = begin == std::string::npos ?
+                           std::string() :
+                           text.substr(begin, last - begin + 1);
+    char        *end   = nullptr;
+    const double value = item.empty() ? 0. : std::strtod(item.c_str(), &end);
+    AssertThrow(!item.empty() && *end == '\0' && std::isfinite(value),
+                dealii::ExcMessage(subsection + ": '" + entry + "' has '" +
+                                   text + "', which is not a finite number."));
+    return value;
+  }
+
+
+
   void
   require_positive(const double       value,
                    const std::string &subsection,
@@ -89,6 +112,116 @@ namespace impactfe
 
 
 
+  std::vector<std::pair<unsigned int, std::string>>
+  parameter_file_statements(const std::filesystem::path &file)
+  {
+    // As ParameterHandler::parse_input() and scan_line(): each line is
+    // trimmed, a trailing backslash joins it to the next one, and then the
+    // joined statement loses its comment, has its tabs made blanks and is
+    // trimmed again (so a comment ending in a backslash swallows the next
+    // line, as in deal.II).
+    const auto trim = [](const std::string &text) {
+      const auto begin = text.find_first_not_of(" \t\r\n\v\f");
+      return begin == std::string::npos ?
+               std::string() :
+               text.substr(begin,
+                           text.find_last_not_of(" \t\r\n\v\f") - begin + 1);
+    };
+    std::vector<std::pair<unsigned int, std::string>> statements;
+    std::ifstream                                     in(file);
+    std::string                                       raw, joined;
+    unsigned int line_number = 0, first_line = 0;
+    bool         continued = false;
+    const auto   finish    = [&]() {
+      std::string statement = joined.substr(0, joined.find('#'));
+      std::replace(statement.begin(), statement.end(), '\t', ' ');
+      statement = trim(statement);
+      if (!statement.empty())
+        statements.emplace_back(first_line, statement);
+      joined.clear();
+    };
+    while (std::getline(in, raw))
+      {
+        ++line_number;
+        if (!continued)
+          first_line = line_number;
+        std::string line = trim(raw);
+        continued        = !line.empty() && line.back() == '\\';
+        if (continued)
+          line.pop_back();
+        joined += line;
+        if (!continued)
+          finish();
+      }
+    if (continued) // deal.II reads a last line that ends in a backslash
+      finish();
+    return statements;
+  }
+
+
+
+  std::string
+  included_file(const std::string &statement)
+  {
+    if ((statement.rfind("include", 0) != 0 &&
+         statement.rfind("INCLUDE", 0) != 0) ||
+        statement.size() <= 7 ||
+        !std::isspace(static_cast<unsigned char>(statement[7])))
+      return "";
+    const auto begin = statement.find_first_not_of(" \t", 7);
+    return begin == std::string::npos ? "" : statement.substr(begin);
+  }
+
+
+
+  namespace
+  {
+    // Follows the include statements of @p file depth first; @p chain holds
+    // the files that include it, outermost first.
+    void
+    check_include_statements(const std::filesystem::path        &file,
+                             std::vector<std::filesystem::path> &chain)
+    {
+      chain.push_back(file);
+      for (const auto &[line, statement] : parameter_file_statements(file))
+        {
+          const std::string name = included_file(statement);
+          if (name.empty())
+            continue;
+          const std::string where = "The parameter file '" + file.string() +
+                                    "', line " + std::to_string(line) +
+                                    ", includes '" + name + "'";
+          // deal.II opens it as a stream: any file but a directory (a
+          // pipe or /dev/null too)
+          std::error_code unreadable;
+          AssertThrow(std::filesystem::exists(name, unreadable),
+                      dealii::ExcMessage(
+                        where + ", which does not exist (include statements "
+                                "are relative to the directory the program "
+                                "runs in)."));
+          AssertThrow(!std::filesystem::is_directory(name, unreadable),
+                      dealii::ExcMessage(where + ", which is a directory."));
+          for (const auto &including : chain)
+            if (std::filesystem::equivalent(including, name, unreadable))
+              {
+                std::string cycle;
+                for (const auto &link : chain)
+                  cycle += "'" + link.string() + "' -> ";
+                AssertThrow(false,
+                            dealii::ExcMessage(where + ": an include cycle (" +
+                                               cycle + "'" + name + "')."));
+              }
+          AssertThrow(chain.size() < 64,
+                      dealii::ExcMessage(where + ": more than 64 nested "
+                                                 "include statements."));
+          check_include_statements(name, chain);
+        }
+      chain.pop_back();
+    }
+  } // namespace
+
+
+
   void
   read_parameter_file(dealii::ParameterHandler &prm, const std::string &file)
   {
@@ -106,7 +239,54 @@ namespace impactfe
                   "' must end in .prm, .json or .xml (the extension tells "
                   "deal.II its format), got '" +
                   extension + "'."));
-    prm.parse_input(file);
+    if (extension == ".prm")
+      {
+        std::vector<std::filesystem::path> chain;
+        check_include_statements(file, chain);
+        prm.parse_input(file);
+        return;
+      }
+    // deal.II reads JSON and XML through Boost's property tree, whose
+    // messages say "<unspecified file>(line)": put the file's name there.
+    try
+      {
+        prm.parse_input(file);
+      }
+    catch (const std::exception &error)
+      {
+        std::ostringstream reason;
+        if (const auto *deal_error =
+              dynamic_cast<const dealii::ExceptionBase *>(&error))
+          deal_error->print_info(reason);
+        else
+          reason << error.what();
+        // Boost's syntax errors, with "<unspecified file>(2)" as "line 2",
+        // on one line; deal.II's own messages (an undeclared entry, a value
+        // that does not match its pattern) already say what is wrong.
+        std::string       raw = reason.str();
+        const std::string unnamed("<unspecified file>(");
+        if (raw.find(unnamed) == std::string::npos)
+          throw;
+        for (auto at = raw.find(unnamed); at != std::string::npos;
+             at      = raw.find(unnamed))
+          {
+                 const auto close = raw.find(')', at);
+                 const auto end =
+              close == std::string::npos ? raw.size() : close + 1;
+                 raw.replace(at,
+                        end - at,
+                        "line " + raw.substr(at + unnamed.size(),
+                                             end - 1 - at - unnamed.size()));
+          }
+        std::istringstream words(raw);
+        std::string        text;
+        for (std::string word; words >> word;)
+          text += (text.empty() ? "" : " ") + word;
+        AssertThrow(false,
+                    dealii::ExcMessage(
+                      "The parameter file '" + file + "' is not valid " +
+                      (extension == ".json" ? "JSON" : "XML") + ": " + text));
+      }
   }
 
 

@@ -9,15 +9,22 @@ The segments of the lower half of the circle get the physical tag 1 (the
 contact boundary id); the rest of the boundary is untagged (id 0).
 
 usage: make_disc_msh.py > disc_4x3.msh
+       make_disc_msh.py --format 4.1 > disc_4x3_gmsh41.msh
        make_disc_msh.py N_CORE N_RINGS CENTRE_HEIGHT > file.msh
 (the second form: the paper's cylinder, 12 9 11.5, is
 parameter_files/cylinder_12x9.msh, the mesh of cylinder_impact.prm with its
 initial gap of 1.5, for contact_mpi's cylinder_impact_mpi.prm)
+--format 4.1 writes Gmsh's current format instead: entity blocks, the
+physical tag on a curve entity of $Entities (mesh_from_file_gmsh41.prm).
 """
 import math
 import sys
 
 R, CX, CY, N, M = 10.0, 0.0, 10.0, 4, 3
+FORMAT = "2.2"
+if sys.argv[1:3] == ["--format", "4.1"]:
+    FORMAT = "4.1"
+    del sys.argv[1:3]
 if len(sys.argv) == 4:
     N, M, CY = int(sys.argv[1]), int(sys.argv[2]), float(sys.argv[3])
 elif len(sys.argv) != 1:
@@ -73,18 +80,48 @@ for k in range(4 * N):
     if 0.5 * (points[a][1] + points[b][1]) < 0.0:  # below the centre
         lines.append((a, b))
 
-print("$MeshFormat\n2.2 0 8\n$EndMeshFormat")
-print("$Nodes\n%d" % len(keys))
-for key in keys:
-    x, y = points[key]
-    print("%d %.17g %.17g 0" % (number[key], x + CX, y + CY))
-print("$EndNodes")
-print("$Elements\n%d" % (len(lines) + len(quads)))
-n = 0
-for a, b in lines:
-    n += 1
-    print("%d 1 2 1 1 %d %d" % (n, number[a], number[b]))
-for q in quads:
-    n += 1
-    print("%d 3 2 0 2 %s" % (n, " ".join(str(number[v]) for v in q)))
-print("$EndElements")
+if FORMAT == "2.2":
+    print("$MeshFormat\n2.2 0 8\n$EndMeshFormat")
+    print("$Nodes\n%d" % len(keys))
+    for key in keys:
+        x, y = points[key]
+        print("%d %.17g %.17g 0" % (number[key], x + CX, y + CY))
+    print("$EndNodes")
+    print("$Elements\n%d" % (len(lines) + len(quads)))
+    n = 0
+    for a, b in lines:
+        n += 1
+        print("%d 1 2 1 1 %d %d" % (n, number[a], number[b]))
+    for q in quads:
+        n += 1
+        print("%d 3 2 0 2 %s" % (n, " ".join(str(number[v]) for v in q)))
+    print("$EndElements")
+else:
+    # One curve entity (tag 1, physical tag 1: the lower half's segments)
+    # and one surface entity (tag 2, no physical tag) with all the nodes.
+    print("$MeshFormat\n4.1 0 8\n$EndMeshFormat")
+    print("$Entities\n0 1 1 0")
+    box = "%.17g %.17g 0 %.17g %.17g 0" % (CX - R, CY - R, CX + R, CY + R)
+    print("1 %s 1 1 0" % box)
+    print("2 %s 0 0" % box)
+    print("$EndEntities")
+    print("$Nodes\n1 %d 1 %d" % (len(keys), len(keys)))
+    print("2 2 0 %d" % len(keys))
+    for key in keys:
+        print(number[key])
+    for key in keys:
+        x, y = points[key]
+        print("%.17g %.17g 0" % (x + CX, y + CY))
+    print("$EndNodes")
+    n_elements = len(lines) + len(quads)
+    print("$Elements\n2 %d 1 %d" % (n_elements, n_elements))
+    print("1 1 1 %d" % len(lines))
+    n = 0
+    for a, b in lines:
+        n += 1
+        print("%d %d %d" % (n, number[a], number[b]))
+    print("2 2 3 %d" % len(quads))
+    for q in quads:
+        n += 1
+        print("%d %s" % (n, " ".join(str(number[v]) for v in q)))
+    print("$EndElements")

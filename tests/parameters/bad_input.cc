@@ -113,6 +113,29 @@ main()
   // deal.II's messages for these do not name the file
   std::filesystem::create_directory("parameter_file_is_a_directory.prm");
   run_case("parameter_file_is_a_directory", "");
+  // include statements: deal.II recursed on a file that includes itself
+  // until the stack overflowed.
+  run_case("include_itself",
+           "include include_itself.prm\n" +
+             with("Time stepping", "Theta = 0.55"));
+  std::ofstream("include_b.prm") << "include include_cycle.prm\n";
+  run_case("include_cycle",
+           "include include_b.prm\n" + with("Time stepping", "Theta = 0.55"));
+  run_case("include_missing",
+           "include no_such_file.prm\n" +
+             with("Time stepping", "Theta = 0.55"));
+  // Boost's JSON and XML readers said "<unspecified file>"
+  run_case("json_not_closed",
+           "{\"Time stepping\": {\"Theta\": \"0.5\"\n",
+           TWO_BARS_1D_EXECUTABLE,
+           "",
+           ".json");
+  run_case("xml_not_closed",
+           "<?xml version=\"1.0\"?>\n<ParameterHandler><Time_20stepping>"
+           "<Theta><value>0.5</val\n",
+           TWO_BARS_1D_EXECUTABLE,
+           "",
+           ".xml");
   run_case("parameter_file_extension",
            with("Time stepping", "Theta = 0.55"),
            TWO_BARS_1D_EXECUTABLE,
@@ -153,6 +176,19 @@ main()
   run_case("offset_needs_node_to_segment",
            with("Geometry", "Interface mesh offset = 0.5"),
            bars_2d);
+  // deal.II's string_to_double refused the subnormal number without
+  // naming the entry; now it is read, and the normal is too short
+  run_case("plane_normal_subnormal",
+           with("Obstacle", "Normal = 0, 1e-320"),
+           plate);
+  run_case("plane_normal_not_a_number",
+           with("Obstacle", "Normal = 0, 1e400"),
+           plate);
+  // a snapshot after the last step would never be written
+  run_case("shape_snapshot_after_end",
+           with("Output", "Shape snapshot times = 0.1, 7") +
+             "subsection Time stepping\n  set End time = 0.5\nend\n",
+           cylinder);
   run_case("plane_normal_with_three_coordinates",
            with("Obstacle", "Normal = 0, 1, 0"),
            plate);
@@ -210,6 +246,28 @@ main()
   run_case("flat_hexahedral_mesh",
            with("Mesh", "Mesh file = flat_hexahedron.msh"),
            BLOCK_SLIDING_3D_EXECUTABLE);
+
+  // Gmsh's format 4: deal.II's reader trusts the counts of the entity
+  // blocks, and a file with a format-2 body under a 4.1 header made it
+  // write nodes past its array (a crash) or read until memory ran out.
+  std::ofstream("format_2_body.msh")
+    << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n"
+       "2 1 0 0\n3 1 1 0\n4 0 1 0\n$EndNodes\n$Elements\n1\n"
+       "1 3 2 0 1 1 2 3 4\n$EndElements\n";
+  run_case("mesh_gmsh4_header_format_2_body",
+           with("Mesh", "Mesh file = format_2_body.msh"),
+           cylinder);
+  std::ofstream("gmsh4_block_count.msh")
+    << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 1 4\n"
+       "2 1 0 5\n1\n2\n3\n4\n5\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+       "0.5 0.5 0\n$EndNodes\n";
+  run_case("mesh_gmsh4_node_block_too_long",
+           with("Mesh", "Mesh file = gmsh4_block_count.msh"),
+           cylinder);
+  std::ofstream("gmsh4_binary.msh") << "$MeshFormat\n4.1 1 8\n";
+  run_case("mesh_gmsh_binary",
+           with("Mesh", "Mesh file = gmsh4_binary.msh"),
+           cylinder);
 
   // 25 contacts are within 'Largest Lemke fallback' = 100 as candidates,
   // and one facet LCP of theirs (250 unknowns) within its 300 unknowns,
@@ -343,6 +401,10 @@ main()
   run_case("taylor_zero_yield_stress",
            with("Plasticity", "Yield stress = 0"),
            taylor);
+  // shapes.csv is written by the 2D programs only
+  run_case("taylor_shape_snapshot_times",
+           with("Output", "Shape snapshot times = 1e-5"),
+           taylor);
   run_case("taylor_negative_hardening",
            with("Plasticity", "Hardening modulus = -1e6"),
            taylor);
@@ -421,6 +483,10 @@ main()
              with("Initial conditions", "Initial velocity = 0, -1, 0"),
            mpi);
   run_case("mpi_thickness_in_3d", with("Geometry", "Thickness = 0.5"), mpi);
+  // read and checked even when the scene does not use it
+  run_case("mpi_unused_second_material_out_of_range",
+           with("Material of the second body", "Poisson's ratio = 0.7"),
+           mpi);
   // Scene = two bodies: the bars of parameter_files/two_bars_2d_mpi.prm
   const std::string bars = std::string("set Dimension = 2\nset Scene = two "
                                        "bodies\n") +

@@ -35,11 +35,35 @@ namespace impactfe
                        const std::string &default_directory);
     void
     parse_parameters(ParameterHandler &prm);
+
+    /**
+     * Throw unless the run writes every shape snapshot asked for: the
+     * program writes shapes (@p writes_shapes: the 2D programs) and each
+     * time is reached by its @p n_steps steps of @p time_step. A time past
+     * the end would be skipped without a word.
+     */
+    void
+    check_shape_times(const bool         writes_shapes,
+                      const unsigned int n_steps,
+                      const double       time_step) const;
   };
 
   /** Create @p directory (and parents); throws with its name on failure. */
   void
   create_output_directory(const std::string &directory);
+
+  /**
+   * Remove from @p directory the files of an earlier run of a serial
+   * program that describe that run as a whole: summary.json, history.png,
+   * solution.pvd, shapes.csv and the VTU files "<body>-NNNNN.vtu" of the
+   * bodies @p body_names. Left there, they would stand beside this run's
+   * files (a longer earlier run's last VTU files, its plot), and stay if
+   * this run fails. Other files are not touched: LCP dumps of chosen steps,
+   * meshes written on request, the user's own.
+   */
+  void
+  remove_previous_run_output(const std::string              &directory,
+                             const std::vector<std::string> &body_names);
 
 
 

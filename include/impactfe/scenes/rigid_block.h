@@ -46,9 +46,14 @@ namespace impactfe
               const double        lower_side) const;
   };
 
-  /** Two comma-separated components of entry @p entry, e.g. "0, -9.81". */
+  /**
+   * Two comma-separated components of entry @p entry, e.g. "0, -9.81", of
+   * the subsection @p subsection that @p prm is in (for the message).
+   */
   Tensor<1, 2>
-  get_vector(ParameterHandler &prm, const std::string &entry);
+  get_vector(ParameterHandler  &prm,
+             const std::string &subsection,
+             const std::string &entry);
 
   /**
    * The entries of the sliding-block scenes (block_sliding_3d and

@@ -4,8 +4,11 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <exception>
+#include <filesystem>
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace impactfe
 {
@@ -40,6 +43,17 @@ namespace impactfe
                     const char   separator);
 
   /**
+   * An item of a list entry as a number: @p text must be a finite number
+   * (subnormal ones included, which deal.II's string_to_double refuses as
+   * "Can't convert"); otherwise throw with the message "<subsection>:
+   * '<entry>' has '<text>', which is not a finite number.".
+   */
+  double
+  parse_list_number(const std::string &text,
+                    const std::string &subsection,
+                    const std::string &entry);
+
+  /**
    * Throw, with the message "<subsection>: '<entry>' must be > 0, got
    * <value>.", unless @p value is finite and > 0. For the checks that
    * parse_parameters() makes on the entries it has read.
@@ -56,10 +70,29 @@ namespace impactfe
                        const std::string &entry);
 
   /**
+   * The statements of the .prm file @p file as ParameterHandler reads them:
+   * comments from '#' removed, lines continued by a trailing backslash
+   * joined, blanks at both ends trimmed, empty statements dropped. Each
+   * comes with the number of its first line. An unreadable file gives none.
+   */
+  std::vector<std::pair<unsigned int, std::string>>
+  parameter_file_statements(const std::filesystem::path &file);
+
+  /**
+   * The file that a statement "include <file>" names (relative to the
+   * working directory, as deal.II opens it), or an empty string when
+   * @p statement is not an include statement.
+   */
+  std::string
+  included_file(const std::string &statement);
+
+  /**
    * prm.parse_input(@p file), after checks whose failure deal.II would
-   * report without the file's name: the file must exist, be a file (not a
-   * directory) and end in .prm, .json or .xml. deal.II's own parse errors
-   * name the file and line.
+   * report without the file's name, or not at all: the file must exist, be
+   * a file (not a directory) and end in .prm, .json or .xml, and its
+   * include statements must name files that exist and must not lead back
+   * to a file that includes them (deal.II would recurse until the stack
+   * overflows). deal.II's own parse errors name the file and line.
    */
   void
   read_parameter_file(dealii::ParameterHandler &prm, const std::string &file);
