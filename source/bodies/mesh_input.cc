@@ -12,9 +12,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace impactfe
@@ -181,12 +183,13 @@ namespace impactfe
                                        "."));
       };
       const bool four_one = version == 4.1;
-      // A section's first line has 4 numbers (4.1) or 2 (4.0); a single
-      // one is the count of format 2, under a header that says 4.
-      std::string header;
-      const auto  check_header = [&](const std::string &section) {
+      // A section's first line: the number of entity blocks, of items and
+      // (4.1) the smallest and largest tag. A single number there is the
+      // count of format 2, under a $MeshFormat line that says 4.
+      const auto section_header = [&](const std::string &section,
+                                      const char        *items) {
         const std::vector<std::string> words = reader.next_line();
-        header.clear();
+        std::string                    header;
         for (const std::string &w : words)
           header += (header.empty() ? "" : " ") + w;
         const std::size_t expected = four_one ? 4 : 2;
@@ -195,143 +198,148 @@ namespace impactfe
                       where() + "the " + section + " section starts with '" +
                       header +
                       "', a single count as in Gmsh's format 2, but the "
-                       "$MeshFormat line says format 4 (entity blocks); if "
-                       "the file is in format 2, that line should read "
-                       "'2.2 0 8'."));
+                      "$MeshFormat line says format 4 (entity blocks); if "
+                      "the file is in format 2, that line should read "
+                      "'2.2 0 8'."));
         AssertThrow(words.size() == expected,
                     dealii::ExcMessage(where() + "the " + section +
                                        " section must start with " +
                                        std::to_string(expected) +
                                        " numbers, got '" + header + "'."));
         reader.push_back(words);
+        const long n_blocks = count("the number of entity blocks");
+        const long n_items  = count(items);
+        if (four_one)
+          {
+            count("the smallest tag");
+            count("the largest tag");
+          }
+        return std::make_pair(n_blocks, n_items);
       };
-      for (std::string word = reader.next(); !word.empty();
-           word             = reader.next())
-        if (word == "$Entities")
-          {
-                        // Points, curves, surfaces, volumes: a tag, a point (4.1) or a
-            // bounding box, physical tags, and (but for points) the tags
-            // of the bounding entities.
-            long n_entities[4];
-            for (long &n : n_entities)
-              n = count("the number of entities of a dimension");
-            for (unsigned int entity_dim = 0; entity_dim < 4; ++entity_dim)
-              for (long entity = 0; entity < n_entities[entity_dim]; ++entity)
-                {
-                              number("an entity tag");
-                              const unsigned int n_coordinates =
-                    (four_one && entity_dim == 0) ? 3 : 6;
-                              for (unsigned int i = 0; i < n_coordinates; ++i)
-                    number("an entity's coordinate");
-                  for (long n = count("the number of physical tags"); n > 0;
-                       --n)
-                    number("a physical tag");
-                  if (entity_dim > 0)
-                    for (long n = count("the number of bounding entities");
-                         n > 0;
+      // A block may not hold more items than the section has left, and
+      // the blocks together must hold them all.
+      const auto check_block_size = [&](const std::string &section,
+                                        const std::string &items,
+                                        const long         in_block,
+                                        const long         n_left) {
+        AssertThrow(in_block <= n_left,
+                    dealii::ExcMessage(where() + "the blocks of " + section +
+                                       " hold more " + items +
+                                       " than the section announces."));
+      };
+      const auto check_total = [&](const std::string &section,
+                                   const std::string &items,
+                                   const long         n_items,
+                                   const long         n_blocks,
+                                   const long         n_read) {
+        AssertThrow(n_read == n_items,
+                    dealii::ExcMessage(where() + section + " announces " +
+                                       std::to_string(n_items) + " " + items +
+                                       " and its " + std::to_string(n_blocks) +
+                                       " blocks hold " +
+                                       std::to_string(n_read) + "."));
+        expect_end("$End" + section.substr(1),
+                   std::to_string(n_items) + " " + items);
+      };
+
+      std::string word;
+      while (!(word = reader.next()).empty())
+        {
+          if (word == "$Entities")
+            {
+              // Points, curves, surfaces, volumes: a tag, a point (4.1) or
+              // a bounding box, physical tags, and (but for points) the
+              // tags of the bounding entities.
+              long n_entities[4];
+              for (long &n : n_entities)
+                n = count("the number of entities of a dimension");
+              for (unsigned int entity_dim = 0; entity_dim < 4; ++entity_dim)
+                for (long entity = 0; entity < n_entities[entity_dim]; ++entity)
+                  {
+                    number("an entity tag");
+                    const unsigned int n_coordinates =
+                      (four_one && entity_dim == 0) ? 3 : 6;
+                    for (unsigned int i = 0; i < n_coordinates; ++i)
+                      number("an entity's coordinate");
+                    for (long n = count("the number of physical tags"); n > 0;
                          --n)
-                      number("a bounding entity tag");
-                }
-            expect_end("$EndEntities", "entities");
-          }
-        else if (word == "$Nodes")
-          {
-                        check_header("$Nodes");
-                        const long n_blocks = count("the number of entity blocks");
-                        const long n_nodes  = count("the number of nodes");
-                        if (four_one)
-              {
-                            count("the smallest node tag");
-                            count("the largest node tag");
-              }
-            long n_read = 0;
-                        for (long block = 0; block < n_blocks; ++block)
-              {
-                            number("an entity block's dimension or tag");
-                            number("an entity block's dimension or tag");
-                            const long parametric = count("the 'parametric' flag");
-                            AssertThrow(parametric == 0,
-                            dealii::ExcMessage(
-                              where() +
-                              "a node block with parametric coordinates; "
-                                          "save the mesh without them "
-                                          "(Mesh.SaveParametric = 0)."));
-                            const long in_block = count("the number of nodes of a block");
-                            AssertThrow(in_block <= n_nodes - n_read,
-                            dealii::ExcMessage(
-                              where() + "the node blocks hold more than the " +
-                              std::to_string(n_nodes) +
-                              " nodes that $Nodes announces."));
-                            if (four_one)
-                  for (long node = 0; node < in_block; ++node)
-                    count("a node tag");
-                for (long node = 0; node < in_block; ++node)
-                  {
-                                if (!four_one)
+                      number("a physical tag");
+                    if (entity_dim > 0)
+                      for (long n = count("the number of bounding entities");
+                           n > 0;
+                           --n)
+                        number("a bounding entity tag");
+                  }
+              expect_end("$EndEntities", "entities");
+            }
+          else if (word == "$Nodes")
+            {
+              const auto [n_blocks, n_nodes] =
+                section_header("$Nodes", "the number of nodes");
+              long n_read = 0;
+              for (long block = 0; block < n_blocks; ++block)
+                {
+                  number("an entity block's dimension or tag");
+                  number("an entity block's dimension or tag");
+                  AssertThrow(count("the 'parametric' flag") == 0,
+                              dealii::ExcMessage(
+                                where() +
+                                "a node block with parametric coordinates; "
+                                "save the mesh without them "
+                                "(Mesh.SaveParametric = 0)."));
+                  const long in_block = count("the number of nodes of a block");
+                  check_block_size("$Nodes",
+                                   "nodes",
+                                   in_block,
+                                   n_nodes - n_read);
+                  if (four_one)
+                    for (long node = 0; node < in_block; ++node)
                       count("a node tag");
-                    number("a node's x coordinate");
-                                number("a node's y coordinate");
-                                number("a node's z coordinate");
-                  }
-                n_read += in_block;
-              }
-            AssertThrow(n_read == n_nodes,
-                        dealii::ExcMessage(
-                          where() + "$Nodes announces " +
-                          std::to_string(n_nodes) + " nodes and its " +
-                          std::to_string(n_blocks) + " blocks hold " +
-                          std::to_string(n_read) + "."));
-                        expect_end("$EndNodes", std::to_string(n_nodes) + " nodes");
-          }
-        else if (word == "$Elements")
-          {
-                        check_header("$Elements");
-                        const long n_blocks   = count("the number of entity blocks");
-                        const long n_elements = count("the number of elements");
-                        if (four_one)
-              {
-                            count("the smallest element tag");
-                            count("the largest element tag");
-              }
-            long n_read = 0;
-                        for (long block = 0; block < n_blocks; ++block)
-              {
-                            number("an entity block's dimension or tag");
-                            number("an entity block's dimension or tag");
-                            const long         type = count("an element type");
-                            const unsigned int n_element_nodes =
-                              gmsh_nodes_per_element(type);
-                            AssertThrow(n_element_nodes > 0,
-                            dealii::ExcMessage(
-                              where() + "element type " + std::to_string(type) +
-                              " is not a linear one (impactfe reads Q1 "
-                                          "meshes: quadrilaterals, hexahedra, and lines "
-                                          "or points for boundary ids)."));
-                            const long in_block =
-                              count("the number of elements of a block");
-                            AssertThrow(in_block <= n_elements - n_read,
-                            dealii::ExcMessage(
-                              where() +
-                              "the element blocks hold more than the " +
-                              std::to_string(n_elements) +
-                              " elements that $Elements announces."));
-                            for (long element = 0; element < in_block; ++element)
-                  {
-                                count("an element tag");
-                                for (unsigned int i = 0; i < n_element_nodes; ++i)
-                      count("a node tag of an element");
-                  }
-                            n_read += in_block;
-              }
-            AssertThrow(n_read == n_elements,
-                        dealii::ExcMessage(
-                          where() + "$Elements announces " +
-                          std::to_string(n_elements) + " elements and its " +
-                          std::to_string(n_blocks) + " blocks hold " +
-                          std::to_string(n_read) + "."));
-                        expect_end("$EndElements",
-                       std::to_string(n_elements) + " elements");
-          }
+                  for (long node = 0; node < in_block; ++node)
+                    {
+                      if (!four_one)
+                        count("a node tag");
+                      for (unsigned int d = 0; d < 3; ++d)
+                        number("a node coordinate");
+                    }
+                  n_read += in_block;
+                }
+              check_total("$Nodes", "nodes", n_nodes, n_blocks, n_read);
+            }
+          else if (word == "$Elements")
+            {
+              const auto [n_blocks, n_elements] =
+                section_header("$Elements", "the number of elements");
+              long n_read = 0;
+              for (long block = 0; block < n_blocks; ++block)
+                {
+                  number("an entity block's dimension or tag");
+                  number("an entity block's dimension or tag");
+                  const long         type = count("an element type");
+                  const unsigned int n_element_nodes =
+                    gmsh_nodes_per_element(type);
+                  AssertThrow(n_element_nodes > 0,
+                              dealii::ExcMessage(
+                                where() + "element type " +
+                                std::to_string(type) +
+                                " is not a linear one (impactfe reads Q1 "
+                                "meshes: quadrilaterals, hexahedra, and lines "
+                                "or points for boundary ids)."));
+                  const long in_block =
+                    count("the number of elements of a block");
+                  check_block_size("$Elements",
+                                   "elements",
+                                   in_block,
+                                   n_elements - n_read);
+                  for (long element = 0; element < in_block; ++element)
+                    for (unsigned int i = 0; i <= n_element_nodes; ++i)
+                      count("an element tag or node tag");
+                  n_read += in_block;
+                }
+              check_total(
+                "$Elements", "elements", n_elements, n_blocks, n_read);
+            }
+        }
     }
 
     // The structure of an ASCII Gmsh file of format 1 or 2: each $Nodes
@@ -577,30 +585,61 @@ namespace impactfe
       chosen == "vtk" ? GridIn<dim>::vtk :
                         GridIn<dim>::abaqus;
 
-    GridIn<dim>   grid_in(triangulation);
+    GridIn<dim> grid_in(triangulation);
+    // A directory opens as a stream and reads as an empty file.
+    AssertThrow(!std::filesystem::is_directory(path),
+                ExcMessage("Mesh: '" + path.string() + "' is a directory."));
     std::ifstream input(path);
     AssertThrow(input,
                 ExcMessage("Mesh: cannot open '" + path.string() + "'."));
     if (chosen == "msh")
       check_gmsh_sections(path);
+    // deal.II's ABAQUS reader converts to UCD and, when that fails, prints
+    // the inner exception (with its stack trace) to std::cerr before it
+    // throws a message that points "above": keep that text and say what
+    // it says in one line.
+    std::ostringstream printed;
+    std::string        reason;
     try
       {
+        const CerrCapture capture(printed);
         grid_in.read(input, grid_format);
       }
     catch (const std::exception &error)
       {
         // deal.II's own message, without the source location and stack
         // trace of its what().
-        std::ostringstream reason;
+        std::ostringstream text;
         if (const auto *deal_error =
               dynamic_cast<const dealii::ExceptionBase *>(&error))
-          deal_error->print_info(reason);
+          deal_error->print_info(text);
         else
-          reason << error.what();
+          text << error.what();
+        reason = trimmed(text.str());
+      }
+    if (!reason.empty())
+      {
+        const std::string inner = printed.str();
+        const auto        info  = inner.find("Additional information:");
+        if (info != std::string::npos)
+          {
+            const auto begin = inner.find_first_not_of(" \n", info + 23);
+            reason =
+              "not a mesh deal.II's ABAQUS reader can read (its "
+              "conversion to UCD said: " +
+              trimmed(inner.substr(begin, inner.find('\n', begin) - begin)) +
+              ")";
+          }
+        // ExcIO's text is a page of possible causes, most about writing
+        if (reason.rfind("An input/output error has occurred", 0) == 0)
+          reason = "the file does not follow the " + chosen +
+                   " format, or ends too early (deal.II's reader stopped "
+                   "with an input/output error).";
         AssertThrow(false,
                     ExcMessage("Mesh: cannot read '" + path.string() + "' as " +
-                               chosen + ": " + trimmed(reason.str())));
+                               chosen + ": " + reason));
       }
+    std::cerr << printed.str();
     AssertThrow(triangulation.n_active_cells() > 0,
                 ExcMessage("Mesh: the mesh file '" + path.string() +
                            "' has no cells."));

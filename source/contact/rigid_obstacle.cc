@@ -122,6 +122,10 @@ namespace impactfe
     std::string problem;
     try
       {
+        // muParser's own report goes to std::cerr; the message below
+        // carries it
+        std::ostringstream printed;
+        const CerrCapture  capture(printed);
         phi.initialize(variables, expression, std::map<std::string, double>());
         phi.value(Point<dim>());
       }

@@ -57,6 +57,21 @@ namespace
                           name + ": non-zero exit with a message");
   }
 
+  // Nothing but the message block on the screen: deal.II's readers print
+  // inner errors (muParser's, the ABAQUS conversion's stack trace) to
+  // std::cerr before they throw.
+  void
+  check_only_the_message(const std::string &name)
+  {
+    std::ifstream      in(name + ".log");
+    std::ostringstream text;
+    text << in.rdbuf();
+    const std::string before =
+      text.str().substr(0, text.str().find("Exception on processing:"));
+    impactfe_tests::check(before.find_first_not_of("-\n") == std::string::npos,
+                          name + ": nothing printed before the message");
+  }
+
   // A valid, small run with one entry replaced.
   std::string
   with(const std::string &subsection, const std::string &entry)
@@ -164,6 +179,7 @@ main()
   run_case("bad_level_set",
            with("Obstacle", "Type = level set\n  set Level set = y+*2"),
            cylinder);
+  check_only_the_message("bad_level_set");
   run_case("odd_core_cells",
            with("Geometry", "Number of core cells = 5"),
            cylinder);
@@ -246,6 +262,23 @@ main()
   run_case("flat_hexahedral_mesh",
            with("Mesh", "Mesh file = flat_hexahedron.msh"),
            BLOCK_SLIDING_3D_EXECUTABLE);
+
+  // Other formats and a directory: deal.II's messages said "an error
+  // message printed above" (with a stack trace there), gave a page on
+  // input/output errors, or complained about the Gmsh string "<>".
+  std::ofstream("garbage.inp") << "garbage here\n1 2 3\n";
+  run_case("mesh_abaqus_garbage",
+           with("Mesh", "Mesh file = garbage.inp"),
+           cylinder);
+  check_only_the_message("mesh_abaqus_garbage");
+  std::ofstream("garbage.ucd") << "garbage here\n1 2 3\n";
+  run_case("mesh_ucd_garbage",
+           with("Mesh", "Mesh file = garbage.ucd"),
+           cylinder);
+  std::filesystem::create_directory("mesh_directory.msh");
+  run_case("mesh_file_is_a_directory",
+           with("Mesh", "Mesh file = mesh_directory.msh"),
+           cylinder);
 
   // Gmsh's format 4: deal.II's reader trusts the counts of the entity
   // blocks, and a file with a format-2 body under a 4.1 header made it

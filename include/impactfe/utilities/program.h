@@ -6,6 +6,7 @@
 #include <exception>
 #include <filesystem>
 #include <functional>
+#include <iostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -68,6 +69,32 @@ namespace impactfe
   require_non_negative(const double       value,
                        const std::string &subsection,
                        const std::string &entry);
+
+  /**
+   * Sends what is written to std::cerr to a stream while it lives: for
+   * deal.II readers that print an inner error (muParser's, the ABAQUS
+   * conversion's with its stack trace) to std::cerr before they throw,
+   * so that the program's one message can say it instead.
+   */
+  class CerrCapture
+  {
+  public:
+    explicit CerrCapture(std::ostream &into)
+      : saved(std::cerr.rdbuf(into.rdbuf()))
+    {}
+
+    ~CerrCapture()
+    {
+      std::cerr.rdbuf(saved);
+    }
+
+    CerrCapture(const CerrCapture &) = delete;
+    CerrCapture &
+    operator=(const CerrCapture &) = delete;
+
+  private:
+    std::streambuf *saved;
+  };
 
   /**
    * The statements of the .prm file @p file as ParameterHandler reads them:
