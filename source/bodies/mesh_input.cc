@@ -607,15 +607,7 @@ namespace impactfe
       }
     catch (const std::exception &error)
       {
-        // deal.II's own message, without the source location and stack
-        // trace of its what().
-        std::ostringstream text;
-        if (const auto *deal_error =
-              dynamic_cast<const dealii::ExceptionBase *>(&error))
-          deal_error->print_info(text);
-        else
-          text << error.what();
-        reason = trimmed(text.str());
+        reason = exception_text(error);
       }
     if (!reason.empty())
       {

@@ -129,19 +129,10 @@ namespace impactfe
         phi.initialize(variables, expression, std::map<std::string, double>());
         phi.value(Point<dim>());
       }
-    catch (const ExceptionBase &error)
-      {
-        std::ostringstream message;
-        error.print_info(message);
-        problem = message.str();
-      }
     catch (const std::exception &error)
       {
-        problem = error.what();
+        problem = exception_text(error);
       }
-    while (!problem.empty() && std::isspace(problem.back()))
-      problem.pop_back();
-    problem.erase(0, problem.find_first_not_of(" \t\n"));
     AssertThrow(problem.empty(),
                 ExcMessage("Obstacle: 'Level set' = '" + expression +
                            "' is not a valid expression in " + variables +

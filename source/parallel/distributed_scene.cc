@@ -988,12 +988,10 @@ namespace impactfe
         }
       catch (const ExceptionBase &e)
         {
-          std::ostringstream what;
-          e.print_info(what);
           AssertThrow(false,
                       ExcMessage("The contact search at t = " +
                                  format_number(solver->time()) +
-                                 " s failed: " + Utilities::trim(what.str())));
+                                 " s failed: " + exception_text(e)));
         }
       move_meshes(false);
       found->refer_to_reference_configuration(displacement);

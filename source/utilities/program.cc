@@ -112,6 +112,24 @@ namespace impactfe
 
 
 
+  std::string
+  exception_text(const std::exception &error)
+  {
+    std::ostringstream text;
+    if (const auto *deal_error =
+          dynamic_cast<const dealii::ExceptionBase *>(&error))
+      deal_error->print_info(text);
+    else
+      text << error.what();
+    const std::string raw   = text.str();
+    const auto        begin = raw.find_first_not_of(" \t\r\n");
+    return begin == std::string::npos ?
+             std::string() :
+             raw.substr(begin, raw.find_last_not_of(" \t\r\n") - begin + 1);
+  }
+
+
+
   std::vector<std::pair<unsigned int, std::string>>
   parameter_file_statements(const std::filesystem::path &file)
   {
@@ -254,16 +272,10 @@ namespace impactfe
       }
     catch (const std::exception &error)
       {
-        std::ostringstream reason;
-        if (const auto *deal_error =
-              dynamic_cast<const dealii::ExceptionBase *>(&error))
-          deal_error->print_info(reason);
-        else
-          reason << error.what();
         // Boost's syntax errors, with "<unspecified file>(2)" as "line 2",
         // on one line; deal.II's own messages (an undeclared entry, a value
         // that does not match its pattern) already say what is wrong.
-        std::string       raw = reason.str();
+        std::string       raw = exception_text(error);
         const std::string unnamed("<unspecified file>(");
         if (raw.find(unnamed) == std::string::npos)
           throw;

@@ -71,6 +71,14 @@ namespace impactfe
                        const std::string &entry);
 
   /**
+   * What @p error says, for a message of ours that carries it: a deal.II
+   * exception's text without its source location and stack trace
+   * (print_info()), another one's what(); blanks at both ends trimmed.
+   */
+  std::string
+  exception_text(const std::exception &error);
+
+  /**
    * Sends what is written to std::cerr to a stream while it lives: for
    * deal.II readers that print an inner error (muParser's, the ABAQUS
    * conversion's with its stack trace) to std::cerr before they throw,
