@@ -122,6 +122,10 @@ main()
   run_case("zero_modulus", with("Material", "Young's modulus = 0"));
   run_case("negative_density", with("Material", "Density = -7800"));
   run_case("negative_gap", with("Geometry", "Initial gap = -0.01"));
+  // steps so long that the state overflows: the history's check names
+  // the time and the entries to look at
+  run_case("state_overflows",
+           with("Time stepping", "Time step = 1e307\n  set End time = 1e308"));
   run_case("misspelt_entry", with("Time stepping", "Tme step = 1e-6"));
   run_case("misspelt_subsection", with("Time steping", "Time step = 1e-6"));
   run_case("missing_file", "");
