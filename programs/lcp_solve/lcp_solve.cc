@@ -36,8 +36,7 @@ namespace
          "               contact files from the states 'closed (stick) where V_N + b_N < 0,\n"
          "               open elsewhere' (2D friction: block pivoting, then Lemke)\n"
          "  --form F     LCP form for friction-contact files (default auto)\n"
-         "  --facets k   facets of the friction cone in 3D: even, in [4, 256]\n"
-         "               (default 8)\n"
+         "  --facets k   facets of the 3D friction cone: even, in [4, 256] (default 8)\n"
          "  --cone C     facets (default: the polygonal cone) or exact (the circular\n"
          "               cone, by an interior point method and re-aligned facet\n"
          "               LCPs; contact files)\n"
@@ -169,8 +168,7 @@ main(int argc, char **argv)
         }
       else if (a == "--facets" && i + 1 < argc)
         {
-          // the programs' rule for 'Number of facets' (2D problems have
-          // the two facets +t, -t whatever k is)
+          // the programs' rule for 'Number of facets'
           const long k = integer_in(argv[++i], 4, 256);
           if (k < 0 || k % 2 != 0)
             return bad_argument(
