@@ -128,7 +128,8 @@ namespace impactfe
 
   void
   remove_previous_run_output(const std::string              &directory,
-                             const std::vector<std::string> &body_names)
+                             const std::vector<std::string> &body_names,
+                             const std::vector<std::string> &parallel_records)
   {
     std::error_code not_removed; // then writing it fails with a message
     for (const char *name :
@@ -145,11 +146,39 @@ namespace impactfe
           return true;
       return false;
     };
+    // "<record>_" and four or more digits, then ".pvtu", or "." and the
+    // rank's digits (as many as the number of ranks needs) and ".vtu"
+    // (DataOut::write_vtu_with_pvtu_record())
+    const auto digits = [](const std::string &text,
+                           const std::size_t  at_least = 1) {
+      return text.size() >= at_least &&
+             std::all_of(text.begin(), text.end(), [](const char c) {
+               return c >= '0' && c <= '9';
+             });
+    };
+    const auto is_parallel_record = [&](const std::string &file) {
+      for (const std::string &record : parallel_records)
+        if (file.rfind(record + "_", 0) == 0)
+          {
+            const std::string rest = file.substr(record.size() + 1);
+            const auto        dot  = rest.find('.');
+            if (dot == std::string::npos || !digits(rest.substr(0, dot), 4))
+              continue;
+            const std::string tail = rest.substr(dot + 1);
+            if (tail == "pvtu" ||
+                (tail.size() > 4 &&
+                 tail.compare(tail.size() - 4, 4, ".vtu") == 0 &&
+                 digits(tail.substr(0, tail.size() - 4))))
+              return true;
+          }
+      return false;
+    };
     std::vector<std::filesystem::path> stale;
     for (const auto &entry :
          std::filesystem::directory_iterator(directory, not_removed))
       if (entry.is_regular_file(not_removed) &&
-          is_body_vtu(entry.path().filename().string()))
+          (is_body_vtu(entry.path().filename().string()) ||
+           is_parallel_record(entry.path().filename().string())))
         stale.push_back(entry.path());
     for (const auto &file : stale)
       std::filesystem::remove(file, not_removed);

@@ -1196,6 +1196,13 @@ namespace impactfe
                                 axes[d]);
       on_rank_zero(comm, [&]() {
         create_output_directory(parameters.scene.output.directory);
+        // an earlier run's summary and its .pvd/.pvtu/.vtu records, which
+        // a run on fewer ranks or with fewer steps would leave beside its own
+        // (the broadcast in on_rank_zero() orders this before any rank
+        // writes)
+        remove_previous_run_output(parameters.scene.output.directory,
+                                   {},
+                                   {"solution"});
         history = std::make_unique<HistoryWriter>(
           parameters.scene.output.directory + "/history.csv", columns);
       });

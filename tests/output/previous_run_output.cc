@@ -3,7 +3,9 @@
 // the VTU files of its bodies (five digits or more) (a longer earlier run left
 // its last VTU files beside the new ones, and its plot stayed if the rerun
 // failed), and touches nothing else: LCP dumps, other programs' files, the
-// user's own, names that only look alike.
+// user's own, names that only look alike. A distributed program's
+// .pvtu records (four digits or more) and their pieces (a rank's digits)
+// go as well.
 
 #include <impactfe/output/output.h>
 
@@ -46,7 +48,21 @@ main()
   // a directory with a body's VTU name is not a file: left alone
   std::filesystem::create_directory(directory + "/bar_2-00000.vtu");
 
-  remove_previous_run_output(directory, {"bar_1", "bar_2"});
+  // a distributed program's records of "solution"
+  for (const std::string &file : {"solution_0003.pvtu",
+                                  "solution_0003.1.vtu",
+                                  "solution_12345.0000.vtu",
+                                  "solution_0003.15.vtu",
+                                  "solution_003.pvtu",
+                                  "solution_003.1.vtu",
+                                  "solution_0003..vtu",
+                                  "solution_0003.1a.vtu",
+                                  "solution_0003.pvd",
+                                  "solution_0003.0001.vtu.bak",
+                                  "solutions_0003.pvtu"})
+    std::ofstream(directory + "/" + file) << "earlier run\n";
+
+  remove_previous_run_output(directory, {"bar_1", "bar_2"}, {"solution"});
 
   std::vector<std::string> left;
   for (const auto &entry : std::filesystem::directory_iterator(directory))
@@ -64,7 +80,14 @@ main()
                                              "block-00001.vtu",
                                              "history.csv",
                                              "lcp_step_3.dat",
-                                             "notes.txt"};
+                                             "notes.txt",
+                                             "solution_0003..vtu",
+                                             "solution_0003.0001.vtu.bak",
+                                             "solution_0003.1a.vtu",
+                                             "solution_0003.pvd",
+                                             "solution_003.1.vtu",
+                                             "solution_003.pvtu",
+                                             "solutions_0003.pvtu"};
   check(left == expected,
         "the earlier run's summary, plot, collection and body VTU files "
         "removed, nothing else");

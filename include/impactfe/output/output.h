@@ -60,10 +60,19 @@ namespace impactfe
    * files (a longer earlier run's last VTU files, its plot), and stay if
    * this run fails. Other files are not touched: LCP dumps of chosen steps,
    * meshes written on request, the user's own.
+   *
+   * A distributed program names its records in @p parallel_records: for
+   * a name "solution" the files "solution_NNNN.pvtu" and the pieces
+   * "solution_NNNN.R.vtu" that DataOut::write_vtu_with_pvtu_record()
+   * writes (four or more digits N, the rank R in as many digits as the
+   * number of ranks needs) go too, which an earlier run on more ranks or
+   * with more steps would otherwise leave beside this run's.
    */
   void
-  remove_previous_run_output(const std::string              &directory,
-                             const std::vector<std::string> &body_names);
+  remove_previous_run_output(
+    const std::string              &directory,
+    const std::vector<std::string> &body_names,
+    const std::vector<std::string> &parallel_records = {});
 
 
 
