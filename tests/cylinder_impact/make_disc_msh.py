@@ -10,20 +10,25 @@ contact boundary id); the rest of the boundary is untagged (id 0).
 
 usage: make_disc_msh.py > disc_4x3.msh
        make_disc_msh.py --format 4.1 > disc_4x3_gmsh41.msh
+       make_disc_msh.py --format 4.0 > disc_4x3_gmsh40.msh
        make_disc_msh.py N_CORE N_RINGS CENTRE_HEIGHT > file.msh
 (the second form: the paper's cylinder, 12 9 11.5, is
 parameter_files/cylinder_12x9.msh, the mesh of cylinder_impact.prm with its
 initial gap of 1.5, for contact_mpi's cylinder_impact_mpi.prm)
 --format 4.1 writes Gmsh's current format instead: entity blocks, the
 physical tag on a curve entity of $Entities (mesh_from_file_gmsh41.prm).
+--format 4.0 writes the format of Gmsh 4.0 (2018): the same entities, but
+no tag ranges in the section headers, a block header of "entity tag,
+dimension" (4.1: dimension first) and each node's tag on its coordinates'
+line (mesh_from_file_gmsh40.prm).
 """
 import math
 import sys
 
 R, CX, CY, N, M = 10.0, 0.0, 10.0, 4, 3
 FORMAT = "2.2"
-if sys.argv[1:3] == ["--format", "4.1"]:
-    FORMAT = "4.1"
+if sys.argv[1:2] == ["--format"] and sys.argv[2:3] in (["4.1"], ["4.0"]):
+    FORMAT = sys.argv[2]
     del sys.argv[1:3]
 if len(sys.argv) == 4:
     N, M, CY = int(sys.argv[1]), int(sys.argv[2]), float(sys.argv[3])
@@ -95,6 +100,32 @@ if FORMAT == "2.2":
     for q in quads:
         n += 1
         print("%d 3 2 0 2 %s" % (n, " ".join(str(number[v]) for v in q)))
+    print("$EndElements")
+elif FORMAT == "4.0":
+    # The entities of the 4.1 branch below; format 4.0's points (none here)
+    # would have a bounding box, as its curves and surfaces do.
+    print("$MeshFormat\n4 0 8\n$EndMeshFormat")
+    print("$Entities\n0 1 1 0")
+    box = "%.17g %.17g 0 %.17g %.17g 0" % (CX - R, CY - R, CX + R, CY + R)
+    print("1 %s 1 1 0" % box)
+    print("2 %s 0 0" % box)
+    print("$EndEntities")
+    print("$Nodes\n1 %d" % len(keys))
+    print("2 2 0 %d" % len(keys))
+    for key in keys:
+        x, y = points[key]
+        print("%d %.17g %.17g 0" % (number[key], x + CX, y + CY))
+    print("$EndNodes")
+    print("$Elements\n2 %d" % (len(lines) + len(quads)))
+    print("1 1 1 %d" % len(lines))
+    n = 0
+    for a, b in lines:
+        n += 1
+        print("%d %d %d" % (n, number[a], number[b]))
+    print("2 2 3 %d" % len(quads))
+    for q in quads:
+        n += 1
+        print("%d %s" % (n, " ".join(str(number[v]) for v in q)))
     print("$EndElements")
 else:
     # One curve entity (tag 1, physical tag 1: the lower half's segments)
