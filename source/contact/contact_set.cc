@@ -1089,6 +1089,25 @@ namespace impactfe
 
 
   void
+  ContactSet::gaps(const BlockVector<double> &u,
+                   const double               a,
+                   const BlockVector<double> &v,
+                   std::vector<double>       &g) const
+  {
+    g.resize(candidate_list.size());
+    for (unsigned int c = 0; c < candidate_list.size(); ++c)
+      {
+        double sum = 0.;
+        for (const Entry &e : columns[c * directions])
+          sum += e.coefficient *
+                 (u.block(e.block)(e.dof) + a * v.block(e.block)(e.dof));
+        g[c] = candidate_list[c].initial_gap + sum;
+      }
+  }
+
+
+
+  void
   ContactSet::normal_velocities(const BlockVector<double> &v,
                                 std::vector<double> &normal_velocity) const
   {

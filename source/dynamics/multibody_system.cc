@@ -1186,7 +1186,7 @@ namespace impactfe
     contact_force_field = 0.;
     for (auto &impulses : massless_impulses)
       std::fill(impulses.begin(), impulses.end(), 0.);
-    next.velocity = free_velocity;
+    next.velocity.swap(free_velocity);
     complete_and_advance(*coarse_scheme, report.time);
     last_step_had_impulses = false;
     clock.charge(costs.update);
@@ -1386,26 +1386,35 @@ namespace impactfe
     // 4. v^{i+1} = v_free + M~^{-1} (H P), and the nodal forces. With few
     // impulses whose columns M~^{-1} H_j are stored, their sum is cheaper
     // than a solve; otherwise one solve with H P.
-    next.velocity             = free_velocity;
+    // v_free is formed anew (every entry) at the next step: a swap, not a
+    // copy.
+    next.velocity.swap(free_velocity);
     const double force_factor = scheme->force_per_impulse();
-    impulse_response          = 0.;
     unsigned int n_impulses   = 0;
     bool         all_stored   = true;
     for (unsigned int j = 0; j < contact_set.n_columns(); ++j)
       if (local_impulses[j] != 0.)
         {
-          contact_set.add_column(j, local_impulses[j], impulse_response);
           ++n_impulses;
           all_stored = all_stored && stored_column_slot[j] >= 0;
         }
-    contact_force_field.equ(force_factor, impulse_response);
+    // After a step without impulses H P and the force field are zero
+    // already: a step in free flight skips two passes over the DoFs.
+    if (n_impulses > 0 || last_step_had_impulses)
+      {
+        impulse_response = 0.;
+        for (unsigned int j = 0; j < contact_set.n_columns(); ++j)
+          if (local_impulses[j] != 0.)
+            contact_set.add_column(j, local_impulses[j], impulse_response);
+        contact_force_field.equ(force_factor, impulse_response);
+      }
     for (unsigned int b = 0; b < massless_dofs.size(); ++b)
       for (unsigned int k = 0; k < massless_dofs[b].size(); ++k)
         massless_impulses[b][k] =
           impulse_response.block(b)(massless_dofs[b][k]);
     if (impulse_velocity_ready)
       next.velocity += impulse_velocity;
-    else if (all_stored && 2. * n_impulses * free_velocity.size() < solve_cost)
+    else if (all_stored && 2. * n_impulses * next.velocity.size() < solve_cost)
       {
         for (unsigned int j = 0; j < contact_set.n_columns(); ++j)
           if (local_impulses[j] != 0.)

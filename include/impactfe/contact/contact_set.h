@@ -283,6 +283,16 @@ namespace impactfe
     /** g_c = g0_c + H_N,c^T u for every candidate. */
     void
     gaps(const BlockVector<double> &displacement, std::vector<double> &g) const;
+    /**
+     * g_c = g0_c + H_N,c^T (u + a v), the gaps at a predicted displacement,
+     * read at the candidates' DoFs only (u + a v is not formed). Each term
+     * is rounded as the same sum over a vector u + a v would be.
+     */
+    void
+    gaps(const BlockVector<double> &u,
+         const double               a,
+         const BlockVector<double> &v,
+         std::vector<double>       &g) const;
     /** V_N,c = H_N,c^T v. */
     void
     normal_velocities(const BlockVector<double> &velocity,

@@ -325,7 +325,6 @@ namespace impactfe
     const double                 h;
     bool                         massless_contact_nodes = false;
     /// Work space of gap_term().
-    mutable BlockVector<double> rule_displacement;
     mutable std::vector<double> rule_normal_velocity;
   };
 
