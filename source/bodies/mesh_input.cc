@@ -8,12 +8,14 @@
 #include <impactfe/utilities/program.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -242,6 +244,34 @@ namespace impactfe
                    std::to_string(n_items) + " " + items);
       };
 
+      // An entity block's header: the entity's dimension and tag (4.1) or
+      // tag and dimension (4.0). deal.II indexes an array by the dimension
+      // (a crash beyond 3), and an entity that $Entities does not declare
+      // has no physical tags to give.
+      std::array<std::set<long>, 4> declared;
+      bool                          entities_read = false;
+      const auto entity_block = [&](const std::string &section) {
+        const long first  = count("an entity block's dimension or tag");
+        const long second = count("an entity block's dimension or tag");
+        const long dim    = four_one ? first : second,
+                   tag    = four_one ? second : first;
+        AssertThrow(dim <= 3,
+                    dealii::ExcMessage(
+                      where() + "an entity block of " + section +
+                      " has the dimension " + std::to_string(dim) +
+                      " (0 to 3). A block starts with " +
+                      (four_one ? "the dimension, then the entity tag" :
+                                  "the entity tag, then the dimension") +
+                      " in format " + (four_one ? "4.1" : "4.0") + "."));
+        AssertThrow(!entities_read || declared[dim].count(tag) == 1,
+                    dealii::ExcMessage(
+                      where() + "an entity block of " + section +
+                      " belongs to the entity of dimension " +
+                      std::to_string(dim) + " and tag " + std::to_string(tag) +
+                      ", which $Entities does not declare."));
+        return dim;
+      };
+
       std::string word;
       while (!(word = reader.next()).empty())
         {
@@ -256,7 +286,7 @@ namespace impactfe
               for (unsigned int entity_dim = 0; entity_dim < 4; ++entity_dim)
                 for (long entity = 0; entity < n_entities[entity_dim]; ++entity)
                   {
-                    number("an entity tag");
+                    declared[entity_dim].insert(count("an entity tag"));
                     const unsigned int n_coordinates =
                       (four_one && entity_dim == 0) ? 3 : 6;
                     for (unsigned int i = 0; i < n_coordinates; ++i)
@@ -271,6 +301,7 @@ namespace impactfe
                         number("a bounding entity tag");
                   }
               expect_end("$EndEntities", "entities");
+              entities_read = true;
             }
           else if (word == "$Nodes")
             {
@@ -279,8 +310,7 @@ namespace impactfe
               long n_read = 0;
               for (long block = 0; block < n_blocks; ++block)
                 {
-                  number("an entity block's dimension or tag");
-                  number("an entity block's dimension or tag");
+                  entity_block("$Nodes");
                   AssertThrow(count("the 'parametric' flag") == 0,
                               dealii::ExcMessage(
                                 where() +
@@ -313,8 +343,7 @@ namespace impactfe
               long n_read = 0;
               for (long block = 0; block < n_blocks; ++block)
                 {
-                  number("an entity block's dimension or tag");
-                  number("an entity block's dimension or tag");
+                  const long         dim  = entity_block("$Elements");
                   const long         type = count("an element type");
                   const unsigned int n_element_nodes =
                     gmsh_nodes_per_element(type);
@@ -325,6 +354,19 @@ namespace impactfe
                                 " is not a linear one (impactfe reads Q1 "
                                 "meshes: quadrilaterals, hexahedra, and lines "
                                 "or points for boundary ids)."));
+                  // the dimension decides whose physical tags the elements
+                  // get: a mismatch would give wrong boundary ids
+                  const long type_dim = type == 15 ? 0 :
+                                        type == 1  ? 1 :
+                                        type <= 3  ? 2 :
+                                                     3;
+                  AssertThrow(
+                    type_dim == dim,
+                    dealii::ExcMessage(
+                      where() + "an element block of dimension " +
+                      std::to_string(dim) + " holds elements of type " +
+                      std::to_string(type) + ", which have dimension " +
+                      std::to_string(type_dim) + "."));
                   const long in_block =
                     count("the number of elements of a block");
                   check_block_size("$Elements",

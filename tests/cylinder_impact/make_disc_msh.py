@@ -17,10 +17,10 @@ parameter_files/cylinder_12x9.msh, the mesh of cylinder_impact.prm with its
 initial gap of 1.5, for contact_mpi's cylinder_impact_mpi.prm)
 --format 4.1 writes Gmsh's current format instead: entity blocks, the
 physical tag on a curve entity of $Entities (mesh_from_file_gmsh41.prm).
---format 4.0 writes the format of Gmsh 4.0 (2018): the same entities, but
-no tag ranges in the section headers, a block header of "entity tag,
-dimension" (4.1: dimension first) and each node's tag on its coordinates'
-line (mesh_from_file_gmsh40.prm).
+--format 4.0 writes the format of Gmsh 4.0 (2018): the same entities
+(other tags), but no tag ranges in the section headers, block headers of
+"entity tag, dimension" (4.1: dimension first) and each node's tag on its
+coordinates' line (mesh_from_file_gmsh40.prm).
 """
 import math
 import sys
@@ -101,57 +101,46 @@ if FORMAT == "2.2":
         n += 1
         print("%d 3 2 0 2 %s" % (n, " ".join(str(number[v]) for v in q)))
     print("$EndElements")
-elif FORMAT == "4.0":
-    # The entities of the 4.1 branch below; format 4.0's points (none here)
-    # would have a bounding box, as its curves and surfaces do.
-    print("$MeshFormat\n4 0 8\n$EndMeshFormat")
-    print("$Entities\n0 1 1 0")
-    box = "%.17g %.17g 0 %.17g %.17g 0" % (CX - R, CY - R, CX + R, CY + R)
-    print("1 %s 1 1 0" % box)
-    print("2 %s 0 0" % box)
-    print("$EndEntities")
-    print("$Nodes\n1 %d" % len(keys))
-    print("2 2 0 %d" % len(keys))
-    for key in keys:
-        x, y = points[key]
-        print("%d %.17g %.17g 0" % (number[key], x + CX, y + CY))
-    print("$EndNodes")
-    print("$Elements\n2 %d" % (len(lines) + len(quads)))
-    print("1 1 1 %d" % len(lines))
-    n = 0
-    for a, b in lines:
-        n += 1
-        print("%d %d %d" % (n, number[a], number[b]))
-    print("2 2 3 %d" % len(quads))
-    for q in quads:
-        n += 1
-        print("%d %s" % (n, " ".join(str(number[v]) for v in q)))
-    print("$EndElements")
 else:
-    # One curve entity (tag 1, physical tag 1: the lower half's segments)
-    # and one surface entity (tag 2, no physical tag) with all the nodes.
-    print("$MeshFormat\n4.1 0 8\n$EndMeshFormat")
+    # One curve entity (physical tag 1: the lower half's segments) and one
+    # surface entity (no physical tag) with all the nodes. Format 4.1: tags
+    # 1 and 2, tag ranges in the section headers, block headers "dimension
+    # tag", the node tags before the coordinates. Format 4.0: tags 5 and 7,
+    # so that its block headers "tag dimension" differ from 4.1's order, no
+    # tag ranges, each node's tag on its coordinates' line.
+    four_one = FORMAT == "4.1"
+    curve, surface = (1, 2) if four_one else (5, 7)
+
+    def block(dim, tag, n_items, kind):
+        first, second = (dim, tag) if four_one else (tag, dim)
+        return "%d %d %d %d" % (first, second, kind, n_items)
+
+    print("$MeshFormat\n%s 0 8\n$EndMeshFormat" % ("4.1" if four_one else "4"))
     print("$Entities\n0 1 1 0")
     box = "%.17g %.17g 0 %.17g %.17g 0" % (CX - R, CY - R, CX + R, CY + R)
-    print("1 %s 1 1 0" % box)
-    print("2 %s 0 0" % box)
+    print("%d %s 1 1 0" % (curve, box))
+    print("%d %s 0 0" % (surface, box))
     print("$EndEntities")
-    print("$Nodes\n1 %d 1 %d" % (len(keys), len(keys)))
-    print("2 2 0 %d" % len(keys))
-    for key in keys:
-        print(number[key])
+    ranges = " 1 %d" % len(keys) if four_one else ""
+    print("$Nodes\n1 %d%s" % (len(keys), ranges))
+    print(block(2, surface, len(keys), 0))
+    if four_one:
+        for key in keys:
+            print(number[key])
     for key in keys:
         x, y = points[key]
-        print("%.17g %.17g 0" % (x + CX, y + CY))
+        tag = "" if four_one else "%d " % number[key]
+        print("%s%.17g %.17g 0" % (tag, x + CX, y + CY))
     print("$EndNodes")
     n_elements = len(lines) + len(quads)
-    print("$Elements\n2 %d 1 %d" % (n_elements, n_elements))
-    print("1 1 1 %d" % len(lines))
+    ranges = " 1 %d" % n_elements if four_one else ""
+    print("$Elements\n2 %d%s" % (n_elements, ranges))
+    print(block(1, curve, len(lines), 1))
     n = 0
     for a, b in lines:
         n += 1
         print("%d %d %d" % (n, number[a], number[b]))
-    print("2 2 3 %d" % len(quads))
+    print(block(2, surface, len(quads), 3))
     for q in quads:
         n += 1
         print("%d %s" % (n, " ".join(str(number[v]) for v in q)))

@@ -301,6 +301,39 @@ main()
   run_case("mesh_gmsh4_node_block_too_long",
            with("Mesh", "Mesh file = gmsh4_block_count.msh"),
            cylinder);
+  // An entity block names its entity by dimension and tag (4.1) or tag
+  // and dimension (4.0): a 4.0 file with 4.1's order gave deal.II the
+  // dimension 7 (a crash); an undeclared entity or elements of another
+  // dimension would give wrong boundary ids.
+  const std::string entities_of_square =
+    "$Entities\n0 1 1 0\n1 0 0 0 1 0 0 1 1 0\n2 0 0 0 1 1 0 0 0\n"
+    "$EndEntities\n";
+  // the surface has the tag 7: its node block "2 7" is in 4.1's order
+  std::ofstream("gmsh40_in_41_order.msh")
+    << "$MeshFormat\n4 0 8\n$EndMeshFormat\n$Entities\n0 1 1 0\n"
+       "1 0 0 0 1 0 0 1 1 0\n7 0 0 0 1 1 0 0 0\n$EndEntities\n"
+       "$Nodes\n1 4\n2 7 0 4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n"
+       "$EndNodes\n";
+  run_case("mesh_gmsh40_block_in_41_order",
+           with("Mesh", "Mesh file = gmsh40_in_41_order.msh"),
+           cylinder);
+  std::ofstream("gmsh4_undeclared_entity.msh")
+    << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+    << entities_of_square
+    << "$Nodes\n1 4 1 4\n2 3 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n1 1 0\n"
+       "0 1 0\n$EndNodes\n";
+  run_case("mesh_gmsh4_undeclared_entity",
+           with("Mesh", "Mesh file = gmsh4_undeclared_entity.msh"),
+           cylinder);
+  std::ofstream("gmsh4_element_dimension.msh")
+    << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+    << entities_of_square
+    << "$Nodes\n1 4 1 4\n2 2 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n1 1 0\n"
+       "0 1 0\n$EndNodes\n$Elements\n1 1 1 1\n1 1 3 1\n1 1 2 3 4\n"
+       "$EndElements\n";
+  run_case("mesh_gmsh4_element_dimension",
+           with("Mesh", "Mesh file = gmsh4_element_dimension.msh"),
+           cylinder);
   std::ofstream("gmsh4_binary.msh") << "$MeshFormat\n4.1 1 8\n";
   run_case("mesh_gmsh_binary",
            with("Mesh", "Mesh file = gmsh4_binary.msh"),
