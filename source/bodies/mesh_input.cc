@@ -275,6 +275,14 @@ namespace impactfe
       std::string word;
       while (!(word = reader.next()).empty())
         {
+          AssertThrow(word != "$PartitionedEntities",
+                      dealii::ExcMessage(
+                        where() +
+                        "a partitioned mesh ($PartitionedEntities): "
+                        "deal.II reads the entities of an unpartitioned one "
+                        "only, and would lose the boundary ids. Save the "
+                        "mesh without partitions (in Gmsh: unpartition it, "
+                        "gmsh.model.mesh.unpartition(), before saving)."));
           if (word == "$Entities")
             {
               // Points, curves, surfaces, volumes: a tag, a point (4.1) or

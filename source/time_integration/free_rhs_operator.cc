@@ -3,6 +3,7 @@
 
 #include <impactfe/time_integration/free_rhs_operator.h>
 #include <impactfe/time_integration/time_integrator.h>
+#include <impactfe/utilities/vectorized_kernel.h>
 
 namespace impactfe
 {
@@ -138,7 +139,7 @@ namespace impactfe
     // rhs = A (x - t) + B (y - s) + f on a tridiagonal block's rows, by
     // its diagonals (Block::diagonals), summed in the order of
     // apply_rows() below, so the result is the same to the bit.
-    void
+    IMPACTFE_VECTORIZED_KERNEL void
     apply_tridiagonal_rows(const std::size_t                         n,
                            const std::array<std::vector<double>, 6> &diag,
                            const double                             *x,
@@ -146,7 +147,7 @@ namespace impactfe
                            const double                             *force,
                            const double                              t,
                            const double                              s,
-                           double                                   *out)
+                           double *__restrict out)
     {
       const double *al = diag[0].data(), *ad = diag[1].data(),
                    *au = diag[2].data(), *bl = diag[3].data(),
@@ -162,6 +163,16 @@ namespace impactfe
       const std::size_t l = n - 1;
       out[l]              = (ad[l] * (x[l] - t) + al[l] * (x[l - 1] - t)) +
                (bd[l] * (y[l] - s) + bl[l] * (y[l - 1] - s)) + force[l];
+    }
+
+
+
+    // v_i += t for every entry: one component's translation.
+    IMPACTFE_VECTORIZED_KERNEL void
+    add_to_every_entry(const std::size_t n, const double t, double *v)
+    {
+      for (std::size_t i = 0; i < n; ++i)
+        v[i] += t;
     }
 
 
@@ -272,8 +283,7 @@ namespace impactfe
         const std::array<double, 3> &t  = translation[b];
         const std::size_t            n  = block.component.size();
         if (!block.several_components)
-          for (std::size_t i = 0; i < n; ++i)
-            vb[i] += t[0];
+          add_to_every_entry(n, t[0], vb);
         else
           for (std::size_t i = 0; i < n; ++i)
             vb[i] += t[block.component[i]];

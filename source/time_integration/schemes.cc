@@ -13,6 +13,7 @@
 #include <impactfe/output/output.h>
 #include <impactfe/time_integration/time_integrator.h>
 #include <impactfe/utilities/program.h>
+#include <impactfe/utilities/vectorized_kernel.h>
 
 #include <algorithm>
 #include <cmath>
@@ -371,30 +372,48 @@ namespace impactfe
         bc /= rule.gap_divisor;
   }
 
+  namespace
+  {
+    // u_new = u_old + a v_new + b v_old, entry by entry (b = 0: u_old + a
+    // v_new, as deal.II's add(a, v) would round it).
+    IMPACTFE_VECTORIZED_KERNEL void
+    displacement_update(const std::size_t n,
+                        const double     *u_old,
+                        const double      a,
+                        const double     *v_new,
+                        const double      b,
+                        const double     *v_old,
+                        double *__restrict u_new)
+    {
+      if (b == 0.)
+        for (std::size_t i = 0; i < n; ++i)
+          u_new[i] = u_old[i] + a * v_new[i];
+      else
+        for (std::size_t i = 0; i < n; ++i)
+          u_new[i] = u_old[i] + a * v_new[i] + b * v_old[i];
+    }
+  } // namespace
+
+
+
   void
   TimeIntegrator::complete_step(const MechanicalState &old_state,
                                 MechanicalState       &new_state) const
   {
     // u^{i+1} = u^i + h w v^{i+1} + h (1 - w) v^i in one pass (a copy and
     // an add() were two); rounded as deal.II's add(a, v, b, w).
-    AssertDimension(new_state.displacement.size(),
-                    old_state.displacement.size());
+    AssertThrow(new_state.displacement.size() == old_state.displacement.size(),
+                dealii::ExcDimensionMismatch(new_state.displacement.size(),
+                                             old_state.displacement.size()));
     const double w = theta_step_rule().new_velocity_weight;
-    const double a = h * w, b = h * (1. - w);
     for (unsigned int k = 0; k < new_state.displacement.n_blocks(); ++k)
-      {
-        const unsigned int n  = new_state.displacement.block(k).size();
-        double            *un = new_state.displacement.block(k).data();
-        const double      *uo = old_state.displacement.block(k).data();
-        const double      *vn = new_state.velocity.block(k).data();
-        const double      *vo = old_state.velocity.block(k).data();
-        if (w == 1.)
-          for (unsigned int i = 0; i < n; ++i)
-            un[i] = uo[i] + a * vn[i];
-        else
-          for (unsigned int i = 0; i < n; ++i)
-            un[i] = uo[i] + a * vn[i] + b * vo[i];
-      }
+      displacement_update(new_state.displacement.block(k).size(),
+                          old_state.displacement.block(k).data(),
+                          h * w,
+                          new_state.velocity.block(k).data(),
+                          h * (1. - w),
+                          old_state.velocity.block(k).data(),
+                          new_state.displacement.block(k).data());
   }
 
 

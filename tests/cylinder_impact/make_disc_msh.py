@@ -27,7 +27,9 @@ import sys
 
 R, CX, CY, N, M = 10.0, 0.0, 10.0, 4, 3
 FORMAT = "2.2"
-if sys.argv[1:2] == ["--format"] and sys.argv[2:3] in (["4.1"], ["4.0"]):
+if sys.argv[1:2] == ["--format"]:
+    if sys.argv[2:3] not in (["2.2"], ["4.1"], ["4.0"]):
+        sys.exit("--format takes 2.2, 4.0 or 4.1\n\n" + __doc__)
     FORMAT = sys.argv[2]
     del sys.argv[1:3]
 if len(sys.argv) == 4:

@@ -334,6 +334,13 @@ main()
   run_case("mesh_gmsh4_element_dimension",
            with("Mesh", "Mesh file = gmsh4_element_dimension.msh"),
            cylinder);
+  // a partitioned file's blocks belong to entities that deal.II skips
+  std::ofstream("gmsh4_partitioned.msh")
+    << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+    << entities_of_square << "$PartitionedEntities\n2\n0\n";
+  run_case("mesh_gmsh4_partitioned",
+           with("Mesh", "Mesh file = gmsh4_partitioned.msh"),
+           cylinder);
   std::ofstream("gmsh4_binary.msh") << "$MeshFormat\n4.1 1 8\n";
   run_case("mesh_gmsh_binary",
            with("Mesh", "Mesh file = gmsh4_binary.msh"),
