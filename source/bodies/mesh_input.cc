@@ -127,6 +127,14 @@ namespace impactfe
         }
     }
 
+    // The dimension of the elements of a type that
+    // gmsh_nodes_per_element() knows.
+    long
+    gmsh_element_dimension(const long type)
+    {
+      return type == 15 ? 0 : type == 1 ? 1 : type <= 3 ? 2 : 3;
+    }
+
     // The $Nodes and $Elements sections of an ASCII Gmsh file of format 4.0
     // or 4.1 (entity blocks, each with its own count), read from
     // @p input just after the $MeshFormat line. deal.II's reader trusts
@@ -364,10 +372,7 @@ namespace impactfe
                                 "or points for boundary ids)."));
                   // the dimension decides whose physical tags the elements
                   // get: a mismatch would give wrong boundary ids
-                  const long type_dim = type == 15 ? 0 :
-                                        type == 1  ? 1 :
-                                        type <= 3  ? 2 :
-                                                     3;
+                  const long type_dim = gmsh_element_dimension(type);
                   AssertThrow(
                     type_dim == dim,
                     dealii::ExcMessage(

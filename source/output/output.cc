@@ -135,42 +135,49 @@ namespace impactfe
     for (const char *name :
          {"summary.json", "history.png", "solution.pvd", "shapes.csv"})
       std::filesystem::remove(directory + "/" + name, not_removed);
+    const auto digits = [](const std::string &text,
+                           const std::size_t  at_least) {
+      return text.size() >= at_least &&
+             std::all_of(text.begin(), text.end(), [](const char c) {
+               return c >= '0' && c <= '9';
+             });
+    };
+    // the part of @p file between @p prefix and ".vtu", if it has both
+    const auto between = [](const std::string &file,
+                            const std::string &prefix,
+                            std::string       &middle) {
+      if (file.size() < prefix.size() + 4 || file.rfind(prefix, 0) != 0 ||
+          file.compare(file.size() - 4, 4, ".vtu") != 0)
+        return false;
+      middle = file.substr(prefix.size(), file.size() - prefix.size() - 4);
+      return true;
+    };
     // "<body>-" and five or more digits (setw(5)) and ".vtu"
     const auto is_body_vtu = [&](const std::string &file) {
+      std::string number;
       for (const std::string &body : body_names)
-        if (file.size() >= body.size() + 10 && file.rfind(body + "-", 0) == 0 &&
-            file.compare(file.size() - 4, 4, ".vtu") == 0 &&
-            std::all_of(file.begin() + body.size() + 1,
-                        file.end() - 4,
-                        [](const char c) { return c >= '0' && c <= '9'; }))
+        if (between(file, body + "-", number) && digits(number, 5))
           return true;
       return false;
     };
     // "<record>_" and four or more digits, then ".pvtu", or "." and the
     // rank's digits (as many as the number of ranks needs) and ".vtu"
     // (DataOut::write_vtu_with_pvtu_record())
-    const auto digits = [](const std::string &text,
-                           const std::size_t  at_least = 1) {
-      return text.size() >= at_least &&
-             std::all_of(text.begin(), text.end(), [](const char c) {
-               return c >= '0' && c <= '9';
-             });
-    };
     const auto is_parallel_record = [&](const std::string &file) {
       for (const std::string &record : parallel_records)
-        if (file.rfind(record + "_", 0) == 0)
-          {
-            const std::string rest = file.substr(record.size() + 1);
-            const auto        dot  = rest.find('.');
-            if (dot == std::string::npos || !digits(rest.substr(0, dot), 4))
-              continue;
-            const std::string tail = rest.substr(dot + 1);
-            if (tail == "pvtu" ||
-                (tail.size() > 4 &&
-                 tail.compare(tail.size() - 4, 4, ".vtu") == 0 &&
-                 digits(tail.substr(0, tail.size() - 4))))
-              return true;
-          }
+        {
+          const std::string prefix = record + "_";
+          if (file.rfind(prefix, 0) != 0)
+            continue;
+          const std::string rest = file.substr(prefix.size());
+          const auto        dot  = rest.find('.');
+          if (dot == std::string::npos || !digits(rest.substr(0, dot), 4))
+            continue;
+          const std::string tail = rest.substr(dot + 1);
+          std::string       rank;
+          if (tail == "pvtu" || (between(tail, "", rank) && digits(rank, 1)))
+            return true;
+        }
       return false;
     };
     std::vector<std::filesystem::path> stale;
