@@ -119,7 +119,11 @@ namespace impactfe
                       "Write the LCP of this step (1 = first step) to "
                       "<Output directory>/lcp_step_<n>.dat in the Siconos "
                       "text format, for replay with lcp-solve. -1: none. "
-                      "The LCP of a step that fails is always written.");
+                      "A step that fails writes its problem to "
+                      "lcp_failure_step_<n>.dat: always after Lemke's "
+                      "method, and after the active set method if its W "
+                      "has at most 4000 rows or this entry names the "
+                      "step.");
     prm.declare_entry(
       "Friction cone",
       "exact",

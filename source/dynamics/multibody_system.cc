@@ -1120,6 +1120,36 @@ namespace impactfe
 
 
 
+  // A step that fails writes its problem for replay with lcp-solve. After
+  // the active set method W has not been formed: beyond a few thousand
+  // rows its columns (a solve pair each) and its text (about 20 bytes per
+  // entry) would cost more than the failed run, and only 'Dump LCP of
+  // step' for that step writes it then.
+  template <int dim>
+  std::string
+  MultibodySystem<dim>::write_unsolved_problem(const bool w_formed)
+  {
+    constexpr std::size_t largest_written_rows = 4000;
+    const std::size_t rows = lcp_candidates.size() * contact_set.n_directions();
+    if (!w_formed && rows > largest_written_rows &&
+        solver_parameters.dump_step != static_cast<int>(step_number))
+      return " Its W (" + std::to_string(rows) + " x " + std::to_string(rows) +
+             ") was not written to a file: a failed "
+             "step writes W up to " +
+             std::to_string(largest_written_rows) +
+             " rows; 'Dump LCP of step' = " + std::to_string(step_number) +
+             " writes it whatever its size.";
+    ensure_delassus_columns(lcp_candidates);
+    build_contact_problem(problem);
+    const std::string name = dump_directory + "/lcp_failure_step_" +
+                             std::to_string(step_number) + ".dat";
+    dump_lcp(name);
+    return " The problem was written to " + name + " (replay: lcp-solve " +
+           name + ").";
+  }
+
+
+
   template <int dim>
   void
   MultibodySystem<dim>::complete_and_advance(const TimeIntegrator &level_scheme,
@@ -1321,7 +1351,7 @@ namespace impactfe
             active_set_stats.last_fallback_reason + "), and " +
             solver_parameters.lemke_fallback_limit_text(lcp_candidates.size(),
                                                         nd) +
-            ".");
+            "." + write_unsolved_problem(false));
         clock.charge(costs.lcp);
         ensure_delassus_columns(lcp_candidates);
         clock.charge(costs.delassus);
@@ -1331,10 +1361,6 @@ namespace impactfe
         report.lcp_pivots += result.pivots;
         if (result.status != lcp::Status::solved)
           {
-            std::ostringstream name;
-            name << dump_directory << "/lcp_failure_step_" << step_number
-                 << ".dat";
-            dump_lcp(name.str());
             std::ostringstream message;
             message << "The contact LCP of step " << step_number
                     << " (t = " << report.time << " s, "
@@ -1345,8 +1371,7 @@ namespace impactfe
                           " (The active set method had not converged: " +
                             active_set_stats.last_fallback_reason + ".)" :
                           std::string())
-                    << " The LCP was written to " << name.str()
-                    << " (replay: lcp-solve " << name.str() << ").";
+                    << write_unsolved_problem(true);
             throw ContactSolverFailure(message.str());
           }
         if (solver_parameters.dump_step == static_cast<int>(step_number))

@@ -2,8 +2,12 @@
 // non-zero exit: run the programs on broken parameter files and record
 // their exit status and the message they print.
 
+#include <impactfe/lcp/problem_io.h>
+
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -350,12 +354,38 @@ main()
   // and one facet LCP of theirs (250 unknowns) within its 300 unknowns,
   // but not the exact cone's two: the run stops at once instead of
   // pivoting on a problem too large for the limit.
+  std::filesystem::remove("results/lcp_failure_step_1.dat");
   run_case("block_3d_fallback_lcp_too_large",
            with("Contact solver",
                 "Method = active set\n  set Active set iterations = 1\n"
                 "  set Active set front iterations = 0\n"
                 "  set Largest Lemke fallback = 100"),
            BLOCK_SLIDING_3D_EXECUTABLE);
+  // The step that was not solved is written for replay, although the
+  // active set method never formed W: its 25 contacts with the scene's mu,
+  // and W symmetric, as a Delassus operator is.
+  {
+    const impactfe::lcp::ProblemFile file =
+      impactfe::lcp::read_problem_file("results/lcp_failure_step_1.dat");
+    const impactfe::lcp::ContactProblem &problem   = file.contact;
+    double                               asymmetry = 0., largest = 0.;
+    for (std::size_t i = 0; i < problem.W.n_rows(); ++i)
+      for (std::size_t j = 0; j < problem.W.n_rows(); ++j)
+        {
+          asymmetry =
+            std::max(asymmetry, std::abs(problem.W(i, j) - problem.W(j, i)));
+          largest = std::max(largest, std::abs(problem.W(i, j)));
+        }
+    dealii::deallog << "written: " << problem.n_contacts << " contacts, "
+                    << problem.n_directions << " directions, mu "
+                    << problem.mu[0] << "\n";
+    impactfe_tests::check(
+      file.type == impactfe::lcp::ProblemType::friction_contact &&
+        problem.n_contacts == 25 && problem.n_directions == 3 &&
+        problem.W.n_rows() == 75 && largest > 0. &&
+        asymmetry <= 1e-12 * largest,
+      "block_3d_fallback_lcp_too_large: the unsolved problem written");
+  }
 
   // A mesh that cannot be built stops before deal.II tries: 2^31 cells
   // overflow its indices; 1.6e7 hexahedra need 560 GB.

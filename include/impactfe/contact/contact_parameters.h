@@ -56,7 +56,7 @@ namespace impactfe
     /// Start Lemke from the previous step's active set.
     bool warm_start = true;
     /// Step whose LCP is written to the output directory (-1: none). A step
-    /// whose LCP fails is always written.
+    /// that fails is written too (MultibodySystem::write_unsolved_problem()).
     int dump_step = -1;
     /// 3D friction: the circular cone (to exact_cone_tolerance) or the
     /// polygonal one of n_facets facets.

@@ -519,6 +519,15 @@ namespace impactfe
     build_contact_problem(lcp::ContactProblem &problem) const;
     void
     dump_lcp(const std::string &file_name) const;
+    /**
+     * Write the problem of a step that was not solved to
+     * <dump directory>/lcp_failure_step_<n>.dat: always when W is already
+     * formed (@p w_formed), otherwise if it has at most 4000 rows or the
+     * step is the one 'Dump LCP of step' names. Returns the sentence for
+     * the failure message: where it went, or why not.
+     */
+    std::string
+    write_unsolved_problem(const bool w_formed);
   };
 } // namespace impactfe
 
