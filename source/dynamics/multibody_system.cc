@@ -1139,11 +1139,19 @@ namespace impactfe
              std::to_string(largest_written_rows) +
              " rows; 'Dump LCP of step' = " + std::to_string(step_number) +
              " writes it whatever its size.";
-    ensure_delassus_columns(lcp_candidates);
-    build_contact_problem(problem);
     const std::string name = dump_directory + "/lcp_failure_step_" +
                              std::to_string(step_number) + ".dat";
-    dump_lcp(name);
+    // the failure's own message must not be lost to one of the file's
+    try
+      {
+        ensure_delassus_columns(lcp_candidates);
+        build_contact_problem(problem);
+        dump_lcp(name);
+      }
+    catch (const std::exception &e)
+      {
+        return " The problem could not be written to " + name + ": " + e.what();
+      }
     return " The problem was written to " + name + " (replay: lcp-solve " +
            name + ").";
   }
