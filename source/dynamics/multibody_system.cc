@@ -1134,8 +1134,7 @@ namespace impactfe
     if (!w_formed && rows > largest_written_rows &&
         solver_parameters.dump_step != static_cast<int>(step_number))
       return " Its W (" + std::to_string(rows) + " x " + std::to_string(rows) +
-             ") was not written to a file: a failed "
-             "step writes W up to " +
+             ") was not written to a file: a failed step writes W up to " +
              std::to_string(largest_written_rows) +
              " rows; 'Dump LCP of step' = " + std::to_string(step_number) +
              " writes it whatever its size.";
@@ -1144,8 +1143,12 @@ namespace impactfe
     // the failure's own message must not be lost to one of the file's
     try
       {
-        ensure_delassus_columns(lcp_candidates);
-        build_contact_problem(problem);
+        // after Lemke's method, solve_contact_lcp() has built the problem
+        if (!w_formed)
+          {
+            ensure_delassus_columns(lcp_candidates);
+            build_contact_problem(problem);
+          }
         dump_lcp(name);
       }
     catch (const std::exception &e)
