@@ -1111,8 +1111,15 @@ namespace impactfe
 
   template <int dim>
   void
-  MultibodySystem<dim>::dump_lcp(const std::string &file_name) const
+  MultibodySystem<dim>::dump_lcp(const std::string &file_name,
+                                 const bool         problem_built)
   {
+    // The active set method solves without W: form it only for the file.
+    if (!problem_built)
+      {
+        ensure_delassus_columns(lcp_candidates);
+        build_contact_problem(problem);
+      }
     // The frictional-contact text format of Siconos numerics: W, q with the
     // gap term folded into the normal rows, mu (see doc/lcp.md).
     lcp::write_friction_contact_file(file_name, problem);
@@ -1144,12 +1151,7 @@ namespace impactfe
     try
       {
         // after Lemke's method, solve_contact_lcp() has built the problem
-        if (!w_formed)
-          {
-            ensure_delassus_columns(lcp_candidates);
-            build_contact_problem(problem);
-          }
-        dump_lcp(name);
+        dump_lcp(name, w_formed);
       }
     catch (const std::exception &e)
       {
@@ -1328,12 +1330,9 @@ namespace impactfe
           {
             report.lcp_size = lcp_candidates.size() * nd;
             if (solver_parameters.dump_step == static_cast<int>(step_number))
-              {
-                ensure_delassus_columns(lcp_candidates);
-                build_contact_problem(problem);
-                dump_lcp(dump_directory + "/lcp_step_" +
-                         std::to_string(step_number) + ".dat");
-              }
+              dump_lcp(dump_directory + "/lcp_step_" +
+                         std::to_string(step_number) + ".dat",
+                       false);
             bool grown = false;
             for (unsigned int c = 0; c < n_candidates; ++c)
               if (!in_lcp[c] &&
@@ -1387,7 +1386,8 @@ namespace impactfe
           }
         if (solver_parameters.dump_step == static_cast<int>(step_number))
           dump_lcp(dump_directory + "/lcp_step_" + std::to_string(step_number) +
-                   ".dat");
+                     ".dat",
+                   true);
 
         bool grown = false;
         for (unsigned int c = 0; c < n_candidates; ++c)

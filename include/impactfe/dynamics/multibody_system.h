@@ -517,8 +517,14 @@ namespace impactfe
     /** The condensed contact problem on the current candidate set. */
     void
     build_contact_problem(lcp::ContactProblem &problem) const;
+    /**
+     * Write the contact problem on lcp_candidates to @p file_name (the
+     * frictional-contact text format of Siconos numerics). Unless
+     * @p problem_built (Lemke's solve has built it), W's missing columns
+     * are formed and the problem is built first.
+     */
     void
-    dump_lcp(const std::string &file_name) const;
+    dump_lcp(const std::string &file_name, const bool problem_built);
     /**
      * Write the problem of a step that was not solved to
      * <dump directory>/lcp_failure_step_<n>.dat: always when W is already
