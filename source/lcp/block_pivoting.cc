@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -158,6 +159,48 @@ namespace impactfe
           norm_M, q, z, w, residual, tolerance_factor);
       }
 
+      using FactoredSystem = ContactSolver::Workspace::FactoredSystem;
+
+      bool
+      same_bits(const std::vector<double> &a, const std::vector<double> &b)
+      {
+        return a.size() == b.size() &&
+               (a.empty() ||
+                std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) ==
+                  0);
+      }
+
+      /**
+       * Whether the factors held in @p ws were made from these states, slip
+       * factors and W, to the last bit: then they are the factors a new
+       * factorisation would give. (Comparing W costs |W| reads, against
+       * |S|^3 / 3 flops for the factorisation.)
+       */
+      bool
+      factors_match(const ContactProblem            &p,
+                    const std::vector<ContactState> &states,
+                    const std::vector<double>       &slip_factor,
+                    const ContactSolver::Workspace  &ws)
+      {
+        return ws.factored_system != FactoredSystem::none &&
+               ws.factored_states == states &&
+               same_bits(ws.factored_slip_factor, slip_factor) &&
+               same_bits(ws.factored_W, p.W.data());
+      }
+
+      void
+      remember_factors(const ContactProblem            &p,
+                       const std::vector<ContactState> &states,
+                       const std::vector<double>       &slip_factor,
+                       const FactoredSystem             system,
+                       ContactSolver::Workspace        &ws)
+      {
+        ws.factored_system = system;
+        ws.factored_states.assign(states.begin(), states.end());
+        ws.factored_slip_factor.assign(slip_factor.begin(), slip_factor.end());
+        ws.factored_W.assign(p.W.data().begin(), p.W.data().end());
+      }
+
       /// -(V_free + b_N) on normal rows, -V_free on tangential rows.
       double
       right_hand_side(const ContactProblem &p, const unsigned int row)
@@ -174,15 +217,22 @@ namespace impactfe
        *   [W_SS  B] [x_S]   [r_S]     B(i, l) = W(S_i, N_l) + s_l W(S_i, T_l),
        *   [C     D] [x_L] = [r_L],    C = W(N_L, S), D likewise.
        * W_SS is a principal block of W: Cholesky, (1/3) |S|^3 flops; then
-       * Z = W_SS^{-1} [B r_S], the Schur complement D - C Z_B (|L| x |L|, LU)
-       * for x_L, and x_S = Z_r - Z_B x_L. (Only the upper triangle of W_SS is
-       * read.) False if W_SS is not numerically positive definite or the
-       * Schur complement is singular: the caller then uses one LU.
+       * Z_B = W_SS^{-1} B, the Schur complement D - C Z_B (|L| x |L|, LU),
+       * z_r = W_SS^{-1} r_S, x_L from r_L - C z_r, and x_S = z_r - Z_B x_L.
+       * (Only the upper triangle of W_SS is read.) False if W_SS is not
+       * numerically positive definite or the Schur complement is singular: the
+       * caller then uses one LU.
+       *
+       * With @p reuse_factors (factors_match()) the Cholesky factor, Z_B
+       * and the Schur complement's LU of the last call are used as they
+       * are, and only the right-hand side is solved: about |S|^2 + |L|^2
+       * flops instead of |S|^3 / 3 + |S|^2 |L| + |L|^3.
        */
       bool
       impulses_by_cholesky(const ContactProblem            &p,
                            const std::vector<ContactState> &states,
                            const std::vector<double>       &slip_factor,
+                           const bool                       reuse_factors,
                            ContactSolver::Workspace        &ws,
                            std::vector<double>             &P)
       {
@@ -201,65 +251,87 @@ namespace impactfe
         const std::size_t ns = S.size(), nl = L.size();
         if (ns == 0)
           return false;
-
-        DenseMatrix &Wss = ws.W_SS;
-        Wss.reinit(ns, ns);
-        for (std::size_t i = 0; i < ns; ++i)
-          {
-            const double *wi = p.W.row(S[i]);
-            double       *ri = Wss.row(i);
-            for (std::size_t j = i; j < ns; ++j)
-              ri[j] = wi[S[j]];
-          }
         CholeskyFactorization &cholesky = ws.cholesky;
-        if (!cholesky.factorize(Wss))
-          return false;
-
-        DenseMatrix &Z = ws.Z;
-        Z.reinit(ns, nl + 1);
-        for (std::size_t i = 0; i < ns; ++i)
+        DenseMatrix           &Z        = ws.Z;
+        if (!reuse_factors)
           {
-            const double *wi = p.W.row(S[i]);
-            double       *zi = Z.row(i);
-            for (std::size_t k = 0; k < nl; ++k)
-              zi[k] = wi[2 * L[k]] + slip_factor[L[k]] * wi[2 * L[k] + 1];
-            zi[nl] = right_hand_side(p, S[i]);
-          }
-        cholesky.solve(Z);
+            ws.factored_system = FactoredSystem::none;
+            DenseMatrix &Wss   = ws.W_SS;
+            Wss.reinit(ns, ns);
+            for (std::size_t i = 0; i < ns; ++i)
+              {
+                const double *wi = p.W.row(S[i]);
+                double       *ri = Wss.row(i);
+                for (std::size_t j = i; j < ns; ++j)
+                  ri[j] = wi[S[j]];
+              }
+            if (!cholesky.factorize(Wss))
+              return false;
 
+            Z.reinit(ns, nl);
+            for (std::size_t i = 0; i < ns; ++i)
+              {
+                const double *wi = p.W.row(S[i]);
+                double       *zi = Z.row(i);
+                for (std::size_t k = 0; k < nl; ++k)
+                  zi[k] = wi[2 * L[k]] + slip_factor[L[k]] * wi[2 * L[k] + 1];
+              }
+            if (nl > 0)
+              {
+                cholesky.solve(Z);
+                DenseMatrix &Schur = ws.schur;
+                Schur.reinit(nl, nl);
+                for (std::size_t a = 0; a < nl; ++a)
+                  {
+                    const double *wa = p.W.row(2 * L[a]);
+                    double       *ta = Schur.row(a);
+                    for (std::size_t b = 0; b < nl; ++b)
+                      ta[b] =
+                        wa[2 * L[b]] + slip_factor[L[b]] * wa[2 * L[b] + 1];
+                    for (std::size_t i = 0; i < ns; ++i)
+                      {
+                        const double c = wa[S[i]];
+                        if (c == 0.)
+                          continue;
+                        const double *zi = Z.row(i);
+                        for (std::size_t b = 0; b < nl; ++b)
+                          ta[b] -= c * zi[b];
+                      }
+                  }
+                if (!ws.schur_lu.factorize(Schur))
+                  return false;
+              }
+            remember_factors(
+              p, states, slip_factor, FactoredSystem::cholesky, ws);
+          }
+
+        // The right-hand side, solved the same way whether the factors are
+        // new or reused, so that reusing them changes no bit.
+        DenseMatrix &z_rhs = ws.Z_rhs;
+        z_rhs.reinit(ns, 1);
+        for (std::size_t i = 0; i < ns; ++i)
+          z_rhs(i, 0) = right_hand_side(p, S[i]);
+        cholesky.solve(z_rhs);
         std::vector<double> &x_slip = ws.slip_impulses;
         x_slip.assign(nl, 0.);
-        if (nl > 0)
+        for (std::size_t a = 0; a < nl; ++a)
           {
-            DenseMatrix &Schur = ws.schur;
-            Schur.reinit(nl, nl);
-            for (std::size_t a = 0; a < nl; ++a)
+            const double *wa = p.W.row(2 * L[a]);
+            x_slip[a]        = right_hand_side(p, 2 * L[a]);
+            for (std::size_t i = 0; i < ns; ++i)
               {
-                const double *wa = p.W.row(2 * L[a]);
-                double       *ta = Schur.row(a);
-                for (std::size_t b = 0; b < nl; ++b)
-                  ta[b] = wa[2 * L[b]] + slip_factor[L[b]] * wa[2 * L[b] + 1];
-                x_slip[a] = right_hand_side(p, 2 * L[a]);
-                for (std::size_t i = 0; i < ns; ++i)
-                  {
-                    const double c = wa[S[i]];
-                    if (c == 0.)
-                      continue;
-                    const double *zi = Z.row(i);
-                    for (std::size_t b = 0; b < nl; ++b)
-                      ta[b] -= c * zi[b];
-                    x_slip[a] -= c * zi[nl];
-                  }
+                const double c = wa[S[i]];
+                if (c == 0.)
+                  continue;
+                x_slip[a] -= c * z_rhs(i, 0);
               }
-            LUFactorization &lu = ws.schur_lu;
-            if (!lu.factorize(Schur))
-              return false;
-            lu.solve(x_slip);
           }
+        if (nl > 0)
+          ws.schur_lu.solve(x_slip);
         for (std::size_t i = 0; i < ns; ++i)
           {
             const double *zi = Z.row(i);
-            double        v  = zi[nl];
+            double        v  = z_rhs(i, 0);
             for (std::size_t k = 0; k < nl; ++k)
               v -= zi[k] * x_slip[k];
             P[S[i]] = v;
@@ -313,7 +385,8 @@ namespace impactfe
              {&rows, &unknown_column, &unknown_contact, &ws.stick_rows})
           list->reserve(2 * static_cast<std::size_t>(nc));
         ws.slip_contacts.reserve(nc);
-        iterations = 0;
+        iterations        = 0;
+        ws.reused_factors = 0;
 
         // W symmetric up to rounding (a Delassus operator computed column by
         // column is symmetric only to rounding): the systems are solved by
@@ -376,32 +449,47 @@ namespace impactfe
             const std::size_t m = rows.size();
             P.assign(2 * static_cast<std::size_t>(nc), 0.);
             bool solved = (m == 0);
-            if (!solved && symmetric)
-              solved = impulses_by_cholesky(p, states, slip_factor, ws, P);
+            // The same states and W as the last factorisation (a time loop
+            // whose contacts keep their states): its factors are reused. The
+            // path it took is the one a new factorisation would take.
+            const bool reuse =
+              !solved && factors_match(p, states, slip_factor, ws);
+            ws.reused_factors += reuse ? 1 : 0;
+            if (!solved && symmetric &&
+                (!reuse || ws.factored_system == FactoredSystem::cholesky))
+              solved =
+                impulses_by_cholesky(p, states, slip_factor, reuse, ws, P);
             if (!solved)
               {
-                DenseMatrix &G = ws.G;
-                G.reinit(m, m);
                 rhs.resize(m);
                 for (std::size_t r = 0; r < m; ++r)
-                  {
-                    const double *wi = p.W.row(rows[r]);
-                    double       *gr = G.row(r);
-                    for (std::size_t u = 0; u < m; ++u)
-                      {
-                        const unsigned int j = unknown_column[u];
-                        gr[u]                = (j % 2 == 0) ?
-                                                 wi[j] + slip_factor[unknown_contact[u]] *
-                                            wi[j + 1] :
-                                                 wi[j];
-                      }
-                    rhs[r] = right_hand_side(p, rows[r]);
-                  }
+                  rhs[r] = right_hand_side(p, rows[r]);
                 LUFactorization &lu = ws.G_lu;
-                if (!lu.factorize(G))
+                if (!reuse)
                   {
-                    why.assign("singular system for the current states");
-                    return false;
+                    ws.factored_system = FactoredSystem::none;
+                    DenseMatrix &G     = ws.G;
+                    G.reinit(m, m);
+                    for (std::size_t r = 0; r < m; ++r)
+                      {
+                        const double *wi = p.W.row(rows[r]);
+                        double       *gr = G.row(r);
+                        for (std::size_t u = 0; u < m; ++u)
+                          {
+                            const unsigned int j = unknown_column[u];
+                            gr[u]                = (j % 2 == 0) ?
+                                                     wi[j] + slip_factor[unknown_contact[u]] *
+                                                wi[j + 1] :
+                                                     wi[j];
+                          }
+                      }
+                    if (!lu.factorize(G))
+                      {
+                        why.assign("singular system for the current states");
+                        return false;
+                      }
+                    remember_factors(
+                      p, states, slip_factor, FactoredSystem::lu, ws);
                   }
                 lu.solve(rhs);
                 for (std::size_t u = 0; u < m; ++u)
@@ -661,15 +749,16 @@ namespace impactfe
                                 why_not_block_pivoting,
                                 options.max_block_pivoting_iterations))
             {
-              s.form                      = FrictionForm::facets;
-              s.n_facets                  = 2;
-              s.block_pivoting_iterations = iterations;
-              s.lcp.status                = Status::solved;
-              s.lcp.pivots                = 0;
-              s.lcp.refactorisations      = 0;
-              s.lcp.driving_variable      = -1;
-              s.lcp.verification          = verification;
-              s.lcp.start_path            = StartPath::block_pivoting;
+              s.form                          = FrictionForm::facets;
+              s.n_facets                      = 2;
+              s.block_pivoting_iterations     = iterations;
+              s.block_pivoting_reused_factors = ws.reused_factors;
+              s.lcp.status                    = Status::solved;
+              s.lcp.pivots                    = 0;
+              s.lcp.refactorisations          = 0;
+              s.lcp.driving_variable          = -1;
+              s.lcp.verification              = verification;
+              s.lcp.start_path                = StartPath::block_pivoting;
               internal::set_text(
                 s.lcp.message,
                 "block pivoting on the contact states: verified in the facet "
@@ -685,9 +774,10 @@ namespace impactfe
       ContactLCP &lcp = ws.lcp;
       internal::assemble_contact_lcp(p, options, ws, lcp);
       internal::guess_from_states(lcp, state_guess, ws.guess);
-      s.form                      = lcp.form;
-      s.n_facets                  = lcp.n_facets;
-      s.block_pivoting_iterations = iterations;
+      s.form                          = lcp.form;
+      s.n_facets                      = lcp.n_facets;
+      s.block_pivoting_iterations     = iterations;
+      s.block_pivoting_reused_factors = iterations > 0 ? ws.reused_factors : 0;
       s.P.clear();
       s.states.clear();
       s.lcp = ws.lemke.solve_warm(lcp.M, lcp.q, ws.guess, options.lemke);

@@ -731,9 +731,10 @@ namespace impactfe
       ContactLCP      &lcp = ws.lcp;
       ContactSolution &s   = ws.solution;
       internal::assemble_contact_lcp(p, options, ws, lcp);
-      s.form                      = lcp.form;
-      s.n_facets                  = lcp.n_facets;
-      s.block_pivoting_iterations = 0;
+      s.form                          = lcp.form;
+      s.n_facets                      = lcp.n_facets;
+      s.block_pivoting_iterations     = 0;
+      s.block_pivoting_reused_factors = 0;
       s.P.clear();
       s.states.clear();
       const bool use_guess = guess != nullptr && guess->size() == lcp.q.size();

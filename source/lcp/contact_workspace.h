@@ -38,10 +38,25 @@ namespace impactfe
       std::vector<double>       slip_impulses;
       std::vector<unsigned int> rows, unknown_column, unknown_contact;
       std::vector<unsigned int> stick_rows, slip_contacts;
-      DenseMatrix               W_SS, Z, schur, G;
+      DenseMatrix               W_SS, Z, Z_rhs, schur, G;
       CholeskyFactorization     cholesky;
       LUFactorization           schur_lu, G_lu;
       std::string               why_not_block_pivoting;
+
+      // The system whose factors are held above (cholesky, Z's columns of
+      // B and schur_lu; or G_lu): the states, slip factors and W it was
+      // made from. A time loop whose contacts keep their states and whose
+      // W does not change solves with the same factors, bit for bit.
+      enum class FactoredSystem
+      {
+        none,
+        cholesky,
+        lu
+      };
+      FactoredSystem            factored_system = FactoredSystem::none;
+      unsigned int              reused_factors  = 0;
+      std::vector<ContactState> factored_states;
+      std::vector<double>       factored_slip_factor, factored_W;
 
       std::size_t
       memory_consumption() const
@@ -57,7 +72,8 @@ namespace impactfe
           lcp::memory_consumption(lcp.directions) + lcp.message.capacity() +
           guess.capacity() / 8 + why_not_block_pivoting.capacity() +
           lcp::memory_consumption(states) +
-          lcp::memory_consumption(visited_states);
+          lcp::memory_consumption(visited_states) +
+          lcp::memory_consumption(factored_states);
         for (const auto &d : lcp.directions)
           bytes += lcp::memory_consumption(d);
         for (const auto *v : {&V_T,
@@ -73,7 +89,9 @@ namespace impactfe
                               &Mz_q,
                               &slip_factor,
                               &rhs,
-                              &slip_impulses})
+                              &slip_impulses,
+                              &factored_slip_factor,
+                              &factored_W})
           bytes += lcp::memory_consumption(*v);
         for (const auto *v : {&rows,
                               &unknown_column,
@@ -89,6 +107,7 @@ namespace impactfe
                               &W_NT_AW_TN,
                               &W_SS,
                               &Z,
+                              &Z_rhs,
                               &schur,
                               &G})
           bytes += m->memory_consumption();

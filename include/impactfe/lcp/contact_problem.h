@@ -117,6 +117,10 @@ namespace impactfe
       std::vector<ContactState> states;
       /// Linear solves of the block pivoting method (0 if it was not used).
       unsigned int block_pivoting_iterations = 0;
+      /// Of these, the solves that reused the factors of the solver's last
+      /// factorisation (the same states and W to the last bit, as in a time
+      /// loop whose contacts keep their states): one right-hand side solved.
+      unsigned int block_pivoting_reused_factors = 0;
       std::string  message;
     };
 
