@@ -5,6 +5,8 @@
 #include <limits>
 #include <utility>
 
+#include "../utilities/blas_lapack.h"
+
 namespace impactfe
 {
   namespace lcp
@@ -221,59 +223,21 @@ namespace impactfe
         return true;
       if (!(dmax > 0.) || !std::isfinite(dmax))
         return false;
-      // Row k of U: u_kj = (a_kj - sum_{l<k} u_lk u_lj) / u_kk. Right-looking
-      // in panels of rows, like the LU: the rows of a panel are finished one
-      // by one (each subtracted from the later rows of the panel), then the
-      // panel is subtracted from every later row, four panel rows per pass.
-      constexpr std::size_t panel = 48;
-      for (std::size_t kb = 0; kb < n; kb += panel)
-        {
-          const std::size_t ke = std::min(n, kb + panel);
-          for (std::size_t k = kb; k < ke; ++k)
-            {
-              double *rk = u.row(k);
-              if (!(rk[k] > relative_pivot_tolerance * dmax) ||
-                  !std::isfinite(rk[k]))
-                return false;
-              const double pivot = std::sqrt(rk[k]);
-              rk[k]              = pivot;
-              for (std::size_t j = k + 1; j < n; ++j)
-                rk[j] /= pivot;
-              for (std::size_t i = k + 1; i < ke; ++i)
-                {
-                  const double l = rk[i];
-                  if (l == 0.)
-                    continue;
-                  double *ri = u.row(i);
-                  for (std::size_t j = i; j < n; ++j)
-                    ri[j] -= l * rk[j];
-                }
-            }
-          for (std::size_t i = ke; i < n; ++i)
-            {
-              double     *ri = u.row(i);
-              std::size_t k  = kb;
-              for (; k + 4 <= ke; k += 4)
-                {
-                  const double *r0 = u.row(k), *r1 = u.row(k + 1),
-                               *r2 = u.row(k + 2), *r3 = u.row(k + 3);
-                  const double l0 = r0[i], l1 = r1[i], l2 = r2[i], l3 = r3[i];
-                  for (std::size_t j = i; j < n; ++j)
-                    ri[j] = (((ri[j] - l0 * r0[j]) - l1 * r1[j]) - l2 * r2[j]) -
-                            l3 * r3[j];
-                }
-              for (; k < ke; ++k)
-                {
-                  const double *rk = u.row(k);
-                  const double  l  = rk[i];
-                  if (l == 0.)
-                    continue;
-                  for (std::size_t j = i; j < n; ++j)
-                    ri[j] -= l * rk[j];
-                }
-            }
-        }
-      // the strict lower triangle is not part of U
+      // U by rows, read by columns, is L = U^T: LAPACK's blocked Cholesky
+      // on the lower triangle (column-major) factorises the upper triangle
+      // stored by rows, at the speed of the BLAS 3 kernels (block pivoting
+      // factorises systems of a few hundred contact rows in each step).
+      const int nn   = static_cast<int>(n);
+      int       info = 0;
+      dpotrf_("L", &nn, u.row(0), &nn, &info);
+      if (info != 0)
+        return false;
+      // the pivots U_kk^2 against the largest diagonal entry of A
+      for (std::size_t k = 0; k < n; ++k)
+        if (!(u(k, k) * u(k, k) > relative_pivot_tolerance * dmax) ||
+            !std::isfinite(u(k, k)))
+          return false;
+      // the strict lower triangle (by rows) still holds A: not part of U
       for (std::size_t i = 1; i < n; ++i)
         std::fill(u.row(i), u.row(i) + i, 0.);
       return true;
@@ -285,42 +249,15 @@ namespace impactfe
     CholeskyFactorization::solve(DenseMatrix &B) const
     {
       const std::size_t r = B.n_cols();
-      // U^T Y = B: row k of Y is final once the rows above were subtracted
-      for (std::size_t k = 0; k < n; ++k)
-        {
-          const double *uk = u.row(k);
-          double       *bk = B.row(k);
-          const double  d  = 1. / uk[k];
-          for (std::size_t c = 0; c < r; ++c)
-            bk[c] *= d;
-          for (std::size_t i = k + 1; i < n; ++i)
-            {
-              const double l = uk[i];
-              if (l == 0.)
-                continue;
-              double *bi = B.row(i);
-              for (std::size_t c = 0; c < r; ++c)
-                bi[c] -= l * bk[c];
-            }
-        }
-      // U X = Y, from the last row up
-      for (std::size_t i = n; i-- > 0;)
-        {
-          const double *ui = u.row(i);
-          double       *bi = B.row(i);
-          for (std::size_t j = i + 1; j < n; ++j)
-            {
-              const double l = ui[j];
-              if (l == 0.)
-                continue;
-              const double *bj = B.row(j);
-              for (std::size_t c = 0; c < r; ++c)
-                bi[c] -= l * bj[c];
-            }
-          const double d = 1. / ui[i];
-          for (std::size_t c = 0; c < r; ++c)
-            bi[c] *= d;
-        }
+      if (n == 0 || r == 0)
+        return;
+      // B by rows is B^T by columns (r x n, leading dimension r), and
+      // A^{-1} B = (B^T L^{-T} L^{-1})^T with L = U^T: two triangular
+      // solves from the right.
+      const int    nn = static_cast<int>(n), rr = static_cast<int>(r);
+      const double one = 1.;
+      dtrsm_("R", "L", "T", "N", &rr, &nn, &one, u.row(0), &nn, B.row(0), &rr);
+      dtrsm_("R", "L", "N", "N", &rr, &nn, &one, u.row(0), &nn, B.row(0), &rr);
     }
   } // namespace lcp
 } // namespace impactfe

@@ -111,6 +111,18 @@ extern "C"
          const int   *incy);
   // triangular solves and products, double and single precision
   void
+  dtrsm_(const char   *side,
+         const char   *uplo,
+         const char   *transa,
+         const char   *diag,
+         const int    *m,
+         const int    *n,
+         const double *alpha,
+         const double *a,
+         const int    *lda,
+         double       *b,
+         const int    *ldb);
+  void
   dtrsv_(const char   *uplo,
          const char   *trans,
          const char   *diag,
