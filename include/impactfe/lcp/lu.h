@@ -74,9 +74,10 @@ namespace impactfe
     /**
      * Cholesky factorisation A = U^T U of a symmetric positive definite
      * matrix (only the upper triangle of A is read), U upper triangular and
-     * stored by rows, so that the factorisation and the solves run along
-     * contiguous rows. Used by the block pivoting of the contact problem on
-     * the sticking block of the Delassus operator, at (1/3) n^3 flops, half
+     * stored by rows, which read by columns is LAPACK's lower factor
+     * L = U^T: the factorisation is LAPACK's dpotrf, the solves BLAS's
+     * dtrsm. Used by the block pivoting of the contact problem on the
+     * sticking block of the Delassus operator, at (1/3) n^3 flops, half
      * those of the LU.
      */
     class CholeskyFactorization
