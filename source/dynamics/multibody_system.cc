@@ -312,7 +312,8 @@ namespace impactfe
     normal_schur_pending       = false;
     schur_preconditioner_ready = false;
     dense_schur.clear();
-    active_set_stats = ActiveSetStatistics();
+    active_set_stats    = ActiveSetStatistics();
+    lcp_path_statistics = LcpStatistics();
     last_impulses.assign(n_columns, 0.);
     local_impulses.assign(n_columns, 0.);
     start_local_velocity.assign(n_columns, 0.);
@@ -486,6 +487,26 @@ namespace impactfe
       solver_parameters.warm_start ?
         contact_solver.solve(problem, options, state_guess) :
         contact_solver.solve(problem, options);
+    if (!exact_cone)
+      {
+        static_assert(static_cast<unsigned int>(
+                        lcp::StartPath::block_pivoting) == 4,
+                      "one count per lcp::StartPath");
+        LcpStatistics &stats = lcp_path_statistics;
+        ++stats.solves;
+        ++stats.by_path[static_cast<unsigned int>(solution.lcp.start_path)];
+        const bool by_block_pivoting =
+          solution.lcp.start_path == lcp::StartPath::block_pivoting;
+        if (by_block_pivoting || solution.block_pivoting_iterations > 0)
+          {
+            ++stats.block_pivoting_attempts;
+            stats.block_pivoting_gave_up += by_block_pivoting ? 0 : 1;
+          }
+        stats.block_pivoting_linear_solves +=
+          solution.block_pivoting_iterations;
+        stats.block_pivoting_reused_factors +=
+          solution.block_pivoting_reused_factors;
+      }
     if (exact_cone && solution.lcp.status == lcp::Status::solved)
       {
         const lcp::ExactConeReport &cone = exact_cone_solver.report();
@@ -1642,6 +1663,13 @@ namespace impactfe
   MultibodySystem<dim>::exact_cone_statistics() const
   {
     return cone_statistics;
+  }
+
+  template <int dim>
+  const typename MultibodySystem<dim>::LcpStatistics &
+  MultibodySystem<dim>::lcp_statistics() const
+  {
+    return lcp_path_statistics;
   }
 
   template <int dim>

@@ -77,6 +77,26 @@ namespace impactfe
       // A failed LCP stops the run with its step named: a finished run
       // has none.
       .add("failures", 0.);
+    // How the LCPs on Lemke's route were answered (lcp::StartPath).
+    const auto &paths = system.lcp_statistics();
+    if (paths.solves > 0)
+      {
+        const auto count = [&](const lcp::StartPath path) {
+          return double(paths.by_path[static_cast<unsigned int>(path)]);
+        };
+        lcp.add("solves", double(paths.solves))
+          .add("cold_lemke_solves", count(lcp::StartPath::cold))
+          .add("guess_solved", count(lcp::StartPath::guess_solved))
+          .add("guess_lemke_solves", count(lcp::StartPath::guess_lemke))
+          .add("guess_rejected_cold_lemke_solves",
+               count(lcp::StartPath::guess_fallback_cold))
+          .add("block_pivoting_solves", count(lcp::StartPath::block_pivoting))
+          .add("block_pivoting_gave_up", double(paths.block_pivoting_gave_up))
+          .add("block_pivoting_linear_solves",
+               double(paths.block_pivoting_linear_solves))
+          .add("block_pivoting_reused_factors",
+               double(paths.block_pivoting_reused_factors));
+      }
     const auto &cone = system.exact_cone_statistics();
     if (cone.solves > 0)
       lcp.add("exact_cone_solves", double(cone.solves))

@@ -318,6 +318,16 @@ namespace impactfe
             << loop_cpu_seconds << "; LCP: " << multibody_system->total_pivots()
             << " pivots in total, largest LCP "
             << multibody_system->largest_lcp();
+        const auto &paths = multibody_system->lcp_statistics();
+        if (paths.block_pivoting_attempts > 0)
+          out << "; block pivoting answered "
+              << paths.by_path[static_cast<unsigned int>(
+                   lcp::StartPath::block_pivoting)]
+              << " of " << paths.solves << " LCPs ("
+              << paths.block_pivoting_linear_solves << " linear solves, "
+              << paths.block_pivoting_reused_factors
+              << " with reused factors; gave up "
+              << paths.block_pivoting_gave_up << " times)";
         const auto &cone = multibody_system->exact_cone_statistics();
         if (cone.solves > 0)
           out << "; exact cone: " << cone.facet_lcps << " facet LCPs for "

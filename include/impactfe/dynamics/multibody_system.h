@@ -16,6 +16,7 @@
 #include <impactfe/lcp/lemke.h>
 #include <impactfe/time_integration/time_integrator.h>
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -257,6 +258,26 @@ namespace impactfe
     const ExactConeStatistics &
     exact_cone_statistics() const;
 
+    /// The contact LCPs of the run on Lemke's route (not the exact cone's,
+    /// not the active set method's): how many, how each was answered
+    /// (lcp::StartPath: cold Lemke, the guessed basis as it was, Lemke from
+    /// it, cold Lemke after a rejected guess, or block pivoting), and the
+    /// block pivoting's attempts, the attempts it gave up (Lemke then
+    /// answered), its linear solves and the solves that reused the factors
+    /// of the one before.
+    struct LcpStatistics
+    {
+      unsigned int solves = 0;
+      /// Indexed by lcp::StartPath.
+      std::array<unsigned int, 5> by_path{};
+      unsigned int                block_pivoting_attempts       = 0;
+      unsigned int                block_pivoting_gave_up        = 0;
+      unsigned long long          block_pivoting_linear_solves  = 0;
+      unsigned long long          block_pivoting_reused_factors = 0;
+    };
+    const LcpStatistics &
+    lcp_statistics() const;
+
     /// The active set solves of the run (`Method = active set` or
     /// `automatic`): how many, their iterations, GMRES iterations and
     /// products with W (one solve pair each), the largest verification
@@ -380,6 +401,7 @@ namespace impactfe
     std::vector<double>  facet_angles;
     std::vector<double>  facet_angle_guess;
     ExactConeStatistics  cone_statistics;
+    LcpStatistics        lcp_path_statistics;
     unsigned int         last_lcp_size = 0;
     /// The active set method: its solver; its preconditioners (set up by
     /// setup_schur_preconditioner() at the first use): the Schur complement
