@@ -26,10 +26,14 @@
 //   floor_rhs_seconds, floor_solve_seconds: the two kernels a step cannot
 //             avoid, timed alone on the same matrices (best of 5 batches):
 //             the free right-hand side F~ (FreeRhsOperator::apply) and one
-//             solve pair with M~ (SparseCholesky::solve). A contact step
-//             needs F~ and two solves (free velocity and the impulses'
-//             response, unless few impulses have stored columns): that is
-//             the floor its cost is compared with (issue 16).
+//             solve pair with M~ (SparseCholesky::solve),
+//   floor_update_seconds: the velocity update as the last step made it,
+//             timed alone: the sum of its k stored columns M~^{-1} H_j
+//             (add_columns(), k vectors of n_dofs) if it summed them, else
+//             a second solve pair.
+//             A contact step needs F~, the free velocity's solve pair and
+//             the update: that is the floor its cost is compared with
+//             (issue 16).
 // Seconds are CPU seconds of the thread. Not a test: timings depend on the
 // machine. benchmarks/scaling/run_scaling.py runs the sweeps and plots them.
 //
@@ -60,17 +64,20 @@
 #include <impactfe/dynamics/multibody_system.h>
 #include <impactfe/dynamics/sparse_cholesky.h>
 #include <impactfe/time_integration/free_rhs_operator.h>
+#include <impactfe/utilities/column_sum.h>
 #include <impactfe/utilities/program.h>
 
 #include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
 #include <string>
+#include <vector>
 
 using namespace impactfe;
 
@@ -155,6 +162,35 @@ namespace
       cholesky.solve(v);
       v *= 1e-3; // keep the numbers in range over the repetitions
       v(0) += 1.;
+    });
+  }
+
+
+
+  /**
+   * The velocity update from @p n_columns stored columns of @p n_dofs
+   * entries, four at a time as MultibodySystem::do_time_step() sums them.
+   */
+  double
+  time_column_sum(const unsigned int n_columns, const std::size_t n_dofs)
+  {
+    std::vector<double> columns(n_columns * n_dofs), v(n_dofs, 0.);
+    for (std::size_t i = 0; i < columns.size(); ++i)
+      columns[i] = std::sin(1. + i);
+    std::vector<double> impulses(n_columns);
+    for (unsigned int j = 0; j < n_columns; ++j)
+      impulses[j] = 1e-3 * std::cos(1. + j);
+    std::vector<const double *> column(n_columns);
+    for (unsigned int j = 0; j < n_columns; ++j)
+      column[j] = columns.data() + j * n_dofs;
+    return seconds_per_call([&]() {
+      for (unsigned int j = 0; j < n_columns; j += 4)
+        add_columns(v.data(),
+                    n_dofs,
+                    impulses.data() + j,
+                    column.data() + j,
+                    std::min(4u, n_columns - j));
+      v[0] *= 1e-3; // keep the numbers in range over the repetitions
     });
   }
 
@@ -267,7 +303,11 @@ namespace
       system, block, factor_entries, rhs_seconds, solve_seconds);
     const double seconds_per_step =
       (costs.free_velocity + costs.lcp + costs.update) / n_steps;
-    const double floor_per_step = rhs_seconds + 2. * solve_seconds;
+    const double update_seconds =
+      report.stored_columns_summed > 0 ?
+        time_column_sum(report.stored_columns_summed, block.n_dofs()) :
+        solve_seconds;
+    const double floor_per_step = rhs_seconds + solve_seconds + update_seconds;
     std::cout << nx << ',' << ny << ',' << block.n_dofs() << ','
               << system.contacts().n_candidates() << ',' << n_steps << ','
               << assembly_seconds << ',' << costs.factorization << ','
@@ -277,7 +317,7 @@ namespace
               << max_lcp_size << ',' << peak_rss_megabytes() << ','
               << 8. * n_columns * block.n_dofs() / (1024. * 1024.) << ','
               << factor_entries << ',' << rhs_seconds << ',' << solve_seconds
-              << std::endl;
+              << ',' << update_seconds << std::endl;
     // The machine-readable summary line (after the CSV row, which
     // run_scaling.py reads).
     std::cout << "RESULT dofs=" << block.n_dofs()
@@ -359,7 +399,7 @@ main(int argc, char **argv)
                      "delassus_candidates,free_per_step,lcp_per_step,"
                      "update_per_step,max_active,max_lcp_size,peak_rss_mb,"
                      "stored_columns_mb,factor_entries,floor_rhs_seconds,"
-                     "floor_solve_seconds\n";
+                     "floor_solve_seconds,floor_update_seconds\n";
       run(nx, ny, n_steps, top_candidates, method, cell_size, state_lag, trace);
     }
   catch (std::exception &exc)

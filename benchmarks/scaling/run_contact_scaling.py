@@ -132,7 +132,7 @@ def main():
              for r in rows
              if r["method"] == "active-set" and r["sweep"] == "cell 1 mm"]
     ax.loglog(*zip(*floor), ":", color="grey",
-              label="floor: F~ + 2 solves with M~")
+              label="floor: F~, a solve pair with M~, the update")
     ax.axhline(1., color="red", lw=0.8, ls="--", label="1 s per step")
     ax.set_xlabel("frictional contacts n_c (all touching)")
     ax.set_ylabel("CPU seconds per step")

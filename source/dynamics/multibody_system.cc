@@ -2,6 +2,7 @@
 
 #include <impactfe/dynamics/multibody_system.h>
 #include <impactfe/lcp/problem_io.h>
+#include <impactfe/utilities/column_sum.h>
 #include <impactfe/utilities/program.h>
 
 #include <algorithm>
@@ -38,6 +39,7 @@ namespace impactfe
       const bool enabled;
       double     last;
     };
+
   } // namespace
 
 
@@ -1473,10 +1475,27 @@ namespace impactfe
       next.velocity += impulse_velocity;
     else if (all_stored && 2. * n_impulses * next.velocity.size() < solve_cost)
       {
-        for (unsigned int j = 0; j < contact_set.n_columns(); ++j)
-          if (local_impulses[j] != 0.)
-            next.velocity.add(local_impulses[j],
-                              stored_columns[stored_column_slot[j]]);
+        // The stored columns four at a time (add_columns()).
+        for (unsigned int b = 0; b < next.velocity.n_blocks(); ++b)
+          {
+            Vector<double>               &v = next.velocity.block(b);
+            std::array<double, 4>         a;
+            std::array<const double *, 4> c;
+            unsigned int                  k = 0;
+            for (unsigned int j = 0; j < contact_set.n_columns(); ++j)
+              if (local_impulses[j] != 0.)
+                {
+                  a[k] = local_impulses[j];
+                  c[k] = stored_columns[stored_column_slot[j]].block(b).begin();
+                  if (++k == 4)
+                    {
+                      add_columns(v.begin(), v.size(), a.data(), c.data(), k);
+                      k = 0;
+                    }
+                }
+            add_columns(v.begin(), v.size(), a.data(), c.data(), k);
+          }
+        report.stored_columns_summed = n_impulses;
       }
     else if (n_impulses > 0)
       {

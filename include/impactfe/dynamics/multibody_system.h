@@ -52,6 +52,10 @@ namespace impactfe
     /// method solved them), and whether one fell back to Lemke's method.
     unsigned int active_set_iterations = 0;
     bool         active_set_fallback   = false;
+    /// The velocity update's stored columns M~^{-1} H_j, one per non-zero
+    /// impulse, summed instead of a solve pair (0 if it made a solve, or
+    /// had nothing to add).
+    unsigned int stored_columns_summed = 0;
   };
 
 
