@@ -45,16 +45,7 @@ namespace
     const TimeSteppingParameters time_stepping = block_time_stepping();
     ContactSolverParameters      solver;
     MultibodySystem<2>           system(time_stepping, solver, mu > 0. ? 2 : 1);
-    system.add_body(block);
-    system.contacts().add_node_to_plane(
-      system.bodies(), 0, 2, Point<2>(0., 0.), Tensor<1, 2>({0., 1.}), mu);
-    Vector<double> &v        = system.state().velocity.block(0);
-    const auto     &vertices = block.triangulation().get_vertices();
-    for (unsigned int i = 0; i < vertices.size(); ++i)
-      {
-        v(block.vertex_dof(i, 0)) = 0.5;
-        v(block.vertex_dof(i, 1)) = -(0.1 + 0.4 * vertices[i][0] / 0.6);
-      }
+    throw_block_onto_plane(system, block, mu);
     system.enable_cost_breakdown();
     system.setup();
 
