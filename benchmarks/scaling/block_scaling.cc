@@ -190,7 +190,8 @@ namespace
                     impulses.data() + j,
                     column.data() + j,
                     std::min(4u, n_columns - j));
-      v[0] *= 1e-3; // keep the numbers in range over the repetitions
+      // (each call adds at most 1e-3 n_columns to an entry: in range over
+      // the repetitions)
     });
   }
 

@@ -316,6 +316,9 @@ namespace impactfe
     dense_schur.clear();
     active_set_stats    = ActiveSetStatistics();
     lcp_path_statistics = LcpStatistics();
+    cone_statistics     = ExactConeStatistics();
+    pivot_count         = 0;
+    lcp_max_size        = 0;
     last_impulses.assign(n_columns, 0.);
     local_impulses.assign(n_columns, 0.);
     start_local_velocity.assign(n_columns, 0.);

@@ -53,8 +53,8 @@ namespace impactfe
     unsigned int active_set_iterations = 0;
     bool         active_set_fallback   = false;
     /// The velocity update's stored columns M~^{-1} H_j, one per non-zero
-    /// impulse, summed instead of a solve pair (0 if it made a solve, or
-    /// had nothing to add).
+    /// impulse, summed instead of a solve pair (0 if it made a solve, added
+    /// the active set method's M~^{-1} H P, or had nothing to add).
     unsigned int stored_columns_summed = 0;
   };
 

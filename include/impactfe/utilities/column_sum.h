@@ -12,6 +12,7 @@ namespace impactfe
    * y += a[j] c[j], but four columns take one pass over y instead of four
    * (the velocity update from stored columns M~^{-1} H_j, whose passes over
    * y were a fifth of a 2D step of 41 contacts, doc/performance.md).
+   * @p y must not overlap any column (unlike Vector::add(a, V) with V = y).
    */
   void
   add_columns(double              *y,
