@@ -334,6 +334,16 @@ namespace
               << " active_set_iterations=" << active_set.iterations
               << " gmres_iterations=" << active_set.linear_iterations
               << " fallbacks=" << active_set.fallbacks;
+    // How the LCPs on Lemke's route were answered (doc/lcp.md).
+    const auto &paths = system.lcp_statistics();
+    std::cout
+      << " lemke_route_solves=" << paths.solves << " block_pivoting_solves="
+      << paths
+           .by_path[static_cast<unsigned int>(lcp::StartPath::block_pivoting)]
+      << " block_pivoting_linear_solves=" << paths.block_pivoting_linear_solves
+      << " block_pivoting_reused_factors="
+      << paths.block_pivoting_reused_factors
+      << " total_pivots=" << system.total_pivots();
     if (active_set.fallbacks > 0)
       std::cerr << "last fallback: " << active_set.last_fallback_reason
                 << std::endl;
