@@ -27,13 +27,13 @@
 //             avoid, timed alone on the same matrices (best of 5 batches):
 //             the free right-hand side F~ (FreeRhsOperator::apply) and one
 //             solve pair with M~ (SparseCholesky::solve),
-//   floor_update_seconds: the velocity update as the last step made it,
-//             timed alone: the sum of its k stored columns M~^{-1} H_j
-//             (add_columns(), k vectors of n_dofs) if it summed them, else
-//             a second solve pair.
-//             A contact step needs F~, the free velocity's solve pair and
-//             the update: that is the floor its cost is compared with
-//             (issue 16).
+//   floor_update_seconds: the velocity update as each step made it, timed
+//             alone and averaged over the steps: the sum of the step's k
+//             stored columns M~^{-1} H_j (add_columns(), k vectors of
+//             n_dofs) if it summed them, a second solve pair if it had
+//             impulses and no stored sum, nothing if it had no impulse.
+//             A step needs F~, the free velocity's solve pair and that
+//             update: the floor its cost is compared with (issue 16).
 // Seconds are CPU seconds of the thread. Not a test: timings depend on the
 // machine. benchmarks/scaling/run_scaling.py runs the sweeps and plots them.
 //
@@ -76,6 +76,7 @@
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -268,7 +269,12 @@ namespace
     system.setup();
 
     unsigned int max_active = 0, max_lcp_size = 0;
-    StepReport   report;
+    // how each step updated the velocity, for the floor: steps by the
+    // number of stored columns they summed, and steps that made a solve
+    // pair instead (impulses without a stored sum)
+    std::map<unsigned int, unsigned int> steps_by_columns_summed;
+    unsigned int                         steps_with_update_solve = 0;
+    StepReport                           report;
     for (unsigned int step = 0; step < n_steps; ++step)
       {
         const auto start  = std::chrono::steady_clock::now();
@@ -292,6 +298,10 @@ namespace
               after.state_factorizations - before.state_factorizations,
               report.active_contacts);
           }
+        if (report.stored_columns_summed > 0)
+          ++steps_by_columns_summed[report.stored_columns_summed];
+        else if (report.active_contacts > 0)
+          ++steps_with_update_solve;
         max_active   = std::max(max_active, report.active_contacts);
         max_lcp_size = std::max(max_lcp_size, report.lcp_size);
       }
@@ -304,10 +314,12 @@ namespace
       system, block, factor_entries, rhs_seconds, solve_seconds);
     const double seconds_per_step =
       (costs.free_velocity + costs.lcp + costs.update) / n_steps;
-    const double update_seconds =
-      report.stored_columns_summed > 0 ?
-        time_column_sum(report.stored_columns_summed, block.n_dofs()) :
-        solve_seconds;
+    double update_seconds = steps_with_update_solve * solve_seconds;
+    for (const auto &[n_columns_summed, n_steps_summing] :
+         steps_by_columns_summed)
+      update_seconds +=
+        n_steps_summing * time_column_sum(n_columns_summed, block.n_dofs());
+    update_seconds /= n_steps;
     const double floor_per_step = rhs_seconds + solve_seconds + update_seconds;
     std::cout << nx << ',' << ny << ',' << block.n_dofs() << ','
               << system.contacts().n_candidates() << ',' << n_steps << ','
