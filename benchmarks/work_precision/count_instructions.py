@@ -179,7 +179,7 @@ def report_scene(args, name, rows):
              "every scheme's error interpolated log-log along its Pareto front"),
             ("within_budget", error_within_budget,
              "every scheme's best run that fits the budget (no interpolation)")):
-        text, stats[f"leader_{key}"], stats[f"leader_wins_{key}"] = wp.budget_section(
+        text, stats[f"leader_{key}"], stats[f"leader_wins_{key}"], _ = wp.budget_section(
             fronts, list(fronts), "err_force", error_of, cost="instructions",
             cost_header="10⁶ instructions", cost_scale=1e6, how=how)
         lines.append(text)

@@ -41,7 +41,13 @@ with the force of each step its momentum-changing impulse / h
 mean of its end-of-step values with mass redistribution and for Newmark).
 
 Run files go to results/work_precision/ (git-ignored); the CSV, PNG and the
-generated part of work_precision.md go to --out (default doc).
+generated part of work_precision.md go to --out (default doc). Every
+invocation (--plot-only too) ends with summary.json beside the run folder
+(results/work_precision/summary.json) and one line `RESULT program=...
+<scene>_leader=... <scene>_budgets_won=... <scene>_budgets_lost=...
+<scene>_largest_loss=... <scene>_failed_runs=...`: per scene, the variant
+that wins most of the 41 budgets of equal loop CPU, and how much it loses
+elsewhere (relative error excess).
 """
 import argparse
 import csv
@@ -49,6 +55,7 @@ import datetime
 import json
 import math
 import os
+import re
 import sys
 import time
 
@@ -332,7 +339,9 @@ def budget_section(fronts, own, err_name, error_of=error_at_cost, cost="CPU (loo
                    how="every scheme's error interpolated log-log along its Pareto "
                        "front (none below its cheapest run)"):
     """Markdown: the budget table and the budgets its leader loses; returns
-    (text, leader, its wins). The cost is shown divided by cost_scale."""
+    (text, leader, its wins, the budgets it loses as (budget, its error,
+    smallest error, that scheme)). The cost is shown divided by
+    cost_scale."""
     rows, leader, losses = budget_table(fronts, own, error_of)
     lines = [f"\nBest {err_name} at equal {cost}: {BUDGETS} budgets evenly spaced "
              f"in log {cost.split()[0]} from impactfe's cheapest to its dearest run; at "
@@ -350,7 +359,15 @@ def budget_section(fronts, own, err_name, error_of=error_at_cost, cost="CPU (loo
               fmt(best, ".3g"),
               "" if mine is None else f"{100 * (mine / best - 1):.1f} %", lab]
              for b, mine, best, lab in losses]))
-    return "\n".join(lines), leader, dict(rows)[leader]
+    return "\n".join(lines), leader, dict(rows)[leader], losses
+
+
+def budget_outcome(leader, wins, losses):
+    """The budget table's result for summary.json and the RESULT line."""
+    margins = [mine / best - 1 for _, mine, best, _ in losses if mine is not None]
+    return {"leader": leader, "budgets": BUDGETS, "budgets_won": wins,
+            "budgets_lost": len(losses),
+            "largest_loss": max(margins) if margins else 0.}
 
 
 def md_table(header, rows):
@@ -1092,8 +1109,10 @@ def bars_tables(rows, peers):
     own = list(groups(good))
     fronts = {label: runs.pareto_front(points(rs, "cpu_loop_seconds", "err_v"))
               for label, rs in list(groups(good).items()) + list(groups(ok_rows(peers)).items())}
-    lines.append(budget_section({k: f for k, f in fronts.items() if f},
-                                [k for k in own if fronts[k]], "err_v")[0])
+    text, leader, wins, losses = budget_section({k: f for k, f in fronts.items() if f},
+                                                [k for k in own if fronts[k]], "err_v")
+    lines.append(text)
+    outcome = budget_outcome(leader, wins, losses)
     # Energy at the finest level.
     finest = max(levels)
     table = []
@@ -1111,7 +1130,8 @@ def bars_tables(rows, peers):
                                for r in failed]))
     else:
         lines.append("\nNo run failed (all exit codes 0).")
-    return "\n".join(lines)
+    outcome["failed_runs"] = len(failed)
+    return "\n".join(lines), outcome
 
 
 def plot_scene(name, rows, out, caption):
@@ -1241,8 +1261,10 @@ def scene_tables(name, rows):
                           table))
     fronts = {label: runs.pareto_front(points(rs, "cpu_loop_seconds", "err_force"))
               for label, rs in groups(grid_rows).items()}
-    lines.append(budget_section({k: f for k, f in fronts.items() if f}, list(fronts),
-                                "err_force")[0])
+    text, leader, wins, losses = budget_section({k: f for k, f in fronts.items() if f},
+                                                list(fronts), "err_force")
+    lines.append(text)
+    outcome = budget_outcome(leader, wins, losses)
     failed = [r for r in rows if r.get("level", "") != "" and r.get("status") != "ok"]
     if failed:
         lines.append(f"\nRuns with a non-zero exit code ({len(failed)}; those with "
@@ -1252,7 +1274,8 @@ def scene_tables(name, rows):
                                 r["status"]] for r in failed]))
     else:
         lines.append("\nEvery grid run exited with code 0.")
-    return "\n".join(lines)
+    outcome["failed_runs"] = len(failed)
+    return "\n".join(lines), outcome
 
 
 def write_markdown(out, text):
@@ -1277,6 +1300,7 @@ def write_markdown(out, text):
 
 def report(args, caption, run_info):
     parts = [f"Machine and commit: {caption}. {run_info}\n"]
+    outcomes = {}
     bars_csv = os.path.join(args.out, "work_precision_two_bars_1d.csv")
     if os.path.exists(bars_csv):
         rows = read_csv(bars_csv)
@@ -1294,7 +1318,7 @@ def report(args, caption, run_info):
             peer_note = f"No peer results (`{os.path.basename(peers_csv)}` absent)."
         fixed = 0.9 if any(num(r, "courant") == 0.9 for r in rows) else num(rows[0], "courant")
         png, png2 = plot_bars(rows, peers, args.out, caption, fixed)
-        text = bars_tables(rows, peers)
+        text, outcomes["1d"] = bars_tables(rows, peers)
         print("\n== two_bars_1d ==\n" + text + "\n" + peer_note)
         parts.append(f"## 1D two bars\n\n![work-precision]({os.path.basename(png)})\n\n"
                      f"![convergence]({os.path.basename(png2)})\n\n{peer_note}\n\n{text}\n")
@@ -1304,12 +1328,36 @@ def report(args, caption, run_info):
             continue
         rows = read_csv(path)
         png, png2 = plot_scene(name, rows, args.out, caption)
-        text = scene_tables(name, rows)
+        text, outcomes[name] = scene_tables(name, rows)
         print(f"\n== {name} ==\n" + text)
         parts.append(f"## {SCENES[name]['title']}\n\n![work-precision]({os.path.basename(png)})"
                      f"\n\n![convergence]({os.path.basename(png2)})\n\n{text}\n")
     md = write_markdown(args.out, "\n".join(parts))
     print(f"\nfigures and tables in {args.out}/ (tables: {md})")
+    write_summary(args, caption, outcomes)
+
+
+def write_summary(args, caption, outcomes):
+    """summary.json beside the run files, and the RESULT line: per scene,
+    the variant with the most of the BUDGETS budgets at equal loop CPU,
+    how many it wins and loses, and by how much at most (relative)."""
+    summary = {"program": "run_work_precision", "machine_and_commit": caption,
+               "cost": "loop CPU seconds", "scenes": outcomes}
+    path = os.path.join(os.path.dirname(args.runs), "summary.json")
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w") as f:
+        json.dump(summary, f, indent=1)
+    print(f"summary: {path}")
+    fields = ["program=run_work_precision", f"budgets={BUDGETS}"]
+    for name, o in outcomes.items():
+        # the label without spaces, commas or '=' (one token of the line)
+        leader = re.sub(r"[^\w.+/-]+", "_", o["leader"])
+        fields += [f"{name}_leader={leader}",
+                   f"{name}_budgets_won={o['budgets_won']}",
+                   f"{name}_budgets_lost={o['budgets_lost']}",
+                   f"{name}_largest_loss={o['largest_loss']:.3g}",
+                   f"{name}_failed_runs={o['failed_runs']}"]
+    print("RESULT " + " ".join(fields))
 
 
 def main():
