@@ -9,15 +9,21 @@
 
 Every run uses Lemke's method on the dense Delassus matrix (the active set
 method, and its scaling in contacts, is run_contact_scaling.py's). Writes
-doc/scaling.csv, doc/scaling_dofs.png and doc/scaling_contacts.png,
-and prints the fitted exponents (least squares in log-log over the larger
-half of each sweep). Run from the repository top:
+scaling.csv, scaling_dofs.png and scaling_contacts.png to --out (default
+doc; with --quick results/scaling_quick, so that a quick run does not
+overwrite the documented sweep), prints the fitted exponents (least squares
+in log-log over the larger half of each sweep), writes
+results/scaling[_quick]/summary.json and ends with one RESULT line (the
+largest sizes, their seconds per step, and the per-step exponents against
+DOFs and against candidates). Run from the repository top:
 
   /usr/bin/python3 benchmarks/scaling/run_scaling.py [--build build] [--quick]
+      [--out DIR]
 """
 import argparse
 import csv
 import io
+import json
 import os
 import subprocess
 import sys
@@ -82,7 +88,11 @@ def main():
     parser.add_argument("--build", default="build")
     parser.add_argument("--quick", action="store_true",
                         help="small sizes only (about a minute)")
+    parser.add_argument("--out", default=None,
+                        help="folder of the CSV and the figures (default doc, "
+                             "with --quick results/scaling_quick)")
     args = parser.parse_args()
+    out = args.out or ("results/scaling_quick" if args.quick else "doc")
 
     if args.quick:
         squares, slabs = [16, 32, 64, 128], [10, 30, 100, 300]
@@ -99,9 +109,9 @@ def main():
         r["sweep"] = "contacts"
         rows.append(r)
 
-    os.makedirs("doc", exist_ok=True)
+    os.makedirs(out, exist_ok=True)
     keys = ["sweep"] + [k for k in rows[0] if k != "sweep"]
-    with open("doc/scaling.csv", "w", newline="") as f:
+    with open(os.path.join(out, "scaling.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=keys)
         w.writeheader()
         w.writerows(rows)
@@ -109,17 +119,42 @@ def main():
     slab = [r for r in rows if r["sweep"] == "contacts"]
     e1 = plot(dofs, "n_dofs", "DOFs",
               "Square block on a plane (n x n Q1 cells, n+1 contacts, mu = 0.3)",
-              "doc/scaling_dofs.png")
+              os.path.join(out, "scaling_dofs.png"))
     e2 = plot(slab, "n_candidates", "n_c (contact candidates)",
               "Slab nx x 4 cells, bottom and top nodes candidates (mu = 0.3)",
-              "doc/scaling_contacts.png")
+              os.path.join(out, "scaling_contacts.png"))
     print("\nfitted exponents (larger half of each sweep)")
     print(f"{'phase':40s} {'vs DOFs':>8s} {'vs n_c':>8s}")
     for key, label in PHASES:
         print(f"{label:40s} {e1[key]:8.2f} {e2[key]:8.2f}")
     print("peak memory [MB]: " + ", ".join(
         f"{r['n_dofs']} DOFs: {float(r['peak_rss_mb']):.0f}" for r in dofs))
-    print("wrote doc/scaling.csv, doc/scaling_dofs.png, doc/scaling_contacts.png")
+    print(f"wrote {out}/scaling.csv, scaling_dofs.png, scaling_contacts.png")
+
+    # The step (free velocity + LCP + update) per sweep, for the summary.
+    def step_seconds(r):
+        return sum(float(r[k]) for k in
+                   ("free_per_step", "lcp_per_step", "update_per_step"))
+
+    step_dofs = fit([float(r["n_dofs"]) for r in dofs], [step_seconds(r) for r in dofs])
+    step_nc = fit([float(r["n_candidates"]) for r in slab],
+                  [step_seconds(r) for r in slab])
+    summary = {"program": "run_scaling", "machine_and_commit": machine_and_commit(),
+               "method": "lemke", "exponents_vs_dofs": e1, "exponents_vs_candidates": e2,
+               "step_exponent_vs_dofs": step_dofs,
+               "step_exponent_vs_candidates": step_nc, "runs": rows}
+    folder = "results/scaling_quick" if args.quick else "results/scaling"
+    os.makedirs(folder, exist_ok=True)
+    with open(os.path.join(folder, "summary.json"), "w") as f:
+        json.dump(summary, f, indent=1)
+    print(f"summary: {folder}/summary.json")
+    print(f"RESULT program=run_scaling method=lemke dofs={dofs[-1]['n_dofs']} "
+          f"seconds_per_step_largest_square={step_seconds(dofs[-1]):.4g} "
+          f"candidates={slab[-1]['n_candidates']} "
+          f"seconds_per_step_largest_slab={step_seconds(slab[-1]):.4g} "
+          f"step_exponent_vs_dofs={step_dofs:.3f} "
+          f"step_exponent_vs_candidates={step_nc:.3f} "
+          f"delassus_exponent_vs_candidates={e2['delassus_seconds']:.3f}")
 
 
 if __name__ == "__main__":
