@@ -25,10 +25,16 @@ tables; with --ours, our runs are still made).
 --ours SNAPSHOT_DIR also runs our two_bars_1d (SNAPSHOT_DIR/bin, /lib) on
 the same grid for comparison (printed only, not written to the CSV; our
 CPU = set-up + time loop from summary.json).
+
+Ends with results/peers/summary.json (every curve's crossing of 1e-2) and
+one line `RESULT program=run_peers ... <code>_<scheme>_<theta>_loop_seconds=...`
+(loop CPU seconds to err_v = 1e-2; `none` where no front reaches it).
 """
 import csv
+import json
 import math
 import os
+import re
 import sys
 import tempfile
 
@@ -167,7 +173,10 @@ def ours_rows(snapshot, scheme, theta, cells, courant, tmp):
 
 
 def print_crossings(rows, title):
+    """Prints the table of CPU seconds to reach err_v = 1e-2 per curve and
+    returns its rows (for summary.json and the RESULT line)."""
     curves = {}
+    crossings = []
     for r in rows:
         curves.setdefault(curve_key(r), []).append(r)
     print(f"\n{title}")
@@ -176,12 +185,35 @@ def print_crossings(rows, title):
     for (code, scheme, theta), rs in curves.items():
         best = min(rs, key=lambda r: r["err_v"])
         cols = []
+        seconds = {}
         for key in ("cpu_run_seconds", "cpu_loop_seconds"):
             sec, how = cpu_at_target(rs, key)
+            seconds[key] = sec
             cols.append("—, " + how if sec is None else f"{sec:.3g} ({how})")
         print(f"| {code} | {scheme} | {theta:g} | {best['err_v']:.3g} "
               f"({best['cells_per_bar']} cells, C = {best['courant']:g}) | "
               f"{cols[0]} | {cols[1]} |")
+        crossings.append({"code": code, "scheme": scheme, "theta": theta,
+                          "best_err_v": best["err_v"],
+                          "run_seconds_at_1e-2": seconds["cpu_run_seconds"],
+                          "loop_seconds_at_1e-2": seconds["cpu_loop_seconds"]})
+    return crossings
+
+
+def write_summary(crossings, csv_path):
+    """results/peers/summary.json and the RESULT line: each curve's loop CPU
+    seconds to err_v = 1e-2 (none: not reached on its grid)."""
+    os.makedirs("results/peers", exist_ok=True)
+    with open("results/peers/summary.json", "w") as f:
+        json.dump({"program": "run_peers", "csv": csv_path,
+                   "target_err_v": 1e-2, "curves": crossings}, f, indent=1)
+    print("\nsummary: results/peers/summary.json")
+    fields = ["program=run_peers", "target_err_v=0.01", f"curves={len(crossings)}"]
+    for c in crossings:
+        key = re.sub(r"[^\w.-]+", "_", f"{c['code']}_{c['scheme']}_{c['theta']:g}")
+        sec = c["loop_seconds_at_1e-2"]
+        fields.append(f"{key}_loop_seconds={'none' if sec is None else f'{sec:.3g}'}")
+    print("RESULT " + " ".join(fields))
 
 
 def print_table(rows):
@@ -248,7 +280,7 @@ def main():
                 w.writerow([fmt(r[c]) for c in COLUMNS])
         print(f"\nwrote {csv_path} ({len(rows)} rows)")
     print_table(rows)
-    print_crossings(rows, "Peers: CPU seconds to reach err_v = 1e-2")
+    crossings = print_crossings(rows, "Peers: CPU seconds to reach err_v = 1e-2")
 
     if snapshot:
         ours = []
@@ -260,8 +292,9 @@ def main():
                     lambda th, n, c, s=scheme: ours_rows(snapshot, s, th, n,
                                                          c, tmp),
                     (theta,), cells_list, extend))
-        print_crossings(ours, f"Ours ({snapshot}): CPU seconds to reach "
-                              "err_v = 1e-2")
+        crossings += print_crossings(ours, f"Ours ({snapshot}): CPU seconds "
+                                           "to reach err_v = 1e-2")
+    write_summary(crossings, csv_path)
     return 0
 
 
