@@ -14,7 +14,9 @@ usage (from the repository top, after building):
 long ones and prints the table without writing the page. --write-tests
 writes the parameter files of tests/stability from the same definitions
 (self-contained files, no include); their .output files are made by running
-the tests and reading them.
+the tests and reading them. Every run of cases ends with
+results/stability/summary.json (each run's exit code and message) and one
+`RESULT program=run_stability ... runs=... nonzero_exits=...` line.
 
 The cases are variants of one scene, program block_on_plane: an elastic
 block 0.1 m x 0.05 m x 0.01 m (E = 1e7 Pa, rho = 1e3 kg/m^3, mass 0.05 kg,
@@ -582,6 +584,7 @@ def main():
     schemes = [s for s in ALL if not args.schemes or s in args.schemes.split(",")]
     length = "short" if args.quick else "long"
     tables = []
+    records = []
     with tempfile.TemporaryDirectory() as tmp:
         for case in cases:
             one_d = case.program != "block_on_plane"
@@ -589,12 +592,32 @@ def main():
             for scheme in schemes:
                 out = os.path.join(tmp, case.name, scheme)
                 summary, code, message = run_case(args.build, case, scheme, length, out)
+                records.append({"case": case.name, "scheme": scheme, "exit_code": code,
+                                "message": message,
+                                "has_summary": summary is not None})
                 lines.append((row_1d if one_d else row)(case, scheme, summary, code, message))
                 print(lines[-1], flush=True)
             tables.append("\n".join(lines))
+    write_summary(records, length)
     if args.quick or args.cases or args.schemes:
         return
     write_page(os.path.join(args.out, "stability.md"), tables)
+
+
+def write_summary(records, length):
+    """results/stability/summary.json (each run's exit code and message) and
+    the RESULT line. A non-zero exit is what a hard case may give (a check
+    that fails, a message): it is counted, not hidden."""
+    os.makedirs("results/stability", exist_ok=True)
+    with open("results/stability/summary.json", "w") as f:
+        json.dump({"program": "run_stability", "length": length, "runs": records}, f,
+                  indent=1)
+    print("summary: results/stability/summary.json")
+    nonzero = [r for r in records if r["exit_code"] != 0]
+    print(f"RESULT program=run_stability length={length} "
+          f"cases={len({r['case'] for r in records})} runs={len(records)} "
+          f"nonzero_exits={len(nonzero)} "
+          f"no_summary={sum(not r['has_summary'] for r in records)}")
 
 
 def write_page(path, tables):
