@@ -37,6 +37,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 
@@ -138,6 +139,13 @@ namespace TaylorBarProgram
     // there) and writes the files; an error there stops every rank.
     on_rank_zero(communicator, [&]() {
       create_output_directory(output.directory);
+      // an earlier run's summary, final cells and VTU records: a run that
+      // stops early must not leave them beside its own history, as if
+      // they were its results
+      remove_previous_run_output(output.directory, {"solution"}, {"solution"});
+      std::error_code not_removed; // then writing it fails with a message
+      std::filesystem::remove(output.directory + "/cells_final.csv",
+                              not_removed);
       history = std::make_unique<HistoryWriter>(
         output.directory + "/history.csv",
         Utilities::split_string_list(

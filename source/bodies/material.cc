@@ -14,14 +14,20 @@ namespace impactfe
   {
     const bool with_plane_model = dim == 2;
     prm.enter_subsection(subsection);
+    // E and rho have no default: a placeholder (1 Pa, 1 kg/m^3) would give
+    // a silent wrong answer (parse_parameters() asks for both)
     prm.declare_entry("Young's modulus",
                       "1",
                       Patterns::Double(),
-                      "Young's modulus E of the bodies [Pa]. Must be > 0.");
+                      "Young's modulus E of the bodies [Pa]. Must be > 0. "
+                      "No default: the file must set it.",
+                      true);
     prm.declare_entry("Density",
                       "1",
                       Patterns::Double(),
-                      "Mass density rho [kg/m^3]. Must be > 0.");
+                      "Mass density rho [kg/m^3]. Must be > 0. No default: "
+                      "the file must set it.",
+                      true);
     prm.declare_entry("Poisson's ratio",
                       "0",
                       Patterns::Double(),
@@ -59,8 +65,11 @@ namespace impactfe
   void
   MaterialParameters::parse_parameters(ParameterHandler  &prm,
                                        const unsigned int dim,
-                                       const std::string &subsection)
+                                       const std::string &subsection,
+                                       const bool         in_use)
   {
+    if (in_use)
+      require_entries_set(prm, subsection, {"Young's modulus", "Density"});
     prm.enter_subsection(subsection);
     youngs_modulus = prm.get_double("Young's modulus");
     density        = prm.get_double("Density");

@@ -544,7 +544,9 @@ namespace impactfe
       // another scene): a wrong value there must not pass unnoticed.
       second_material.parse_parameters(prm,
                                        dimension,
-                                       "Material of the second body");
+                                       "Material of the second body",
+                                       two_bodies &&
+                                         second_body_has_own_material);
       require_friction_coefficient(friction_between_bodies,
                                    "Second body",
                                    "Friction coefficient");

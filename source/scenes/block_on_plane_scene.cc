@@ -130,7 +130,7 @@ namespace impactfe
     print_figures = parse_figures_entry(prm);
     obstacle_parameters.parse_parameters(prm, 2);
     material.parse_parameters(prm, 2);
-    material_2.parse_parameters(prm, 2, "Material of body 2");
+    material_2.parse_parameters(prm, 2, "Material of body 2", body_2);
     bounds.parse_parameters(prm);
   }
 

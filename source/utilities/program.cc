@@ -18,6 +18,7 @@
 #include <iomanip>
 #include <iostream>
 #include <new>
+#include <set>
 #include <sstream>
 
 namespace impactfe
@@ -95,6 +96,53 @@ namespace impactfe
                 dealii::ExcMessage(subsection + ": '" + entry +
                                    "' must be > 0, got " +
                                    format_number(value) + "."));
+  }
+
+
+
+  void
+  require_entries_set(const dealii::ParameterHandler &prm,
+                      const std::string              &subsection,
+                      const std::vector<std::string> &entries)
+  {
+    // ParameterHandler names an entry by its path, subsections and name
+    // joined by '.', every character that is not a letter or a digit
+    // written as _ and two hex digits (a space is _20)
+    const auto mangle = [](const std::string &name) {
+      std::string mangled;
+      for (const unsigned char c : name)
+        if (std::isalnum(c))
+          mangled += static_cast<char>(c);
+        else
+          {
+            static const char hex[] = "0123456789abcdef";
+            mangled += '_';
+            mangled += hex[c / 16];
+            mangled += hex[c % 16];
+          }
+      return mangled;
+    };
+    const std::set<std::string> not_set = prm.get_entries_wrongly_not_set();
+    std::vector<std::string>    missing;
+    for (const std::string &entry : entries)
+      if (not_set.count(mangle(subsection) + '.' + mangle(entry)) > 0)
+        missing.push_back("'" + entry + "'");
+    std::string list;
+    for (unsigned int i = 0; i < missing.size(); ++i)
+      list += (i == 0                  ? "" :
+               i + 1 == missing.size() ? " and " :
+                                         ", ") +
+              missing[i];
+    AssertThrow(missing.empty(),
+                dealii::ExcMessage(
+                  "Subsection '" + subsection +
+                  "': the parameter file does "
+                  "not set " +
+                  list + ". " +
+                  (missing.size() == 1 ? "This entry has" :
+                                         "These entries have") +
+                  " no default: add 'set <entry> = <value>' to the "
+                  "subsection (see the entry's help text for its unit)."));
   }
 
 

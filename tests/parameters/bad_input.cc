@@ -42,13 +42,40 @@ namespace
   void
   run_case(const std::string &name,
            const std::string &prm_text,
-           const std::string &executable = TWO_BARS_1D_EXECUTABLE,
-           const std::string &cut_at     = "",
-           const std::string &extension  = ".prm")
+           const std::string &executable    = TWO_BARS_1D_EXECUTABLE,
+           const std::string &cut_at        = "",
+           const std::string &extension     = ".prm",
+           const bool         fill_material = true)
   {
     const std::string prm = name + extension;
+    // Young's modulus and the density have no default (a file that leaves
+    // them out is refused): the cases that do not set them get 1 and 1,
+    // the values they ran with when those were the defaults, at the end of
+    // the file so that line numbers stay. taylor_bar's own defaults are
+    // copper's.
+    const auto sets_material_entry = [&prm_text](const std::string &entry) {
+      for (auto at = prm_text.find("subsection Material\n");
+           at != std::string::npos;
+           at = prm_text.find("subsection Material\n", at + 1))
+        {
+          const auto end = prm_text.find("\nend", at);
+          if (prm_text.substr(at, end - at).find("set " + entry) !=
+              std::string::npos)
+            return true;
+        }
+      return false;
+    };
+    std::string material;
+    if (fill_material && extension == ".prm" &&
+        executable.find("taylor_bar") == std::string::npos)
+      for (const std::string entry : {"Young's modulus", "Density"})
+        if (!sets_material_entry(entry))
+          material += "  set " + entry + " = 1\n";
     if (!prm_text.empty())
-      std::ofstream(prm) << prm_text;
+      std::ofstream(prm) << prm_text
+                         << (material.empty() ?
+                               "" :
+                               "subsection Material\n" + material + "end\n");
     const std::string command =
       executable + " " + prm + " > " + name + ".log 2>&1";
     const int   status  = std::system(command.c_str());
@@ -437,6 +464,24 @@ main()
   run_case("block_body_2_zero_density",
            with("Material of body 2", "Density = 0"),
            block);
+  // Young's modulus and the density have no default (they were 1 Pa and
+  // 1 kg/m^3: a file without them ran, silently wrong); a second body's
+  // material must be set when the body is in the scene
+  run_case("missing_youngs_modulus",
+           with("Material", "Density = 7800"),
+           TWO_BARS_1D_EXECUTABLE,
+           "",
+           ".prm",
+           false);
+  run_case("missing_material",
+           with("Time stepping", "Theta = 0.55"),
+           TWO_BARS_1D_EXECUTABLE,
+           "",
+           ".prm",
+           false);
+  run_case("block_body_2_material_not_set",
+           with("Body 2", "Enabled = true"),
+           block);
   run_case("block_unknown_contact_method",
            with("Contact solver", "Method = newton"),
            block);
@@ -498,6 +543,37 @@ main()
   // taylor_bar: the finite-strain program's own entries.
   const std::string taylor = TAYLOR_BAR_EXECUTABLE;
   run_case("taylor_theta_below_half", with("Time", "Theta = 0.3"), taylor);
+  // A run that stops at a step (an element inverted at 2000 m/s) in the
+  // folder of an earlier, finished run: the earlier run's summary and final
+  // cells are removed at the start, so that the folder holds one run's
+  // files (its own history up to the failing step), not a mix of two.
+  {
+    const std::string rerun = "subsection Output\n"
+                              "  set Output directory = taylor_rerun\n"
+                              "  set VTU output = false\nend\n"
+                              "subsection Time\n  set End time = 2e-6\nend\n";
+    std::ofstream("taylor_rerun_finished.prm") << rerun;
+    const int finished =
+      std::system((std::string(TAYLOR_BAR_EXECUTABLE) +
+                   " taylor_rerun_finished.prm > taylor_rerun_finished.log "
+                   "2>&1")
+                    .c_str());
+    impactfe_tests::check(
+      finished == 0 && std::filesystem::exists("taylor_rerun/summary.json") &&
+        std::filesystem::exists("taylor_rerun/cells_final.csv"),
+      "taylor_bar: the first run finishes and writes its "
+      "summary and final cells");
+    run_case("taylor_stops_at_a_step",
+             rerun + "subsection Initial conditions\n"
+                     "  set Impact velocity = 2000\nend\n",
+             taylor);
+    impactfe_tests::check(
+      !std::filesystem::exists("taylor_rerun/summary.json") &&
+        !std::filesystem::exists("taylor_rerun/cells_final.csv") &&
+        std::filesystem::exists("taylor_rerun/history.csv"),
+      "taylor_bar: after the stopped run the folder holds its history and "
+      "no summary or final cells of the run before");
+  }
   run_case("taylor_negative_time_step",
            with("Time", "Time step = -1e-7"),
            taylor);
@@ -545,6 +621,12 @@ main()
   // contact_mpi on two ranks: every rank meets the error, rank 0
   // prints it, all exit with 1 (no rank is left waiting).
   const std::string mpi = MPIEXEC_TWO_RANKS " " BLOCK_SLIDING_MPI_EXECUTABLE;
+  run_case("mpi_missing_density",
+           with("Material", "Young's modulus = 1e9"),
+           mpi,
+           "",
+           ".prm",
+           false);
   run_case("mpi_more_ranks_than_cells",
            with("Geometry",
                 "Number of cells along x = 1\n  set Number of cells along z "

@@ -117,7 +117,9 @@ main()
     }
 
   // The listing is input, and holds the defaults: two_bars_1d on it
-  // writes the history of a file that sets the output entries alone.
+  // writes the history of a file that sets the output entries and the two
+  // entries without a default (Young's modulus and the density, at the
+  // listing's placeholder values) alone.
   {
     const std::string output = "\n  set VTU output = false\n"
                                "  set Plot = false\nend\n";
@@ -125,6 +127,8 @@ main()
       << "include two_bars_1d_parameters.prm\nsubsection Output\n"
       << "  set Output directory = listing_run" << output;
     std::ofstream("default_run.prm")
+      << "subsection Material\n  set Young's modulus = 1\n"
+      << "  set Density = 1\nend\n"
       << "subsection Output\n  set Output directory = default_run" << output;
     const int listing_code =
       run(std::string(TWO_BARS_1D_EXECUTABLE) + " listing_run.prm",

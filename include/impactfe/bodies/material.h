@@ -49,10 +49,18 @@ namespace impactfe
     declare_parameters(ParameterHandler  &prm,
                        const unsigned int dim,
                        const std::string &subsection = "Material");
+    /**
+     * Read the entries of @p subsection and check() them. If @p in_use
+     * (the scene has a body of this material), Young's modulus and the
+     * density must have been set by the file (they have no default); the
+     * subsection of a body that is not in the scene is read and range-
+     * checked only.
+     */
     void
     parse_parameters(ParameterHandler  &prm,
                      const unsigned int dim,
-                     const std::string &subsection = "Material");
+                     const std::string &subsection = "Material",
+                     const bool         in_use     = true);
 
     /**
      * Throw, naming @p where and the entry, if a value is out of its range

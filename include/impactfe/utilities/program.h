@@ -64,6 +64,21 @@ namespace impactfe
                    const std::string &subsection,
                    const std::string &entry);
 
+  /**
+   * Throw, naming @p subsection and the entries, unless the parameter file
+   * set each of @p entries of @p subsection. For entries declared with
+   * deal.II's `has_to_be_set = true` (ParameterHandler::declare_entry()):
+   * physical data whose default would be a placeholder (E = 1 Pa), so that
+   * a file that leaves them out gives a message, not a silent wrong answer.
+   * deal.II's own assert_that_entries_have_been_set() would name them in
+   * mangled form (Material.Young_27s_20modulus) and could not skip the
+   * subsection of a body that is not in the scene.
+   */
+  void
+  require_entries_set(const dealii::ParameterHandler &prm,
+                      const std::string              &subsection,
+                      const std::vector<std::string> &entries);
+
   /** The same for "must be >= 0". */
   void
   require_non_negative(const double       value,
