@@ -26,7 +26,7 @@ tables; with --ours, our runs are still made).
 the same grid for comparison (printed only, not written to the CSV; our
 CPU = set-up + time loop from summary.json).
 
-Ends with results/peers/summary.json (every curve's crossing of 1e-2) and
+When a peer ran (or with --tables-only), ends with results/peers/summary.json (every curve's crossing of 1e-2) and
 one line `RESULT program=run_peers ... <code>_<scheme>_<theta>_loop_seconds=...`
 (loop CPU seconds to err_v = 1e-2; `none` where no front reaches it).
 """

@@ -161,6 +161,22 @@ namespace impactfe
       bool has_material_lists = false;
       for (const auto &values : per_body)
         has_material_lists = has_material_lists || !values.empty();
+      // Scene = bodies: Material's Young's modulus and density (no
+      // default) are needed unless a list here gives every body its own
+      if (several_bodies)
+        {
+          std::vector<std::string> needed;
+          for (unsigned int e = 0; e < per_body.size(); ++e)
+            if (per_body[e].empty())
+              {
+                const auto member = per_body_material_entries[e].member;
+                if (member == &MaterialParameters::youngs_modulus)
+                  needed.emplace_back("Young's modulus");
+                else if (member == &MaterialParameters::density)
+                  needed.emplace_back("Density");
+              }
+          require_entries_set(prm, "Material", needed);
+        }
       if (!several_bodies)
         {
           AssertThrow(files.empty() && velocities.empty() && pairs.empty() &&
@@ -535,7 +551,8 @@ namespace impactfe
         {static_cast<int>(prm.get_integer("Boundary id of the first body")),
          static_cast<int>(prm.get_integer("Boundary id of the second body"))}};
       prm.leave_subsection();
-      material.parse_parameters(prm, dimension);
+      // with Scene = bodies, parse_bodies() asks for what its lists leave
+      material.parse_parameters(prm, dimension, "Material", !several_bodies);
       parse_bodies(prm);
       const bool touches_obstacle = obstacle_boundary_ids[0] >= 0 ||
                                     obstacle_boundary_ids[1] >= 0 ||

@@ -106,12 +106,14 @@ namespace impactfe
                       const std::vector<std::string> &entries)
   {
     // ParameterHandler names an entry by its path, subsections and name
-    // joined by '.', every character that is not a letter or a digit
-    // written as _ and two hex digits (a space is _20)
+    // joined by '.', every character that is not an ASCII letter or digit
+    // written as _ and two hex digits (a space is _20). @p subsection is a
+    // top-level one: call this outside any subsection.
     const auto mangle = [](const std::string &name) {
       std::string mangled;
       for (const unsigned char c : name)
-        if (std::isalnum(c))
+        if ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+            (c >= '0' && c <= '9'))
           mangled += static_cast<char>(c);
         else
           {

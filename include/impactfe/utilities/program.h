@@ -72,7 +72,8 @@ namespace impactfe
    * a file that leaves them out gives a message, not a silent wrong answer.
    * deal.II's own assert_that_entries_have_been_set() would name them in
    * mangled form (Material.Young_27s_20modulus) and could not skip the
-   * subsection of a body that is not in the scene.
+   * subsection of a body that is not in the scene. Call it outside any
+   * subsection (@p subsection is a top-level one).
    */
   void
   require_entries_set(const dealii::ParameterHandler &prm,
