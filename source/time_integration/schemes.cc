@@ -88,16 +88,22 @@ namespace impactfe
                       "0.5",
                       Patterns::Double(),
                       "Newmark gamma [-], in [0.5, 1].");
+    // h and T have no default: a placeholder step would run a scene at
+    // a step unrelated to it (parse_parameters() asks for both)
     prm.declare_entry("Time step",
                       "1e-3",
                       Patterns::Double(),
-                      "Time step h [s]. Must be > 0.");
+                      "Time step h [s]. Must be > 0. No default: the file "
+                      "must set it.",
+                      true);
     prm.declare_entry("End time",
                       "1",
                       Patterns::Double(),
                       "End time T [s]. Must be >= the time step. The run "
                       "makes ceil(T / h) steps: it ends at the first "
-                      "multiple of h at or after T.");
+                      "multiple of h at or after T. No default: the file "
+                      "must set it.",
+                      true);
     prm.declare_entry(
       "Free-flight step factor",
       "1",
@@ -116,6 +122,7 @@ namespace impactfe
   void
   TimeSteppingParameters::parse_parameters(ParameterHandler &prm)
   {
+    require_entries_set(prm, "Time stepping", {"Time step", "End time"});
     prm.enter_subsection("Time stepping");
     const std::string name  = prm.get("Scheme");
     scheme                  = name == "theta"          ? Scheme::theta :

@@ -13,6 +13,8 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "../tests.h"
 
@@ -45,37 +47,45 @@ namespace
            const std::string &executable    = TWO_BARS_1D_EXECUTABLE,
            const std::string &cut_at        = "",
            const std::string &extension     = ".prm",
-           const bool         fill_material = true)
+           const bool         fill_required = true)
   {
     const std::string prm = name + extension;
-    // Young's modulus and the density have no default (a file that leaves
-    // them out is refused): the cases that do not set them get 1 and 1,
-    // the values they ran with when those were the defaults, at the end of
-    // the file so that line numbers stay. taylor_bar's own defaults are
-    // copper's.
-    const auto sets_material_entry = [&prm_text](const std::string &entry) {
-      for (auto at = prm_text.find("subsection Material\n");
-           at != std::string::npos;
-           at = prm_text.find("subsection Material\n", at + 1))
+    // Young's modulus, the density, the time step and the end time have no
+    // default (a file that leaves them out is refused): the cases that do
+    // not set them get the values they ran with when those were the
+    // defaults, at the end of the file so that line numbers stay.
+    // taylor_bar has its own subsections and defaults (copper's).
+    const auto sets = [&prm_text](const std::string &subsection,
+                                  const std::string &entry) {
+      const std::string opening = "subsection " + subsection + "\n";
+      for (auto at = prm_text.find(opening); at != std::string::npos;
+           at      = prm_text.find(opening, at + 1))
         {
-          const auto end = prm_text.find("\nend", at);
-          if (prm_text.substr(at, end - at).find("set " + entry) !=
+               const auto end = prm_text.find("\nend", at);
+               if (prm_text.substr(at, end - at).find("set " + entry) !=
               std::string::npos)
             return true;
         }
       return false;
     };
-    std::string material;
-    if (fill_material && extension == ".prm" &&
+    std::string filled;
+    if (fill_required && extension == ".prm" &&
         executable.find("taylor_bar") == std::string::npos)
-      for (const std::string entry : {"Young's modulus", "Density"})
-        if (!sets_material_entry(entry))
-          material += "  set " + entry + " = 1\n";
+      for (const auto &[subsection, entries] : std::vector<
+             std::pair<std::string,
+                       std::vector<std::pair<std::string, std::string>>>>{
+             {"Material", {{"Young's modulus", "1"}, {"Density", "1"}}},
+             {"Time stepping", {{"Time step", "1e-3"}, {"End time", "1"}}}})
+        {
+          std::string lines;
+          for (const auto &[entry, value] : entries)
+            if (!sets(subsection, entry))
+              lines += "  set " + entry + " = " + value + "\n";
+          if (!lines.empty())
+            filled += "subsection " + subsection + "\n" + lines + "end\n";
+        }
     if (!prm_text.empty())
-      std::ofstream(prm) << prm_text
-                         << (material.empty() ?
-                               "" :
-                               "subsection Material\n" + material + "end\n");
+      std::ofstream(prm) << prm_text << filled;
     const std::string command =
       executable + " " + prm + " > " + name + ".log 2>&1";
     const int   status  = std::system(command.c_str());
@@ -464,17 +474,29 @@ main()
   run_case("block_body_2_zero_density",
            with("Material of body 2", "Density = 0"),
            block);
-  // Young's modulus and the density have no default (they were 1 Pa and
-  // 1 kg/m^3: a file without them ran, silently wrong); a second body's
-  // material must be set when the body is in the scene
+  // Young's modulus, the density, the time step and the end time have no
+  // default (they were 1 Pa, 1 kg/m^3, 1 ms and 1 s: a file without them
+  // ran, silently wrong); a second body's material must be set when the
+  // body is in the scene
+  const std::string time_stepping =
+    "subsection Time stepping\n  set Time step = 1e-3\n"
+    "  set End time = 1\nend\n";
   run_case("missing_youngs_modulus",
-           with("Material", "Density = 7800"),
+           with("Material", "Density = 7800") + time_stepping,
            TWO_BARS_1D_EXECUTABLE,
            "",
            ".prm",
            false);
   run_case("missing_material",
-           with("Time stepping", "Theta = 0.55"),
+           with("Time stepping", "Theta = 0.55") + time_stepping,
+           TWO_BARS_1D_EXECUTABLE,
+           "",
+           ".prm",
+           false);
+  run_case("missing_time_step",
+           with("Time stepping", "End time = 2e-4") +
+             "subsection Material\n  set Young's modulus = 1\n"
+             "  set Density = 1\nend\n",
            TWO_BARS_1D_EXECUTABLE,
            "",
            ".prm",

@@ -117,9 +117,9 @@ main()
     }
 
   // The listing is input, and holds the defaults: two_bars_1d on it
-  // writes the history of a file that sets the output entries and the two
-  // entries without a default (Young's modulus and the density, at the
-  // listing's placeholder values) alone.
+  // writes the history of a file that sets the output entries and the
+  // entries without a default (Young's modulus, the density, the time step
+  // and the end time, at the listing's values) alone.
   {
     const std::string output = "\n  set VTU output = false\n"
                                "  set Plot = false\nend\n";
@@ -129,6 +129,8 @@ main()
     std::ofstream("default_run.prm")
       << "subsection Material\n  set Young's modulus = 1\n"
       << "  set Density = 1\nend\n"
+      << "subsection Time stepping\n  set Time step = 1e-3\n"
+      << "  set End time = 1\nend\n"
       << "subsection Output\n  set Output directory = default_run" << output;
     const int listing_code =
       run(std::string(TWO_BARS_1D_EXECUTABLE) + " listing_run.prm",
