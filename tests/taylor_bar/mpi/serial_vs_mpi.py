@@ -53,8 +53,10 @@ def main():
     if a.vtu:
         prm = os.path.join(a.work, "vtu.prm")
         with open(prm, "w") as out:
-            out.write(open(a.prm).read() + "\nsubsection Output\n"
-                      "  set VTU output = true\nend\n")
+            # an override of the included file's entry (a second `set` in
+            # one file is refused)
+            out.write(f"include {os.path.abspath(a.prm)}\n"
+                      "subsection Output\n  set VTU output = true\nend\n")
     runs = {"serial": [a.program, prm],
             "mpi": shlex.split(a.mpiexec) + [a.program, prm]}
     for name, command in runs.items():
