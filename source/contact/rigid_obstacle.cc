@@ -162,7 +162,23 @@ namespace impactfe
     AssertThrow(std::isfinite(value),
                 ExcMessage("Obstacle: the level set '" + expression +
                            "' is not finite at " + format_point<dim>(x) + "."));
-    return value / gradient(x).norm();
+    // The gap is fixed by the level set near x only; the surface it stands
+    // for must exist where the node would touch it, at the first-order
+    // foot point x - phi grad(phi) / |grad(phi)|^2. (A level set that is
+    // NaN there, say y + 0 * sqrt(y - 1) with the nodes above y = 1, would
+    // otherwise give a plausible gap to a surface that is not defined.)
+    const Tensor<1, dim> n        = normal(x);
+    const double         distance = value / gradient(x).norm();
+    const Point<dim>     foot     = x - distance * n;
+    AssertThrow(std::isfinite(phi.value(foot)),
+                ExcMessage("Obstacle: the level set '" + expression +
+                           "' is not finite at " + format_point<dim>(foot) +
+                           ", the point of its surface nearest to the node "
+                           "at " +
+                           format_point<dim>(x) +
+                           ": the obstacle is not defined where that node "
+                           "would touch it."));
+    return distance;
   }
 
   template <int dim>

@@ -12,6 +12,7 @@
 #include <impactfe/bodies/cell_operators.h>
 #include <impactfe/bodies/constitutive_model.h>
 #include <impactfe/parallel/distributed_body.h>
+#include <impactfe/utilities/program.h>
 
 #include <algorithm>
 #include <cmath>
@@ -181,6 +182,22 @@ namespace impactfe
       stiffness.compress(VectorOperation::add);
       damping.compress(VectorOperation::add);
       body_force.compress(VectorOperation::add);
+      // Moduli at the edge of double precision overflow in the element
+      // integrals (as in ElasticBody::assemble()); the norms are the same
+      // on every rank, so all stop together.
+      const std::string per_body =
+        part_materials.empty() ? "" : " (or a body's own, in 'Bodies')";
+      AssertThrow(std::isfinite(mass.linfty_norm()),
+                  ExcMessage("The mass matrix overflows double precision "
+                             "('Density' = " +
+                             format_number(material_parameters.density) +
+                             " kg/m^3" + per_body +
+                             "); the run is not started."));
+      AssertThrow(std::isfinite(stiffness.linfty_norm()),
+                  ExcMessage("The stiffness matrix overflows double precision "
+                             "('Young's modulus' = " +
+                             format_number(material_parameters.youngs_modulus) +
+                             " Pa" + per_body + "); the run is not started."));
       // A constant body force rho g is M g; with massless nodes it follows
       // the mass (ElasticBody::assemble()), so that a free body still
       // falls as a whole.

@@ -1213,6 +1213,20 @@ namespace impactfe
             for (unsigned int d = 0; d < dim; ++d)
               columns.push_back("body_" + std::to_string(b) + quantity +
                                 axes[d]);
+      // A launch velocity whose kinetic energy overflows (1e308 m/s, say)
+      // is refused here, before an earlier run's files are removed; every
+      // rank has the same sum, so all stop together.
+      {
+        const DistributedVector &v = solver->velocity();
+        body.mass_matrix().vmult(work, v);
+        const double kinetic_energy = 0.5 * (work * v);
+        AssertThrow(std::isfinite(kinetic_energy),
+                    ExcMessage("Initial conditions: the kinetic energy at "
+                               "t = 0 overflows double precision (largest "
+                               "initial velocity " +
+                               format_number(v.linfty_norm()) +
+                               " m/s): the run is not started."));
+      }
       on_rank_zero(comm, [&]() {
         create_output_directory(parameters.scene.output.directory);
         // an earlier run's summary and its .pvd/.pvtu/.vtu records, which

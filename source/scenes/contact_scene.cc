@@ -224,6 +224,16 @@ namespace impactfe
     set_initial_state(multibody_system->state());
 
     create_output_directory(parameters.output.directory);
+    multibody_system->set_dump_directory(parameters.output.directory);
+    // Where the time goes (a few clock reads per step, so only when asked).
+    multibody_system->enable_cost_breakdown(
+      parameters.output.print_performance);
+    multibody_system->setup();
+    prepare_run();
+    // A run that cannot start must not cost the user an earlier run's
+    // files: the earlier output is removed only once the state at t = 0
+    // is known to be finite.
+    check_initial_state();
     std::vector<std::string> body_names;
     for (const auto &b : body_list)
       body_names.push_back(b->name());
@@ -232,15 +242,45 @@ namespace impactfe
       for (const auto &b : body_list)
         write_mesh_file(b->triangulation(),
                         parameters.output.directory + "/" + b->name() + ".msh");
-    multibody_system->set_dump_directory(parameters.output.directory);
-    // Where the time goes (a few clock reads per step, so only when asked).
-    multibody_system->enable_cost_breakdown(
-      parameters.output.print_performance);
-    multibody_system->setup();
-    prepare_run();
     recorder = std::make_unique<SceneRecorder<dim>>(*multibody_system,
                                                     parameters.output,
                                                     history_columns());
+  }
+
+
+
+  // Data at the edge of double precision (an impact velocity of 1e308 m/s,
+  // say) give a finite state with an infinite energy. The message names the
+  // body and the data behind the energy, before anything is written.
+  template <int dim>
+  void
+  ContactScene<dim>::check_initial_state() const
+  {
+    for (unsigned int b = 0; b < body_list.size(); ++b)
+      {
+        const std::string &name = body_list[b]->name();
+        const double       v =
+          multibody_system->state().velocity.block(b).linfty_norm();
+        AssertThrow(std::isfinite(multibody_system->kinetic_energy(b)),
+                    ExcMessage(
+                      "Initial conditions: the kinetic energy of the " + name +
+                      " at t = 0 overflows double precision (largest "
+                      "initial velocity " +
+                      format_number(v) + " m/s, 'Density' = " +
+                      format_number(body_list[b]->material().density) +
+                      " kg/m^3): the run is not started."));
+        AssertThrow(
+          std::isfinite(multibody_system->elastic_energy(b)),
+          ExcMessage(
+            "Initial conditions: the elastic energy of the " + name +
+            " at t = 0 overflows double precision (largest "
+            "initial displacement " +
+            format_number(
+              multibody_system->state().displacement.block(b).linfty_norm()) +
+            " m, 'Young's modulus' = " +
+            format_number(body_list[b]->material().youngs_modulus) +
+            " Pa): the run is not started."));
+      }
   }
 
 

@@ -17,6 +17,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <new>
 #include <set>
 #include <sstream>
@@ -244,6 +245,60 @@ namespace impactfe
 
   namespace
   {
+    // deal.II keeps the last of two `set` statements of one entry without a
+    // word, so a value edited in one place and left in another is lost
+    // silently. Within one file that is a mistake; an included file's entry
+    // set again by the including file is an override, and allowed.
+    void
+    check_entries_set_once(
+      const std::filesystem::path                             &file,
+      const std::vector<std::pair<unsigned int, std::string>> &statements)
+    {
+      const auto starts_with_keyword = [](const std::string &statement,
+                                          const std::string &lower,
+                                          const std::string &upper) {
+        return (statement.rfind(lower + " ", 0) == 0 ||
+                statement.rfind(upper + " ", 0) == 0);
+      };
+      const auto trim = [](const std::string &text) {
+        const auto begin = text.find_first_not_of(' ');
+        return begin == std::string::npos ?
+                 std::string() :
+                 text.substr(begin, text.find_last_not_of(' ') - begin + 1);
+      };
+      std::vector<std::string> path; // the open subsections
+      std::map<std::pair<std::vector<std::string>, std::string>, unsigned int>
+        first_set;
+      for (const auto &[line, statement] : statements)
+        if (starts_with_keyword(statement, "subsection", "SUBSECTION"))
+          path.push_back(trim(statement.substr(10)));
+        else if ((statement == "end" || statement == "END") && !path.empty())
+          path.pop_back();
+        else if (starts_with_keyword(statement, "set", "SET") &&
+                 statement.find('=') != std::string::npos)
+          {
+            const std::string name =
+              trim(statement.substr(3, statement.find('=') - 3));
+            const auto [where, is_new] =
+              first_set.emplace(std::make_pair(path, name), line);
+            std::string subsection;
+            for (const std::string &s : path)
+              subsection += (subsection.empty() ? "" : "/") + s;
+            AssertThrow(
+              is_new,
+              dealii::ExcMessage(
+                "The parameter file '" + file.string() + "', line " +
+                std::to_string(line) + ": '" + name + "'" +
+                (subsection.empty() ? std::string(" (top level)") :
+                                      " in subsection '" + subsection + "'") +
+                " is set a second time (first at line " +
+                std::to_string(where->second) +
+                "); only the last value would count. Keep one of the two."));
+          }
+    }
+
+
+
     // Follows the include statements of @p file depth first; @p chain holds
     // the files that include it, outermost first.
     void
@@ -251,7 +306,9 @@ namespace impactfe
                              std::vector<std::filesystem::path> &chain)
     {
       chain.push_back(file);
-      for (const auto &[line, statement] : parameter_file_statements(file))
+      const auto statements = parameter_file_statements(file);
+      check_entries_set_once(file, statements);
+      for (const auto &[line, statement] : statements)
         {
           const std::string name = included_file(statement);
           if (name.empty())
@@ -286,6 +343,7 @@ namespace impactfe
         }
       chain.pop_back();
     }
+
   } // namespace
 
 

@@ -167,6 +167,48 @@ main()
   // the time and the entries to look at
   run_case("state_overflows",
            with("Time stepping", "Time step = 1e307\n  set End time = 1e308"));
+  // An impact velocity whose kinetic energy overflows, in the folder of
+  // an earlier, finished run: refused before anything is written, so the
+  // earlier run's files stay as they were.
+  {
+    const std::string rerun = "subsection Output\n"
+                              "  set Output directory = bars_rerun\n"
+                              "  set Plot = false\nend\n";
+    std::ofstream("bars_rerun_finished.prm")
+      << rerun
+      << "subsection Material\n  set Young's modulus = 1\n  set Density = "
+         "1\nend\nsubsection Time stepping\n  set Time step = 1e-3\n  set "
+         "End time = 0.1\nend\n";
+    const int finished =
+      std::system(TWO_BARS_1D_EXECUTABLE " bars_rerun_finished.prm > "
+                                         "bars_rerun_finished.log 2>&1");
+    const auto contents = [](const std::string &file) {
+      std::ifstream      in(file);
+      std::ostringstream text;
+      text << in.rdbuf();
+      return text.str();
+    };
+    const std::string history = contents("bars_rerun/history.csv");
+    const std::string summary = contents("bars_rerun/summary.json");
+    impactfe_tests::check(finished == 0 && !history.empty() &&
+                            !summary.empty() &&
+                            std::filesystem::exists(
+                              "bars_rerun/bar_1-00100.vtu"),
+                          "two_bars_1d: the first run writes its files");
+    run_case("kinetic_energy_overflows",
+             rerun + "subsection Initial conditions\n"
+                     "  set Impact velocity = 1e308\nend\n");
+    impactfe_tests::check(
+      contents("bars_rerun/history.csv") == history &&
+        contents("bars_rerun/summary.json") == summary &&
+        std::filesystem::exists("bars_rerun/bar_1-00100.vtu"),
+      "two_bars_1d: the refused run leaves the earlier run's history, "
+      "summary and VTU files as they were");
+  }
+  // deal.II keeps the last of two values silently: refused, with both
+  // lines
+  run_case("entry_set_twice",
+           with("Time stepping", "Theta = 0.55\n  set Theta = 0.6"));
   run_case("misspelt_entry", with("Time stepping", "Tme step = 1e-6"));
   run_case("misspelt_subsection", with("Time steping", "Time step = 1e-6"));
   run_case("missing_file", "");
@@ -225,6 +267,15 @@ main()
            with("Obstacle", "Type = level set\n  set Level set = y+*2"),
            cylinder);
   check_only_the_message("bad_level_set");
+  // finite at the nodes, NaN on the surface below them (y = 0)
+  run_case("level_set_undefined_on_its_surface",
+           with("Obstacle",
+                "Type = level set\n  set Level set = y + 0*sqrt(y - 1)"),
+           cylinder);
+  // a modulus whose element matrices overflow: the message names it
+  run_case("stiffness_overflows",
+           with("Material", "Young's modulus = 1e305"),
+           plate);
   run_case("odd_core_cells",
            with("Geometry", "Number of core cells = 5"),
            cylinder);
@@ -649,6 +700,13 @@ main()
            "",
            ".prm",
            false);
+  // data that overflow at set-up: refused on every rank, before any output
+  run_case("mpi_kinetic_energy_overflows",
+           with("Initial conditions", "Sliding speed = 1e308"),
+           mpi);
+  run_case("mpi_stiffness_overflows",
+           with("Material", "Young's modulus = 1e306"),
+           mpi);
   run_case("mpi_more_ranks_than_cells",
            with("Geometry",
                 "Number of cells along x = 1\n  set Number of cells along z "
@@ -736,8 +794,9 @@ main()
            bars + second_bar +
              "subsection Second body\n  set Contact normal = -1, 0\nend\n"
              "subsection Obstacle contact\n  set Boundary id of the second "
-             "body = 7\nend\n" +
-             with("Obstacle", "Point on plane = 0, -1\n  set Normal = 0, 1"),
+             "body = 7\nend\n"
+             "subsection Obstacle\n  set Point on plane = 0, -1\n  set "
+             "Normal = 0, 1\nend\n",
            mpi);
   // Scene = bodies: a pair that names a body the scene does not have, and
   // one body only

@@ -215,6 +215,8 @@ namespace impactfe
     void
     redistribute_mass();
     void
+    check_initial_state() const;
+    void
     output_results(const StepReport &report);
     void
     report_results();
