@@ -28,7 +28,10 @@ namespace impactfe
                       default_directory,
                       Patterns::Anything(),
                       "Directory for history.csv, summary.json, the VTU/PVD "
-                      "files and the plots. Created if missing.");
+                      "files and the plots. Created if missing. A relative "
+                      "path is taken from the directory the program runs "
+                      "in (not from the parameter file's, as mesh files "
+                      "are); the run's last lines name it.");
     prm.declare_entry("VTU output",
                       "true",
                       Patterns::Bool(),
