@@ -151,6 +151,10 @@ namespace impactfe
         minus[d] -= step;
         g[d] = (phi.value(plus) - phi.value(minus)) / (2. * step);
       }
+    AssertThrow(g.norm() > 0. && std::isfinite(g.norm()),
+                ExcMessage("Obstacle: the gradient of the level set '" +
+                           expression + "' vanishes or is not finite at " +
+                           format_point<dim>(x) + "."));
     return g;
   }
 
@@ -167,9 +171,9 @@ namespace impactfe
     // foot point x - phi grad(phi) / |grad(phi)|^2. (A level set that is
     // NaN there, say y + 0 * sqrt(y - 1) with the nodes above y = 1, would
     // otherwise give a plausible gap to a surface that is not defined.)
-    const Tensor<1, dim> n        = normal(x);
-    const double         distance = value / gradient(x).norm();
-    const Point<dim>     foot     = x - distance * n;
+    const Tensor<1, dim> g        = gradient(x);
+    const double         distance = value / g.norm();
+    const Point<dim>     foot     = x - (distance / g.norm()) * g;
     AssertThrow(std::isfinite(phi.value(foot)),
                 ExcMessage("Obstacle: the level set '" + expression +
                            "' is not finite at " + format_point<dim>(foot) +
@@ -186,10 +190,6 @@ namespace impactfe
   LevelSetObstacle<dim>::normal(const Point<dim> &x) const
   {
     const Tensor<1, dim> g = gradient(x);
-    AssertThrow(g.norm() > 0. && std::isfinite(g.norm()),
-                ExcMessage("Obstacle: the gradient of the level set '" +
-                           expression + "' vanishes or is not finite at " +
-                           format_point<dim>(x) + "."));
     return g / g.norm();
   }
 
