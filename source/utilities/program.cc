@@ -5,6 +5,10 @@
 #include <impactfe/utilities/blas_threads.h>
 #include <impactfe/utilities/program.h>
 
+#include <boost/property_tree/json_parser.hpp>
+#include <boost/property_tree/ptree.hpp>
+#include <boost/property_tree/xml_parser.hpp>
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -344,6 +348,68 @@ namespace impactfe
       chain.pop_back();
     }
 
+
+    // The same for JSON and XML (deal.II's formats, read as Boost property
+    // trees): an entry is a node with a "value" child, or a leaf; its key
+    // may be mangled ("Time_20step") or not, and a subsection may appear
+    // twice, so entries are compared by their demangled paths.
+    void
+    check_tree_entries_set_once(const std::string &file, const bool json)
+    {
+      boost::property_tree::ptree tree;
+      if (json)
+        boost::property_tree::read_json(file, tree);
+      else
+        boost::property_tree::read_xml(file, tree);
+      const auto demangle = [](const std::string &key) {
+        std::string name;
+        for (std::size_t i = 0; i < key.size(); ++i)
+          if (key[i] == '_' && i + 2 < key.size() &&
+              std::isxdigit(static_cast<unsigned char>(key[i + 1])) &&
+              std::isxdigit(static_cast<unsigned char>(key[i + 2])))
+            {
+              name +=
+                static_cast<char>(std::stoi(key.substr(i + 1, 2), nullptr, 16));
+              i += 2;
+            }
+          else
+            name += key[i];
+        return name;
+      };
+      std::set<std::string> seen;
+      const std::function<void(const boost::property_tree::ptree &,
+                               const std::string &)>
+        walk = [&](const boost::property_tree::ptree &node,
+                   const std::string                 &path) {
+          for (const auto &[key, child] : node)
+            {
+              if (key.rfind("<xml", 0) == 0)
+                continue;
+              const std::string name = demangle(key);
+              if (child.empty() || child.count("value") > 0)
+                {
+                  AssertThrow(
+                    seen.insert(path + "/" + name).second,
+                    dealii::ExcMessage(
+                      "The parameter file '" + file + "': '" + name + "'" +
+                      (path.empty() ?
+                         std::string(" (top level)") :
+                         " in subsection '" + path.substr(1) + "'") +
+                      " is set twice; only the last value would count. Keep "
+                      "one of the two."));
+                }
+              else
+                walk(child, path + "/" + name);
+            }
+        };
+      // deal.II's XML has one root element, ParameterHandler
+      if (json)
+        walk(tree, "");
+      else
+        for (const auto &[key, root] : tree)
+          if (key.rfind("<xml", 0) != 0)
+            walk(root, "");
+    }
   } // namespace
 
 
@@ -377,6 +443,7 @@ namespace impactfe
     try
       {
         prm.parse_input(file);
+        check_tree_entries_set_once(file, extension == ".json");
       }
     catch (const std::exception &error)
       {

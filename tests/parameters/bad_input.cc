@@ -238,6 +238,39 @@ main()
            TWO_BARS_1D_EXECUTABLE,
            "",
            ".xml");
+  // an entry set twice, in one object (a key twice) or in a subsection
+  // given twice under its plain and its mangled name
+  run_case("json_entry_set_twice",
+           "{\"Material\": {\"Young's modulus\": \"1\", \"Density\": \"1\"},\n"
+           " \"Time stepping\": {\"Time step\": \"1e-3\", \"End time\": "
+           "\"1\"},\n"
+           " \"Time_20stepping\": {\"End_20time\": {\"value\": \"2\"}}}\n",
+           TWO_BARS_1D_EXECUTABLE,
+           "",
+           ".json");
+  {
+    // but a subsection given twice with other entries is fine
+    std::ofstream("json_subsection_twice.json")
+      << "{\"Material\": {\"Young's modulus\": \"1\", \"Density\": "
+         "\"1\"},\n \"Time stepping\": {\"Time step\": \"1e-3\"},\n "
+         "\"Time_20stepping\": {\"End_20time\": {\"value\": \"0.01\"}},\n "
+         "\"Output\": {\"Output directory\": \"json_run\", \"VTU "
+         "output\": \"false\", \"Plot\": \"false\"}}\n";
+    const int status =
+      std::system(TWO_BARS_1D_EXECUTABLE " json_subsection_twice.json > "
+                                         "json_subsection_twice.log 2>&1");
+    impactfe_tests::check(status == 0 &&
+                            std::filesystem::exists("json_run/summary.json"),
+                          "a JSON file with a subsection given twice (other "
+                          "entries) runs");
+  }
+  run_case("xml_entry_set_twice",
+           "<?xml version=\"1.0\"?>\n<ParameterHandler><Time_20stepping>"
+           "<Theta><value>0.6</value></Theta><Theta><value>0.7</value>"
+           "</Theta></Time_20stepping></ParameterHandler>\n",
+           TWO_BARS_1D_EXECUTABLE,
+           "",
+           ".xml");
   run_case("parameter_file_extension",
            with("Time stepping", "Theta = 0.55"),
            TWO_BARS_1D_EXECUTABLE,
