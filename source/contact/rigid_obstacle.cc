@@ -177,11 +177,11 @@ namespace impactfe
     AssertThrow(std::isfinite(phi.value(foot)),
                 ExcMessage("Obstacle: the level set '" + expression +
                            "' is not finite at " + format_point<dim>(foot) +
-                           ", the point of its surface nearest to the node "
-                           "at " +
+                           ", the point to which the gap of the node at " +
                            format_point<dim>(x) +
-                           ": the obstacle is not defined where that node "
-                           "would touch it."));
+                           " is measured (x - phi grad(phi) / "
+                           "|grad(phi)|^2): define the level set wherever "
+                           "the bodies can reach its surface."));
     return distance;
   }
 

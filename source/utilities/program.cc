@@ -19,6 +19,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -185,6 +186,22 @@ namespace impactfe
 
 
 
+  namespace
+  {
+    // Without the white space at both ends, as deal.II's Utilities::trim().
+    std::string
+    trim(const std::string &text)
+    {
+      const auto begin = text.find_first_not_of(" \t\r\n\v\f");
+      return begin == std::string::npos ?
+               std::string() :
+               text.substr(begin,
+                           text.find_last_not_of(" \t\r\n\v\f") - begin + 1);
+    }
+  } // namespace
+
+
+
   std::vector<std::pair<unsigned int, std::string>>
   parameter_file_statements(const std::filesystem::path &file)
   {
@@ -193,13 +210,6 @@ namespace impactfe
     // joined statement loses its comment, has its tabs made blanks and is
     // trimmed again (so a comment ending in a backslash swallows the next
     // line, as in deal.II).
-    const auto trim = [](const std::string &text) {
-      const auto begin = text.find_first_not_of(" \t\r\n\v\f");
-      return begin == std::string::npos ?
-               std::string() :
-               text.substr(begin,
-                           text.find_last_not_of(" \t\r\n\v\f") - begin + 1);
-    };
     std::vector<std::pair<unsigned int, std::string>> statements;
     std::ifstream                                     in(file);
     std::string                                       raw, joined;
@@ -263,12 +273,6 @@ namespace impactfe
                                           const std::string &upper) {
         return (statement.rfind(lower + " ", 0) == 0 ||
                 statement.rfind(upper + " ", 0) == 0);
-      };
-      const auto trim = [](const std::string &text) {
-        const auto begin = text.find_first_not_of(' ');
-        return begin == std::string::npos ?
-                 std::string() :
-                 text.substr(begin, text.find_last_not_of(' ') - begin + 1);
       };
       std::vector<std::string> path; // the open subsections
       std::map<std::pair<std::vector<std::string>, std::string>, unsigned int>
