@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -321,6 +322,7 @@ namespace impactfe
             }
           else if (word == "$Nodes")
             {
+              std::set<long> node_tags;
               const auto [n_blocks, n_nodes] =
                 section_header("$Nodes", "the number of nodes");
               long n_read = 0;
@@ -338,13 +340,21 @@ namespace impactfe
                                    "nodes",
                                    in_block,
                                    n_nodes - n_read);
+                  // deal.II keeps the last node of a tag silently
+                  const auto node_tag = [&]() {
+                    const long tag = count("a node tag");
+                    AssertThrow(node_tags.insert(tag).second,
+                                dealii::ExcMessage(
+                                  where() + "node " + std::to_string(tag) +
+                                  " is defined a second time."));
+                  };
                   if (four_one)
                     for (long node = 0; node < in_block; ++node)
-                      count("a node tag");
+                      node_tag();
                   for (long node = 0; node < in_block; ++node)
                     {
                       if (!four_one)
-                        count("a node tag");
+                        node_tag();
                       for (unsigned int d = 0; d < 3; ++d)
                         number("a node coordinate");
                     }
@@ -459,8 +469,9 @@ namespace impactfe
                                          " after " + marker +
                                          " must be an integer >= 0, got '" +
                                          trimmed(line) + "'."));
-          long n_lines = 0;
-          bool ended   = false;
+          long             n_lines = 0;
+          bool             ended   = false;
+          std::set<double> node_ids;
           while (std::getline(input, line))
             {
               ++line_number;
@@ -486,6 +497,11 @@ namespace impactfe
                                                  "a node needs an id and three "
                                                  "coordinates, got '" +
                                                  text + "'."));
+                  // deal.II keeps the last node of an id silently
+                  AssertThrow(node_ids.insert(id).second,
+                              dealii::ExcMessage(where() + "node " +
+                                                 format_number(id) +
+                                                 " is defined a second time."));
                 }
             }
           AssertThrow(ended,
@@ -504,6 +520,67 @@ namespace impactfe
                         (nodes ? "nodes" : "elements") + " but has " +
                         std::to_string(n_lines) + " lines."));
         }
+    }
+
+    // Two mistakes that GridIn takes silently: a cell that names one node
+    // twice (a degenerate cell: its DoFs do not fit the element, and a
+    // product with the mass matrix crashed), and two nodes at one place
+    // (a mesh made of parts that were not merged, e.g. without Gmsh's
+    // Coherence: the body is cut along their common edges, and nothing
+    // holds the two sides together).
+    template <int dim>
+    void
+    check_cell_vertices(const Triangulation<dim>    &triangulation,
+                        const std::filesystem::path &path)
+    {
+      const auto position = [](const Point<dim> &x) {
+        std::ostringstream out;
+        out << "(" << x << ")";
+        return out.str();
+      };
+      double            smallest_cell = std::numeric_limits<double>::infinity();
+      std::vector<bool> used(triangulation.n_vertices(), false);
+      for (const auto &cell : triangulation.active_cell_iterators())
+        {
+          for (const unsigned int i : cell->vertex_indices())
+            {
+              used[cell->vertex_index(i)] = true;
+              for (unsigned int j = 0; j < i; ++j)
+                AssertThrow(cell->vertex_index(i) != cell->vertex_index(j),
+                            ExcMessage(
+                              "Mesh: cell " +
+                              std::to_string(cell->active_cell_index()) +
+                              " of '" + path.string() + "' names the node at " +
+                              position(cell->vertex(i)) +
+                              " twice: a degenerate cell, which a Q1 "
+                              "element cannot have."));
+            }
+          smallest_cell =
+            std::min(smallest_cell, cell->minimum_vertex_distance());
+        }
+      const auto               &vertices = triangulation.get_vertices();
+      std::vector<unsigned int> order;
+      for (unsigned int v = 0; v < vertices.size(); ++v)
+        if (used[v])
+          order.push_back(v);
+      std::sort(order.begin(),
+                order.end(),
+                [&](const unsigned int a, const unsigned int b) {
+                  return vertices[a][0] < vertices[b][0];
+                });
+      const double tolerance = 1e-8 * smallest_cell;
+      for (std::size_t i = 0; i < order.size(); ++i)
+        for (std::size_t j = i + 1;
+             j < order.size() &&
+             vertices[order[j]][0] - vertices[order[i]][0] <= tolerance;
+             ++j)
+          AssertThrow(
+            vertices[order[i]].distance(vertices[order[j]]) > tolerance,
+            ExcMessage("Mesh: '" + path.string() + "' has two nodes at " +
+                       position(vertices[order[i]]) +
+                       ": the mesh is cut there (parts not merged; in "
+                       "Gmsh, use Coherence or save a mesh of one "
+                       "geometry). A body must be one connected mesh."));
     }
 
     // Reads @p file as ParameterHandler does (parameter_file_statements(),
@@ -677,6 +754,14 @@ namespace impactfe
               trimmed(inner.substr(begin, inner.find('\n', begin) - begin)) +
               ")";
           }
+        // deal.II's orientation of the cells (a twisted cell cannot be
+        // oriented) fails with ExcInternalError, a page about library bugs
+        if (reason.find("indicates that some condition which the author") !=
+            std::string::npos)
+          reason = "deal.II could not orient its cells: a cell is twisted "
+                   "(its nodes are not in cyclic order around it, a "
+                   "'bow tie') or the cells do not form a consistent mesh. "
+                   "Check the node order of the elements.";
         // ExcIO's text is a page of possible causes, most about writing
         if (reason.rfind("An input/output error has occurred", 0) == 0)
           reason = "the file does not follow the " + chosen +
@@ -698,6 +783,7 @@ namespace impactfe
         ExcMessage("Mesh: cell " + std::to_string(cell->active_cell_index()) +
                    " of '" + path.string() + "' has zero or negative " +
                    (dim == 3 ? "volume." : "area.")));
+    check_cell_vertices(triangulation, path);
     // Q1 elements need quadrilaterals (hexahedra in 3D); GridIn also reads
     // triangles, tetrahedra, wedges and pyramids, on which FE_Q fails.
     AssertThrow(triangulation.all_reference_cells_are_hyper_cube(),

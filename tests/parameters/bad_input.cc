@@ -382,6 +382,44 @@ main()
   run_case("tetrahedral_mesh",
            with("Mesh", "Mesh file = tetrahedron.msh"),
            BLOCK_SLIDING_3D_EXECUTABLE);
+  // Two quadrilaterals side by side, made wrong four ways: the second
+  // names node 2 twice (a degenerate cell: the set-up crashed); node 2 is
+  // defined twice (deal.II kept the second silently); the second has its
+  // own nodes on the common edge (a cut body, taken silently); a
+  // twisted quadrilateral (zero area here; in a larger mesh deal.II's
+  // orientation of the cells fails, with a message about library bugs,
+  // which is replaced).
+  const std::string two_quads_nodes =
+    "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n6\n1 0 0 0\n2 1 0 "
+    "0\n3 2 0 0\n4 0 1 0\n5 1 1 0\n6 2 1 0\n$EndNodes\n";
+  std::ofstream("repeated_node.msh")
+    << two_quads_nodes
+    << "$Elements\n2\n1 3 2 1 1 1 2 5 4\n2 3 2 1 1 2 2 6 5\n$EndElements\n";
+  run_case("mesh_cell_names_a_node_twice",
+           with("Mesh", "Mesh file = repeated_node.msh"),
+           cylinder);
+  std::ofstream("node_defined_twice.msh")
+    << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 "
+       "0\n2 1 1 0\n4 0 1 0\n$EndNodes\n$Elements\n1\n1 3 2 1 1 1 2 2 "
+       "4\n$EndElements\n";
+  run_case("mesh_node_defined_twice",
+           with("Mesh", "Mesh file = node_defined_twice.msh"),
+           cylinder);
+  std::ofstream("not_merged.msh")
+    << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n8\n1 0 0 0\n2 1 0 "
+       "0\n3 1 1 0\n4 0 1 0\n5 1 0 0\n6 2 0 0\n7 2 1 0\n8 1 1 "
+       "0\n$EndNodes\n$Elements\n2\n1 3 2 1 1 1 2 3 4\n2 3 2 1 1 5 6 7 "
+       "8\n$EndElements\n";
+  run_case("mesh_parts_not_merged",
+           with("Mesh", "Mesh file = not_merged.msh"),
+           cylinder);
+  std::ofstream("twisted.msh")
+    << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 "
+       "0\n3 0 1 0\n4 1 1 0\n$EndNodes\n$Elements\n1\n1 3 2 1 1 1 2 3 "
+       "4\n$EndElements\n";
+  run_case("mesh_twisted_cell",
+           with("Mesh", "Mesh file = twisted.msh"),
+           cylinder);
   // A hexahedron with all its nodes in the plane y = 0: zero volume.
   std::ofstream("flat_hexahedron.msh")
     << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n8\n1 0 0 0\n"
