@@ -161,8 +161,9 @@ main(int argc, char **argv)
         {
           char *end              = nullptr;
           cone_options.tolerance = std::strtod(argv[++i], &end);
-          if (*end != '\0' || !(cone_options.tolerance > 0.))
-            return bad_argument("--tolerance needs a number > 0");
+          if (*end != '\0' || !(cone_options.tolerance > 0.) ||
+              !std::isfinite(cone_options.tolerance))
+            return bad_argument("--tolerance needs a finite number > 0");
           cone_options.cone_error_tolerance = cone_options.tolerance;
           tolerance_given                   = true;
         }

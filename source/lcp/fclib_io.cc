@@ -566,14 +566,16 @@ namespace impactfe
             reader.fail(root + "/W is " + std::to_string(W.m) + " x " +
                         std::to_string(W.n) + ", not square");
           m = W.m;
-          p.W.reinit(m, m);
-          for (std::size_t k = 0; k < W.row.size(); ++k)
-            p.W(W.row[k], W.col[k]) += W.value[k];
+          // q before the dense W: a header's m = 60000 with a short q
+          // would take 29 GB first
           p.free_velocity = reader.read_array<double>(root + "/vectors/q");
           if (p.free_velocity.size() != std::size_t(m))
             reader.fail(root + "/vectors/q has " +
                         std::to_string(p.free_velocity.size()) +
                         " entries, W has " + std::to_string(m) + " rows");
+          p.W.reinit(m, m);
+          for (std::size_t k = 0; k < W.row.size(); ++k)
+            p.W(W.row[k], W.col[k]) += W.value[k];
         }
       else
         {
@@ -634,6 +636,11 @@ namespace impactfe
           for (int k = 1; k <= n_guesses; ++k)
             {
               const std::string path = "/guesses/" + std::to_string(k);
+              // (a count of 2e9 with no groups ran on for ever)
+              if (!reader.exists(path))
+                reader.fail(
+                  "/guesses/number_of_guesses = " + std::to_string(n_guesses) +
+                  " but " + path + " is missing");
               problem.guesses.push_back(reader.read_solution(path));
               check_solution(problem.guesses.back(), path);
             }

@@ -366,6 +366,14 @@ namespace impactfe
             t.error("the header announces a " + std::to_string(size0) + "-by-" +
                     std::to_string(size1) + " matrix: " + need.str());
           }
+        // Whatever the storage, q (n or d n_c numbers) follows the matrix:
+        // a sparse header of n = 40000 in a 70-byte file took 12.8 GB. (A
+        // small matrix is read first: its own errors say more.)
+        if (8. * entries > 1e8 && double(t.remaining()) < double(size0))
+          t.error("the header announces a " + std::to_string(size0) + "-by-" +
+                  std::to_string(size1) + " matrix, but the file holds only " +
+                  std::to_string(t.remaining()) +
+                  " more numbers and words, fewer than q alone needs");
         DenseMatrix M(size0, size1, 0.);
         if (storage == 2)
           {
@@ -410,6 +418,19 @@ namespace impactfe
           t.error("index1_data must run from 0 to filled2");
         for (long i = 0; i < filled2; ++i)
           index2[i] = t.integer("index2_data", 0, bn1 - 1);
+        // a block given twice would overwrite the first (triplets add up)
+        for (long r = 0; r + 1 < filled1; ++r)
+          {
+            std::vector<long> columns(index2.begin() + index1[r],
+                                      index2.begin() + index1[r + 1]);
+            std::sort(columns.begin(), columns.end());
+            const auto twice =
+              std::adjacent_find(columns.begin(), columns.end());
+            if (twice != columns.end())
+              t.error("block row " + std::to_string(r) +
+                      " lists block column " + std::to_string(*twice) +
+                      " twice: each block must appear once");
+          }
         for (long r = 0; r + 1 < filled1; ++r)
           for (long b = index1[r]; b < index1[r + 1]; ++b)
             {
@@ -544,11 +565,18 @@ namespace impactfe
           for (auto &v : p.free_velocity)
             v = t.number("an entry of q");
           p.mu.resize(p.n_contacts);
-          for (auto &v : p.mu)
+          for (std::size_t c = 0; c < p.mu.size(); ++c)
             {
-              v = t.number("a friction coefficient");
-              if (v < 0.)
-                t.error("negative friction coefficient");
+              p.mu[c] = t.number("a friction coefficient");
+              if (!(p.mu[c] >= 0.))
+                {
+                  std::ostringstream value;
+                  value << p.mu[c];
+                  t.error("the friction coefficient of contact " +
+                          std::to_string(c) + " is " + value.str() +
+                          ", not >= 0 (the position given is that of the "
+                          "next number)");
+                }
             }
           p.gap_term.assign(p.n_contacts, 0.);
           t.expect_no_more_numbers(

@@ -392,6 +392,19 @@ main()
       f.ints("/fclib_local/spacedim", {2});
     }
     deallog << read_error("no_q.hdf5") << std::endl;
+    // a guess count without its groups (a count of 2e9 ran on for ever)
+    {
+      RawFile f("guesses_missing.hdf5");
+      f.group("/fclib_local");
+      f.matrix("/fclib_local/W", W2, -1, all);
+      f.group("/fclib_local/vectors");
+      f.doubles("/fclib_local/vectors/q", q4);
+      f.doubles("/fclib_local/vectors/mu", mu2);
+      f.ints("/fclib_local/spacedim", {2});
+      f.group("/guesses");
+      f.ints("/guesses/number_of_guesses", {2000000000});
+    }
+    deallog << read_error("guesses_missing.hdf5") << std::endl;
     write_local("negative_mu.hdf5", W2, q4, {0.3, -0.1}, 2);
     deallog << read_error("negative_mu.hdf5") << std::endl;
     write_local("short_mu.hdf5", W2, q4, {0.3}, 2);

@@ -134,6 +134,20 @@ main()
     dealii::deallog << message.substr(0, message.find("this machine's"))
                     << "..." << std::endl;
   }
+  // a sparse header whose q the file cannot hold (n = 40000 in 70 bytes
+  // took 12.8 GB before q was found missing)
+  dealii::deallog << read_error("40000\n2 40000 40000\ntriplet: "
+                                "40000-by-40000, nzmax: 0 nnz: 0\n")
+                  << std::endl;
+  // sparse block storage with block (0, 0) twice: the second overwrote the
+  // first (triplets add up)
+  dealii::deallog << read_error("2\n1 2 2\n3\n2 2\n1 2\n1 2\n3\n3\n0 2 3\n"
+                                "0 0 1\n0 2\n1 7\n2 2\n-1 -1\n")
+                  << std::endl;
+  // a negative friction coefficient is named with its contact
+  dealii::deallog << read_error("2\n2\n0 4 4\n4 4\n2 0 1 0  0 1 0 0  1 0 2 "
+                                "0  0 0 0 1\n-1 0.5 -1 -0.2\n-0.3 0.5\n")
+                  << std::endl;
   // more numbers than the header announces (n = 2 but three entries of q;
   // one contact but two friction coefficients; a global problem, M, H, q,
   // b, mu, whose H would be read as q); text after the data is a comment
