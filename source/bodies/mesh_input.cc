@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
 
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/grid_out.h>
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -555,32 +557,54 @@ namespace impactfe
                               " twice: a degenerate cell, which a Q1 "
                               "element cannot have."));
             }
+          AssertThrow(cell->minimum_vertex_distance() > 0.,
+                      ExcMessage("Mesh: cell " +
+                                 std::to_string(cell->active_cell_index()) +
+                                 " of '" + path.string() +
+                                 "' has two nodes at one place: a "
+                                 "degenerate cell, which a Q1 element "
+                                 "cannot have."));
           smallest_cell =
             std::min(smallest_cell, cell->minimum_vertex_distance());
         }
-      const auto               &vertices = triangulation.get_vertices();
-      std::vector<unsigned int> order;
+      // Nodes in boxes of half the shortest cell edge: a node's twin is in
+      // its box or a neighbouring one (linear in the number of nodes; a
+      // sweep along x met whole planes of nodes of equal x).
+      const auto  &vertices  = triangulation.get_vertices();
+      const double tolerance = 1e-8 * smallest_cell;
+      const double box_size  = 0.5 * smallest_cell;
+      std::map<std::array<long, dim>, std::vector<unsigned int>> boxes;
+      const auto box_of = [&](const Point<dim> &x) {
+        std::array<long, dim> box;
+        for (unsigned int d = 0; d < dim; ++d)
+          box[d] = std::lround(std::floor(x[d] / box_size));
+        return box;
+      };
       for (unsigned int v = 0; v < vertices.size(); ++v)
         if (used[v])
-          order.push_back(v);
-      std::sort(order.begin(),
-                order.end(),
-                [&](const unsigned int a, const unsigned int b) {
-                  return vertices[a][0] < vertices[b][0];
-                });
-      const double tolerance = 1e-8 * smallest_cell;
-      for (std::size_t i = 0; i < order.size(); ++i)
-        for (std::size_t j = i + 1;
-             j < order.size() &&
-             vertices[order[j]][0] - vertices[order[i]][0] <= tolerance;
-             ++j)
-          AssertThrow(
-            vertices[order[i]].distance(vertices[order[j]]) > tolerance,
-            ExcMessage("Mesh: '" + path.string() + "' has two nodes at " +
-                       position(vertices[order[i]]) +
-                       ": the mesh is cut there (parts not merged; in "
-                       "Gmsh, use Coherence or save a mesh of one "
-                       "geometry). A body must be one connected mesh."));
+          boxes[box_of(vertices[v])].push_back(v);
+      for (unsigned int v = 0; v < vertices.size(); ++v)
+        if (used[v])
+          {
+            const std::array<long, dim> box = box_of(vertices[v]);
+            for (unsigned int n = 0; n < Utilities::pow(3u, dim); ++n)
+              {
+                std::array<long, dim> neighbour = box;
+                for (unsigned int d = 0, k = n; d < dim; ++d, k /= 3)
+                  neighbour[d] += long(k % 3) - 1;
+                const auto found = boxes.find(neighbour);
+                if (found != boxes.end())
+                  for (const unsigned int w : found->second)
+                    AssertThrow(
+                      w == v || vertices[v].distance(vertices[w]) > tolerance,
+                      ExcMessage(
+                        "Mesh: '" + path.string() + "' has two nodes at " +
+                        position(vertices[v]) +
+                        ": the mesh is cut there (parts not merged; in "
+                        "Gmsh, use Coherence or save a mesh of one "
+                        "geometry). A body must be one connected mesh."));
+              }
+          }
     }
 
     // Reads @p file as ParameterHandler does (parameter_file_statements(),
