@@ -259,71 +259,69 @@ namespace impactfe
 
   namespace
   {
-    // deal.II keeps the last of two `set` statements of one entry without a
-    // word, so a value edited in one place and left in another is lost
-    // silently. Within one file that is a mistake; an included file's entry
-    // set again by the including file is an override, and allowed.
-    void
-    check_entries_set_once(
-      const std::filesystem::path                             &file,
-      const std::vector<std::pair<unsigned int, std::string>> &statements)
+    using EntryPath = std::vector<std::string>; // subsections, then name
+
+    std::string
+    describe_entry(const EntryPath &entry)
     {
+      std::string subsection;
+      for (std::size_t i = 0; i + 1 < entry.size(); ++i)
+        subsection += (subsection.empty() ? "" : "/") + entry[i];
+      return "'" + entry.back() + "'" +
+             (subsection.empty() ? std::string(" (top level)") :
+                                   " in subsection '" + subsection + "'");
+    }
+
+    // Follows the include statements of @p file depth first (@p chain holds
+    // the files that include it, outermost first) and returns the entries
+    // that the file and its included files set, relative to where the file
+    // is read. deal.II keeps the last `set` of an entry without a word, so
+    // two in one file are refused (a value edited in one place and left in
+    // another is lost), and so is an entry set before an include that sets
+    // it again (the included value would win). An entry set after the
+    // include is an override, and allowed.
+    std::set<EntryPath>
+    check_include_statements(const std::filesystem::path        &file,
+                             std::vector<std::filesystem::path> &chain)
+    {
+      chain.push_back(file);
       const auto starts_with_keyword = [](const std::string &statement,
                                           const std::string &lower,
                                           const std::string &upper) {
         return (statement.rfind(lower + " ", 0) == 0 ||
                 statement.rfind(upper + " ", 0) == 0);
       };
-      std::vector<std::string> path; // the open subsections
-      std::map<std::pair<std::vector<std::string>, std::string>, unsigned int>
-        first_set;
-      for (const auto &[line, statement] : statements)
-        if (starts_with_keyword(statement, "subsection", "SUBSECTION"))
-          path.push_back(trim(statement.substr(10)));
-        else if ((statement == "end" || statement == "END") && !path.empty())
-          path.pop_back();
-        else if (starts_with_keyword(statement, "set", "SET") &&
-                 statement.find('=') != std::string::npos)
-          {
-            const std::string name =
-              trim(statement.substr(3, statement.find('=') - 3));
-            const auto [where, is_new] =
-              first_set.emplace(std::make_pair(path, name), line);
-            std::string subsection;
-            for (const std::string &s : path)
-              subsection += (subsection.empty() ? "" : "/") + s;
-            AssertThrow(
-              is_new,
-              dealii::ExcMessage(
-                "The parameter file '" + file.string() + "', line " +
-                std::to_string(line) + ": '" + name + "'" +
-                (subsection.empty() ? std::string(" (top level)") :
-                                      " in subsection '" + subsection + "'") +
-                " is set a second time (first at line " +
-                std::to_string(where->second) +
-                "); only the last value would count. Keep one of the two."));
-          }
-    }
-
-
-
-    // Follows the include statements of @p file depth first; @p chain holds
-    // the files that include it, outermost first.
-    void
-    check_include_statements(const std::filesystem::path        &file,
-                             std::vector<std::filesystem::path> &chain)
-    {
-      chain.push_back(file);
-      const auto statements = parameter_file_statements(file);
-      check_entries_set_once(file, statements);
-      for (const auto &[line, statement] : statements)
+      std::vector<std::string>          path;     // the open subsections
+      std::map<EntryPath, unsigned int> set_here; // and the line
+      std::set<EntryPath>               entries;
+      for (const auto &[line, statement] : parameter_file_statements(file))
         {
+          const std::string at = "The parameter file '" + file.string() +
+                                 "', line " + std::to_string(line);
+          if (starts_with_keyword(statement, "subsection", "SUBSECTION"))
+            path.push_back(trim(statement.substr(10)));
+          else if ((statement == "end" || statement == "END") && !path.empty())
+            path.pop_back();
+          else if (starts_with_keyword(statement, "set", "SET") &&
+                   statement.find('=') != std::string::npos)
+            {
+              EntryPath entry = path;
+              entry.push_back(
+                trim(statement.substr(3, statement.find('=') - 3)));
+              const auto [first, is_new] = set_here.emplace(entry, line);
+              AssertThrow(is_new,
+                          dealii::ExcMessage(
+                            at + ": " + describe_entry(entry) +
+                            " is set a second time (first at line " +
+                            std::to_string(first->second) +
+                            "); only the last value would count. Keep one "
+                            "of the two."));
+              entries.insert(entry);
+            }
           const std::string name = included_file(statement);
           if (name.empty())
             continue;
-          const std::string where = "The parameter file '" + file.string() +
-                                    "', line " + std::to_string(line) +
-                                    ", includes '" + name + "'";
+          const std::string where = at + ", includes '" + name + "'";
           // deal.II opens it as a stream: any file but a directory (a
           // pipe or /dev/null too)
           std::error_code unreadable;
@@ -347,10 +345,28 @@ namespace impactfe
           AssertThrow(chain.size() < 64,
                       dealii::ExcMessage(where + ": more than 64 nested "
                                                  "include statements."));
-          check_include_statements(name, chain);
+          // the included file is read inside the open subsections
+          for (const EntryPath &included :
+               check_include_statements(name, chain))
+            {
+              EntryPath entry = path;
+              entry.insert(entry.end(), included.begin(), included.end());
+              const auto earlier = set_here.find(entry);
+              AssertThrow(earlier == set_here.end(),
+                          dealii::ExcMessage(
+                            where + ", which sets " + describe_entry(entry) +
+                            " again after line " +
+                            std::to_string(earlier->second) +
+                            " set it: the included value would count. Set "
+                            "it after the include statement to override "
+                            "the included file."));
+              entries.insert(entry);
+            }
         }
       chain.pop_back();
+      return entries;
     }
+
 
 
     // The same for JSON and XML (deal.II's formats, read as Boost property

@@ -226,6 +226,12 @@ main()
   run_case("include_missing",
            "include no_such_file.prm\n" +
              with("Time stepping", "Theta = 0.55"));
+  // an entry set before an include that sets it again: the included value
+  // would win silently (set after the include, it is an override)
+  std::ofstream("sets_theta.prm")
+    << "subsection Time stepping\n  set Theta = 0.55\nend\n";
+  run_case("entry_set_before_an_include",
+           with("Time stepping", "Theta = 0.6") + "include sets_theta.prm\n");
   // Boost's JSON and XML readers said "<unspecified file>"
   run_case("json_not_closed",
            "{\"Time stepping\": {\"Theta\": \"0.5\"\n",
