@@ -97,6 +97,8 @@ main(int argc, char **argv)
   cone_options.cone_error_tolerance = cone_options.tolerance;
   std::vector<std::string> files;
   bool                     route_given = false, tolerance_given = false;
+  // options for friction-contact files only, which an LCP file ignores
+  std::vector<std::string> contact_options;
   for (int i = 1; i < argc; ++i)
     {
       const std::string a = argv[i];
@@ -121,6 +123,7 @@ main(int argc, char **argv)
         }
       else if (a == "--form" && i + 1 < argc)
         {
+          contact_options.push_back(a);
           const std::string f = argv[++i];
           if (f == "klarbring")
             options.form = FrictionForm::klarbring;
@@ -135,6 +138,7 @@ main(int argc, char **argv)
       else if ((a == "--cone" || a == "--route") && i + 1 < argc)
         {
           const std::string value = argv[++i];
+          contact_options.push_back(a);
           try
             {
               if (a == "--cone")
@@ -176,6 +180,7 @@ main(int argc, char **argv)
               "--facets needs an even integer in [4, 256], got '" +
               std::string(argv[i]) + "' (--cone exact for the circular cone)");
           options.n_facets = static_cast<unsigned int>(k);
+          contact_options.push_back(a);
         }
       else if (!a.empty() && a[0] == '-')
         {
@@ -189,6 +194,9 @@ main(int argc, char **argv)
   if ((route_given || tolerance_given) && cone != ConeModel::exact)
     return bad_argument(std::string(route_given ? "--route" : "--tolerance") +
                         " applies to --cone exact only");
+  if (warm && cone == ConeModel::exact)
+    return bad_argument("--warm applies to the LCP routes; --cone exact "
+                        "does not use it");
   impactfe::set_blas_thread_limit(blas_threads);
   if (files.empty())
     {
@@ -230,6 +238,18 @@ main(int argc, char **argv)
           std::vector<double> P;
           if (f.type == ProblemType::lcp)
             {
+              if (!contact_options.empty())
+                {
+                  std::string list;
+                  for (const std::string &o : contact_options)
+                    list += (list.empty() ? "" : ", ") + o;
+                  std::fprintf(stderr,
+                               "lcp-solve: note: %s is an LCP file; %s "
+                               "apply to friction-contact files and are "
+                               "not used for it\n",
+                               file.c_str(),
+                               list.c_str());
+                }
               n = f.lcp.q.size();
               if (warm)
                 {

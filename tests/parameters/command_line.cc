@@ -116,6 +116,35 @@ main()
                               ": refused, exit code 2");
     }
 
+  // options that lcp-solve would have ignored: an infinite tolerance
+  // (accepted as converged), --warm with the exact cone (not used by it)
+  for (const auto &[options, message] :
+       std::vector<std::pair<std::string, std::string>>{
+         {"--cone exact --tolerance inf",
+          "--tolerance needs a finite number > 0"},
+         {"--cone exact --warm", "--warm applies to the LCP routes"}})
+    {
+      const std::string log = "lcp_solve_options.log";
+      const int code = run(std::string(LCP_SOLVE_EXECUTABLE) + " " + options +
+                             " no_such_problem.dat",
+                           log);
+      impactfe_tests::check(code == 2 && contains(text_of(log), message),
+                            "lcp-solve " + options + ": refused, exit code 2");
+    }
+  // options for contact files, on an LCP file: solved, with a note
+  {
+    std::ofstream("identity.lcp") << "2\n0\n2\n2\n2\t2\n1 0\n0 1\n-1 -1\n";
+    const std::string log = "lcp_solve_lcp_note.log";
+    const int         code =
+      run(std::string(LCP_SOLVE_EXECUTABLE) + " --facets 16 identity.lcp", log);
+    impactfe_tests::check(code == 0 && contains(text_of(log), "solved") &&
+                            contains(text_of(log),
+                                     "identity.lcp is an LCP file; --facets "
+                                     "apply to friction-contact files"),
+                          "lcp-solve --facets on an LCP file: solved, with "
+                          "a note that --facets is not used");
+  }
+
   // The listing is input, and holds the defaults: two_bars_1d on it
   // writes the history of a file that sets the output entries and the
   // entries without a default (Young's modulus, the density, the time step
