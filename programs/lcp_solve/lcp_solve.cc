@@ -194,9 +194,6 @@ main(int argc, char **argv)
   if ((route_given || tolerance_given) && cone != ConeModel::exact)
     return bad_argument(std::string(route_given ? "--route" : "--tolerance") +
                         " applies to --cone exact only");
-  if (warm && cone == ConeModel::exact)
-    return bad_argument("--warm applies to the LCP routes; --cone exact "
-                        "does not use it");
   impactfe::set_blas_thread_limit(blas_threads);
   if (files.empty())
     {
@@ -245,10 +242,11 @@ main(int argc, char **argv)
                     list += (list.empty() ? "" : ", ") + o;
                   std::fprintf(stderr,
                                "lcp-solve: note: %s is an LCP file; %s "
-                               "apply to friction-contact files and are "
-                               "not used for it\n",
+                               "%s to friction-contact files, not to it\n",
                                file.c_str(),
-                               list.c_str());
+                               list.c_str(),
+                               contact_options.size() == 1 ? "applies" :
+                                                             "apply");
                 }
               n = f.lcp.q.size();
               if (warm)
@@ -280,6 +278,13 @@ main(int argc, char **argv)
               GroupedExactConeSolution exact;
               if (cone == ConeModel::exact)
                 {
+                  // --warm is for the LCP routes (and LCP files in the
+                  // same batch)
+                  if (warm)
+                    std::fprintf(stderr,
+                                 "lcp-solve: note: %s: --warm is not used "
+                                 "by --cone exact\n",
+                                 file.c_str());
                   exact = solve_exact_cone_by_groups(p, options, cone_options);
                   s     = exact.solution;
                 }

@@ -573,11 +573,12 @@ namespace impactfe
       const auto  &vertices  = triangulation.get_vertices();
       const double tolerance = 1e-8 * smallest_cell;
       const double box_size  = 0.5 * smallest_cell;
-      std::map<std::array<long, dim>, std::vector<unsigned int>> boxes;
+      // (box numbers as doubles: no overflow for a tiny box far out)
+      std::map<std::array<double, dim>, std::vector<unsigned int>> boxes;
       const auto box_of = [&](const Point<dim> &x) {
-        std::array<long, dim> box;
+        std::array<double, dim> box;
         for (unsigned int d = 0; d < dim; ++d)
-          box[d] = std::lround(std::floor(x[d] / box_size));
+          box[d] = std::floor(x[d] / box_size);
         return box;
       };
       for (unsigned int v = 0; v < vertices.size(); ++v)
@@ -586,12 +587,12 @@ namespace impactfe
       for (unsigned int v = 0; v < vertices.size(); ++v)
         if (used[v])
           {
-            const std::array<long, dim> box = box_of(vertices[v]);
+            const std::array<double, dim> box = box_of(vertices[v]);
             for (unsigned int n = 0; n < Utilities::pow(3u, dim); ++n)
               {
-                std::array<long, dim> neighbour = box;
+                std::array<double, dim> neighbour = box;
                 for (unsigned int d = 0, k = n; d < dim; ++d, k /= 3)
-                  neighbour[d] += long(k % 3) - 1;
+                  neighbour[d] += double(k % 3) - 1.;
                 const auto found = boxes.find(neighbour);
                 if (found != boxes.end())
                   for (const unsigned int w : found->second)
@@ -600,9 +601,11 @@ namespace impactfe
                       ExcMessage(
                         "Mesh: '" + path.string() + "' has two nodes at " +
                         position(vertices[v]) +
-                        ": the mesh is cut there (parts not merged; in "
-                        "Gmsh, use Coherence or save a mesh of one "
-                        "geometry). A body must be one connected mesh."));
+                        ": the mesh is cut there, by a slit or by parts "
+                        "that were not merged (in Gmsh: Coherence). A body "
+                        "cannot have a slit of zero width: nothing would "
+                        "keep its two sides from passing through each "
+                        "other."));
               }
           }
     }
@@ -782,10 +785,10 @@ namespace impactfe
         // oriented) fails with ExcInternalError, a page about library bugs
         if (reason.find("indicates that some condition which the author") !=
             std::string::npos)
-          reason = "deal.II could not orient its cells: a cell is twisted "
-                   "(its nodes are not in cyclic order around it, a "
-                   "'bow tie') or the cells do not form a consistent mesh. "
-                   "Check the node order of the elements.";
+          reason = "deal.II stopped with an internal error while it built "
+                   "the mesh. The usual cause is a cell it cannot orient: a "
+                   "twisted cell (its nodes not in cyclic order around it, "
+                   "a 'bow tie'). Check the node order of the elements.";
         // ExcIO's text is a page of possible causes, most about writing
         if (reason.rfind("An input/output error has occurred", 0) == 0)
           reason = "the file does not follow the " + chosen +
@@ -807,7 +810,6 @@ namespace impactfe
         ExcMessage("Mesh: cell " + std::to_string(cell->active_cell_index()) +
                    " of '" + path.string() + "' has zero or negative " +
                    (dim == 3 ? "volume." : "area.")));
-    check_cell_vertices(triangulation, path);
     // Q1 elements need quadrilaterals (hexahedra in 3D); GridIn also reads
     // triangles, tetrahedra, wedges and pyramids, on which FE_Q fails.
     AssertThrow(triangulation.all_reference_cells_are_hyper_cube(),
@@ -820,6 +822,7 @@ namespace impactfe
                               std::string("quadrilaterals (triangles); "
                                           "impactfe's Q1 elements need "
                                           "quadrilaterals."))));
+    check_cell_vertices(triangulation, path);
   }
 
 

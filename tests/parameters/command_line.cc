@@ -116,33 +116,39 @@ main()
                               ": refused, exit code 2");
     }
 
-  // options that lcp-solve would have ignored: an infinite tolerance
-  // (accepted as converged), --warm with the exact cone (not used by it)
-  for (const auto &[options, message] :
-       std::vector<std::pair<std::string, std::string>>{
-         {"--cone exact --tolerance inf",
-          "--tolerance needs a finite number > 0"},
-         {"--cone exact --warm", "--warm applies to the LCP routes"}})
-    {
-      const std::string log = "lcp_solve_options.log";
-      const int code = run(std::string(LCP_SOLVE_EXECUTABLE) + " " + options +
-                             " no_such_problem.dat",
-                           log);
-      impactfe_tests::check(code == 2 && contains(text_of(log), message),
-                            "lcp-solve " + options + ": refused, exit code 2");
-    }
-  // options for contact files, on an LCP file: solved, with a note
+  // an infinite tolerance was taken (and the run called converged)
+  {
+    const std::string log  = "lcp_solve_tolerance.log";
+    const int         code = run(std::string(LCP_SOLVE_EXECUTABLE) +
+                           " --cone exact --tolerance inf no_such_problem.dat",
+                         log);
+    impactfe_tests::check(code == 2 &&
+                            contains(text_of(log),
+                                     "--tolerance needs a finite number > 0"),
+                          "lcp-solve --tolerance inf: refused, exit code 2");
+  }
+  // options that a file's kind does not use were ignored silently: the
+  // contact options on an LCP file, --warm with the exact cone on a
+  // contact file. Both files are solved, each with a note.
   {
     std::ofstream("identity.lcp") << "2\n0\n2\n2\n2\t2\n1 0\n0 1\n-1 -1\n";
-    const std::string log = "lcp_solve_lcp_note.log";
-    const int         code =
-      run(std::string(LCP_SOLVE_EXECUTABLE) + " --facets 16 identity.lcp", log);
-    impactfe_tests::check(code == 0 && contains(text_of(log), "solved") &&
-                            contains(text_of(log),
-                                     "identity.lcp is an LCP file; --facets "
-                                     "apply to friction-contact files"),
-                          "lcp-solve --facets on an LCP file: solved, with "
-                          "a note that --facets is not used");
+    std::ofstream("two_contacts.fc")
+      << "2\n2\n0 4 4\n4 4\n2 0 1 0  0 1 0 0  1 0 2 0  0 0 0 1\n"
+         "-1 0.5 -1 -0.2\n0.3 0.5\n";
+    const std::string log  = "lcp_solve_notes.log";
+    const int         code = run(std::string(LCP_SOLVE_EXECUTABLE) +
+                           " --cone exact --warm identity.lcp two_contacts.fc",
+                         log);
+    const std::string text = text_of(log);
+    impactfe_tests::check(
+      code == 0 && contains(text, "identity.lcp 2 solved") &&
+        contains(text, "two_contacts.fc 4 solved") &&
+        contains(text,
+                 "identity.lcp is an LCP file; --cone applies to "
+                 "friction-contact files") &&
+        contains(text, "two_contacts.fc: --warm is not used by --cone exact"),
+      "lcp-solve --cone exact --warm on an LCP and a contact file: both "
+      "solved, each with a note on the option it does not use");
   }
 
   // The listing is input, and holds the defaults: two_bars_1d on it
