@@ -428,32 +428,19 @@ namespace impactfe
     // Moduli at the edge of double precision (E = 1e305 Pa, say) overflow
     // in the element integrals; every later product would carry the inf or
     // NaN, so the data that caused it are named here.
-    const MaterialParameters &m = material_parameters;
-    const auto check_finite     = [&](const SparseMatrix<double> &matrix,
-                                  const std::string          &what,
-                                  const std::string          &data) {
+    const auto check_finite = [&](const SparseMatrix<double> &matrix,
+                                  const std::string          &what) {
       for (const auto &entry : matrix)
         AssertThrow(std::isfinite(entry.value()),
                     ExcMessage("Body '" + body_name + "': the " + what +
-                               " matrix overflows double precision (" + data +
+                               " matrix overflows double precision (" +
+                               material_parameters.entries_of_matrix(what) +
                                "); the run is not started."));
     };
-    check_finite(mass,
-                 "mass",
-                 "'Density' = " + format_number(m.density) + " kg/m^3");
-    check_finite(stiffness,
-                 "stiffness",
-                 "'Young's modulus' = " + format_number(m.youngs_modulus) +
-                   " Pa, 'Poisson's ratio' = " +
-                   format_number(m.poissons_ratio));
+    check_finite(mass, "mass");
+    check_finite(stiffness, "stiffness");
     if (has_damping())
-      check_finite(damping,
-                   "damping",
-                   "'Viscosity' = " + format_number(m.viscosity) +
-                     " Pa s, 'Rayleigh mass coefficient' = " +
-                     format_number(m.rayleigh_mass) +
-                     " 1/s, 'Rayleigh stiffness coefficient' = " +
-                     format_number(m.rayleigh_stiffness) + " s");
+      check_finite(damping, "damping");
   }
 
 

@@ -104,6 +104,22 @@ namespace impactfe
   }
 
 
+  std::string
+  MaterialParameters::entries_of_matrix(const std::string &matrix) const
+  {
+    if (matrix == "mass")
+      return "'Density' = " + format_number(density) + " kg/m^3";
+    if (matrix == "stiffness")
+      return "'Young's modulus' = " + format_number(youngs_modulus) +
+             " Pa, 'Poisson's ratio' = " + format_number(poissons_ratio);
+    return "'Viscosity' = " + format_number(viscosity) +
+           " Pa s, 'Rayleigh mass coefficient' = " +
+           format_number(rayleigh_mass) +
+           " 1/s, 'Rayleigh stiffness coefficient' = " +
+           format_number(rayleigh_stiffness) + " s";
+  }
+
+
 
   template <int dim>
   SymmetricTensor<4, dim>

@@ -188,33 +188,21 @@ namespace impactfe
       // is reduced, so that all ranks stop together.
       const std::string per_body =
         part_materials.empty() ? "" : " (or a body's own, in 'Bodies')";
-      const MaterialParameters &m = material_parameters;
-      const auto                check_finite =
+      const auto check_finite =
         [&](const TrilinosWrappers::SparseMatrix &matrix,
-            const std::string                    &what,
-            const std::string                    &data) {
+            const std::string                    &what) {
           unsigned int overflowed = 0;
           for (const auto &entry : matrix)
             overflowed = overflowed || !std::isfinite(entry.value());
           AssertThrow(Utilities::MPI::max(overflowed, mpi_communicator) == 0,
                       ExcMessage("The " + what +
-                                 " matrix overflows double precision (" + data +
+                                 " matrix overflows double precision (" +
+                                 material_parameters.entries_of_matrix(what) +
                                  per_body + "); the run is not started."));
         };
-      check_finite(mass,
-                   "mass",
-                   "'Density' = " + format_number(m.density) + " kg/m^3");
-      check_finite(stiffness,
-                   "stiffness",
-                   "'Young's modulus' = " + format_number(m.youngs_modulus) +
-                     " Pa");
-      check_finite(damping,
-                   "damping",
-                   "'Viscosity' = " + format_number(m.viscosity) +
-                     " Pa s, 'Rayleigh mass coefficient' = " +
-                     format_number(m.rayleigh_mass) +
-                     " 1/s, 'Rayleigh stiffness coefficient' = " +
-                     format_number(m.rayleigh_stiffness) + " s");
+      check_finite(mass, "mass");
+      check_finite(stiffness, "stiffness");
+      check_finite(damping, "damping");
       // A constant body force rho g is M g; with massless nodes it follows
       // the mass (ElasticBody::assemble()), so that a free body still
       // falls as a whole.

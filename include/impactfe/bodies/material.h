@@ -70,6 +70,14 @@ namespace impactfe
     void
     check(const std::string &where) const;
 
+    /**
+     * The entries, with their values and units, that the "mass",
+     * "stiffness" or "damping" matrix is made of: for a message about
+     * that matrix.
+     */
+    std::string
+    entries_of_matrix(const std::string &matrix) const;
+
     /** Kelvin--Voigt relaxation time eta/E plus the Rayleigh stiffness term. */
     double
     stiffness_damping_factor() const
