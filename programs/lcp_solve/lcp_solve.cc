@@ -11,6 +11,7 @@
 #include <impactfe/lcp/problem_io.h>
 #include <impactfe/utilities/blas_threads.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -248,28 +249,9 @@ main(int argc, char **argv)
                                contact_options.size() == 1 ? "applies" :
                                                              "apply");
                 }
-              n = f.lcp.q.size();
-              if (warm)
-                {
-                  std::vector<bool> guess(n);
-                  for (std::size_t i = 0; i < n; ++i)
-                    guess[i] = f.lcp.q[i] < 0.;
-                  r = solve_lemke_warm(f.lcp.M, f.lcp.q, guess, options.lemke);
-                }
-              else
-                r = solve_lemke(f.lcp.M, f.lcp.q, options.lemke);
+              n       = f.lcp.q.size();
+              r       = solve_lcp(f.lcp.M, f.lcp.q, warm, options.lemke);
               seconds = seconds_since_start();
-              // A ray does not say whether the LCP has a solution unless M is
-              // copositive-plus; an infeasible LCP has none.
-              if (r.status == Status::ray_termination &&
-                  lcp_feasibility(f.lcp.M, f.lcp.q, options.lemke) ==
-                    Status::ray_termination)
-                {
-                  r.status = Status::infeasible;
-                  r.message +=
-                    "; no z >= 0 with M z + q >= 0 (Lemke's ray on the LCP of that linear "
-                    "program): the LCP has no solution";
-                }
             }
           else
             {
@@ -374,33 +356,21 @@ main(int argc, char **argv)
                 std::printf("%.3e", exact_cone_error(f.contact, P));
               if (file_solution.r.size() == f.contact.W.n_rows())
                 {
-                  double d2 = 0., r2 = 0.;
-                  for (std::size_t k = 0; k < P.size(); ++k)
-                    {
-                      d2 += (P[k] - file_solution.r[k]) *
-                            (P[k] - file_solution.r[k]);
-                      r2 += file_solution.r[k] * file_solution.r[k];
-                    }
                   std::printf(" file_solution_exact_cone_error %.3e",
                               exact_cone_error(f.contact, file_solution.r));
-                  if (!P.empty() && r2 > 0.)
+                  if (!P.empty() &&
+                      std::any_of(file_solution.r.begin(),
+                                  file_solution.r.end(),
+                                  [](const double x) { return x != 0.; }))
                     std::printf(" relative_difference %.3e",
-                                std::sqrt(d2 / std::max(r2, 1e-300)));
+                                relative_difference(P, file_solution.r));
                 }
               std::printf("\n");
             }
           if (!fclib_output.empty())
             {
-              FclibSolution s;
-              if (!P.empty())
-                {
-                  s.r = P;
-                  f.contact.W.vmult(s.u, P);
-                  for (std::size_t k = 0; k < s.u.size(); ++k)
-                    s.u[k] += f.contact.free_velocity[k];
-                  for (unsigned int c = 0; c < f.contact.n_contacts; ++c)
-                    s.u[c * f.contact.n_directions] += f.contact.gap_term[c];
-                }
+              const FclibSolution s =
+                P.empty() ? FclibSolution() : local_solution(f.contact, P);
               FclibInfo info;
               info.title       = file;
               info.description = "written by impactfe lcp-solve";

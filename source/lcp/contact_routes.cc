@@ -866,5 +866,32 @@ namespace impactfe
       s.message     = s.lcp.message;
       return out;
     }
+
+
+    Result
+    solve_lcp(const DenseMatrix         &M,
+              const std::vector<double> &q,
+              const bool                 warm,
+              const LemkeOptions        &options)
+    {
+      Result r;
+      if (warm)
+        {
+          std::vector<bool> guess(q.size());
+          for (std::size_t i = 0; i < q.size(); ++i)
+            guess[i] = q[i] < 0.;
+          r = solve_lemke_warm(M, q, guess, options);
+        }
+      else
+        r = solve_lemke(M, q, options);
+      if (r.status == Status::ray_termination &&
+          lcp_feasibility(M, q, options) == Status::ray_termination)
+        {
+          r.status = Status::infeasible;
+          r.message += "; no z >= 0 with M z + q >= 0 (Lemke's ray on the LCP "
+                       "of that linear program): the LCP has no solution";
+        }
+      return r;
+    }
   } // namespace lcp
 } // namespace impactfe

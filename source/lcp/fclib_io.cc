@@ -740,5 +740,35 @@ namespace impactfe
         }
       out.flush();
     }
+
+
+    FclibSolution
+    local_solution(const ContactProblem &problem, const std::vector<double> &P)
+    {
+      FclibSolution s;
+      s.r = P;
+      problem.W.vmult(s.u, P);
+      for (std::size_t k = 0; k < s.u.size(); ++k)
+        s.u[k] += problem.free_velocity[k];
+      for (unsigned int c = 0; c < problem.n_contacts; ++c)
+        s.u[c * problem.n_directions] += problem.gap_term[c];
+      return s;
+    }
+
+
+
+    double
+    relative_difference(const std::vector<double> &P,
+                        const std::vector<double> &r)
+    {
+      double d2 = 0., r2 = 0.;
+      for (std::size_t k = 0; k < P.size(); ++k)
+        {
+          d2 += (P[k] - r[k]) * (P[k] - r[k]);
+          r2 += r[k] * r[k];
+        }
+      return std::sqrt(d2 / std::max(r2, 1e-300));
+    }
+
   } // namespace lcp
 } // namespace impactfe

@@ -170,6 +170,19 @@ namespace impactfe
     lcp_feasibility(const DenseMatrix         &M,
                     const std::vector<double> &q,
                     const LemkeOptions        &options = {});
+
+    /**
+     * An LCP as lcp-solve solves it: Lemke cold, or (@p warm) from the
+     * guess "z_i > 0 where q_i < 0"; a ray is reported as Status::infeasible
+     * when lcp_feasibility() certifies that no z >= 0 has M z + q >= 0
+     * (otherwise a ray says nothing about solvability unless M is
+     * copositive-plus).
+     */
+    Result
+    solve_lcp(const DenseMatrix         &M,
+              const std::vector<double> &q,
+              const bool                 warm,
+              const LemkeOptions        &options = {});
   } // namespace lcp
 } // namespace impactfe
 

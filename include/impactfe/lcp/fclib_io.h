@@ -98,6 +98,19 @@ namespace impactfe
       const FclibInfo      &info     = FclibInfo(),
       const FclibSolution  *solution = nullptr,
       FclibStorage          storage  = FclibStorage::compressed_column);
+
+    /**
+     * FCLib's solution of a local problem for the impulses @p P: r = P and
+     * the relative velocity u = W P + q (with the gap term on the normal
+     * components).
+     */
+    FclibSolution
+    local_solution(const ContactProblem &problem, const std::vector<double> &P);
+
+    /** |P - r| / |r| (Euclidean norms), for comparing with a file's r. */
+    double
+    relative_difference(const std::vector<double> &P,
+                        const std::vector<double> &r);
   } // namespace lcp
 } // namespace impactfe
 
