@@ -396,39 +396,37 @@ namespace impactfe
             name += key[i];
         return name;
       };
-      std::set<std::string> seen;
+      std::set<EntryPath> seen;
       const std::function<void(const boost::property_tree::ptree &,
-                               const std::string &)>
-        walk = [&](const boost::property_tree::ptree &node,
-                   const std::string                 &path) {
-          for (const auto &[key, child] : node)
-            {
-              if (key.rfind("<xml", 0) == 0)
-                continue;
-              const std::string name = demangle(key);
-              if (child.empty() || child.count("value") > 0)
-                {
-                  AssertThrow(
-                    seen.insert(path + "/" + name).second,
-                    dealii::ExcMessage(
-                      "The parameter file '" + file + "': '" + name + "'" +
-                      (path.empty() ?
-                         std::string(" (top level)") :
-                         " in subsection '" + path.substr(1) + "'") +
-                      " is set twice; only the last value would count. Keep "
-                      "one of the two."));
-                }
-              else
-                walk(child, path + "/" + name);
-            }
-        };
+                               const EntryPath &)>
+        walk =
+          [&](const boost::property_tree::ptree &node, const EntryPath &path) {
+            for (const auto &[key, child] : node)
+              {
+                if (key.rfind("<xml", 0) == 0)
+                  continue;
+                EntryPath entry = path;
+                entry.push_back(demangle(key));
+                if (child.empty() || child.count("value") > 0)
+                  {
+                    AssertThrow(seen.insert(entry).second,
+                                dealii::ExcMessage(
+                                  "The parameter file '" + file +
+                                  "': " + describe_entry(entry) +
+                                  " is set twice; only the last value would "
+                                  "count. Keep one of the two."));
+                  }
+                else
+                  walk(child, entry);
+              }
+          };
       // deal.II's XML has one root element, ParameterHandler
       if (json)
-        walk(tree, "");
+        walk(tree, {});
       else
         for (const auto &[key, root] : tree)
           if (key.rfind("<xml", 0) != 0)
-            walk(root, "");
+            walk(root, {});
     }
   } // namespace
 
