@@ -106,16 +106,14 @@ namespace impactfe
 
 
 
-  void
-  require_entries_set(const dealii::ParameterHandler &prm,
-                      const std::string              &subsection,
-                      const std::vector<std::string> &entries)
+  namespace
   {
     // ParameterHandler names an entry by its path, subsections and name
     // joined by '.', every character that is not an ASCII letter or digit
-    // written as _ and two hex digits (a space is _20). @p subsection is a
-    // top-level one: call this outside any subsection.
-    const auto mangle = [](const std::string &name) {
+    // written as _ and two hex digits (a space is _20).
+    std::string
+    mangled_parameter_name(const std::string &name)
+    {
       std::string mangled;
       for (const unsigned char c : name)
         if ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
@@ -129,11 +127,63 @@ namespace impactfe
             mangled += hex[c % 16];
           }
       return mangled;
-    };
+    }
+
+
+
+    // The template of --print-parameters with the entries that have no
+    // default (@p required, ParameterHandler's paths) commented out: their
+    // placeholders would otherwise pass for values, and a run of the
+    // unedited template would simulate E = 1 Pa, h = 1e-3 s, ...
+    std::string
+    template_with_required_entries_open(const std::string           &text,
+                                        const std::set<std::string> &required)
+    {
+      std::istringstream       in(text);
+      std::ostringstream       out;
+      std::vector<std::string> path;
+      std::string              line;
+      while (std::getline(in, line))
+        {
+          const auto        first = line.find_first_not_of(' ');
+          const std::string body =
+            first == std::string::npos ? std::string() : line.substr(first);
+          if (body.rfind("subsection ", 0) == 0)
+            path.push_back(mangled_parameter_name(body.substr(11)));
+          else if (body == "end" && !path.empty())
+            path.pop_back();
+          else if (body.rfind("set ", 0) == 0 &&
+                   body.find('=') != std::string::npos)
+            {
+              const std::string before = body.substr(0, body.find('='));
+              std::string       name   = before.substr(4);
+              name.erase(name.find_last_not_of(' ') + 1);
+              std::string full;
+              for (const std::string &s : path)
+                full += s + '.';
+              if (required.count(full + mangled_parameter_name(name)) > 0)
+                line = line.substr(0, first) + "# " + before +
+                       "= (no default: set it)";
+            }
+          out << line << '\n';
+        }
+      return out.str();
+    }
+  } // namespace
+
+
+
+  void
+  require_entries_set(const dealii::ParameterHandler &prm,
+                      const std::string              &subsection,
+                      const std::vector<std::string> &entries)
+  {
+    // @p subsection is a top-level one: call this outside any subsection.
     const std::set<std::string> not_set = prm.get_entries_wrongly_not_set();
     std::vector<std::string>    missing;
     for (const std::string &entry : entries)
-      if (not_set.count(mangle(subsection) + '.' + mangle(entry)) > 0)
+      if (not_set.count(mangled_parameter_name(subsection) + '.' +
+                        mangled_parameter_name(entry)) > 0)
         missing.push_back("'" + entry + "'");
     std::string list;
     for (unsigned int i = 0; i < missing.size(); ++i)
@@ -632,8 +682,15 @@ namespace impactfe
   command_line_usage(const std::string &program,
                      const std::string &default_file)
   {
-    return "Usage: " + program + " [parameter file]\n" + "       " + program +
-           " --print-parameters\n" + "       " + program + " --help\n" +
+    // The programs that run on several ranks initialise MPI before this.
+    const std::string on_ranks =
+      dealii::Utilities::MPI::job_supports_mpi() ?
+        "       mpirun -np N " + program +
+          " [parameter file]   (a distributed run on N ranks)\n" :
+        std::string();
+    return "Usage: " + program + " [parameter file]\n" + on_ranks + "       " +
+           program + " --print-parameters\n" + "       " + program +
+           " --help (or -h)\n" +
            "Runs the parameter file (default: " + default_file +
            ").\n"
            "Its 'include' statements are relative to the current directory; "
@@ -642,7 +699,8 @@ namespace impactfe
            "--print-parameters writes every entry with its default and help "
            "text\n"
            "(units, ranges) in the parameter-file format, a template to "
-           "edit.\n"
+           "edit; the entries\n"
+           "without a default are commented out there: set them.\n"
            "The output files are described in README.md, 'Output files'.\n";
   }
 
@@ -709,8 +767,11 @@ namespace impactfe
       }
     dealii::ParameterHandler prm;
     declare_parameters(prm);
+    std::ostringstream text;
+    prm.print_parameters(text, dealii::ParameterHandler::PRM);
     if (rank_zero)
-      prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
+      std::cout << template_with_required_entries_open(
+        text.str(), prm.get_entries_wrongly_not_set());
     return true;
   }
 

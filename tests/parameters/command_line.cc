@@ -1,7 +1,9 @@
 // The programs' command line: `--help` prints the usage and exits with 0,
 // `--print-parameters` writes every entry in the parameter-file format, and
-// that file is valid input with the defaults (two_bars_1d writes the same
-// history on it as on a file that sets nothing but the output); an unknown
+// that file is valid input with the defaults once the entries without a
+// default, commented out there, are set (two_bars_1d writes the same
+// history on it as on a file that sets nothing but those and the output;
+// unedited, it is refused); an unknown
 // option or a second file is refused with the usage and exit code 1, before
 // anything runs.
 #include <sys/wait.h>
@@ -154,19 +156,47 @@ main()
   // The listing is input, and holds the defaults: two_bars_1d on it
   // writes the history of a file that sets the output entries and the
   // entries without a default (Young's modulus, the density, the time step
-  // and the end time, at the listing's values) alone.
+  // and the end time) alone. Those four are commented out in the listing,
+  // so that the listing run unedited is refused: before, it set them to
+  // placeholders (1 Pa, 1 kg/m^3, 1e-3 s, 1 s) and simulated those.
   {
+    const std::string listing = text_of("two_bars_1d_parameters.prm");
+    impactfe_tests::check(
+      contains(listing, "# set Young's modulus") &&
+        contains(listing, "# set Density") &&
+        contains(listing, "# set Time step") &&
+        contains(listing, "# set End time") &&
+        contains(listing, "= (no default: set it)") &&
+        !contains(listing, "\n  set Young's modulus"),
+      "two_bars_1d --print-parameters: the entries without a default are "
+      "commented out");
     const std::string output = "\n  set VTU output = false\n"
                                "  set Plot = false\nend\n";
-    std::ofstream("listing_run.prm")
+    const std::string required =
+      "subsection Material\n  set Young's modulus = 1\n"
+      "  set Density = 1\nend\n"
+      "subsection Time stepping\n  set Time step = 1e-3\n"
+      "  set End time = 1\nend\n";
+    std::ofstream("listing_unedited.prm")
       << "include two_bars_1d_parameters.prm\nsubsection Output\n"
+      << "  set Output directory = listing_unedited" << output;
+    std::ofstream("listing_run.prm")
+      << "include two_bars_1d_parameters.prm\n"
+      << required << "subsection Output\n"
       << "  set Output directory = listing_run" << output;
     std::ofstream("default_run.prm")
-      << "subsection Material\n  set Young's modulus = 1\n"
-      << "  set Density = 1\nend\n"
-      << "subsection Time stepping\n  set Time step = 1e-3\n"
-      << "  set End time = 1\nend\n"
-      << "subsection Output\n  set Output directory = default_run" << output;
+      << required << "subsection Output\n  set Output directory = default_run"
+      << output;
+    const int unedited_code =
+      run(std::string(TWO_BARS_1D_EXECUTABLE) + " listing_unedited.prm",
+          "listing_unedited.log");
+    const std::string unedited = text_of("listing_unedited.log");
+    impactfe_tests::check(unedited_code == 1 &&
+                            contains(unedited, "does not set") &&
+                            contains(unedited, "no default") &&
+                            contains(unedited, "'Time step' and 'End time'"),
+                          "two_bars_1d on its unedited listing: refused, "
+                          "naming the entries to set, exit code 1");
     const int listing_code =
       run(std::string(TWO_BARS_1D_EXECUTABLE) + " listing_run.prm",
           "listing_run.log");
@@ -177,8 +207,8 @@ main()
     impactfe_tests::check(listing_code == 0 && default_code == 0 &&
                             contains(history, "contact_velocity") &&
                             history == text_of("default_run/history.csv"),
-                          "two_bars_1d on its own listing: runs, and writes "
-                          "the defaults' history.csv");
+                          "two_bars_1d on its own listing with those four "
+                          "set: runs, and writes the defaults' history.csv");
   }
   return impactfe_tests::n_failed_checks == 0 ? 0 : 1;
 }
