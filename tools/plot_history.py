@@ -22,6 +22,8 @@ LABELS = {
     "tangential_force": "tangential contact force [N]",
     "kinetic_energy": "kinetic energy [J]",
     "elastic_energy": "elastic energy [J]",
+    "length_mm": "length [mm]",
+    "footprint_radius_mm": "footprint radius [mm]",
 }
 
 

@@ -37,7 +37,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <iomanip>
 #include <iostream>
 
@@ -99,12 +98,7 @@ namespace TaylorBarProgram
   TaylorBarProblem::declare_parameters(ParameterHandler &prm)
   {
     FiniteStrainImpact::Settings::declare_parameters(prm);
-    MaterialParameters::declare_parameters(prm, 3);
-    prm.enter_subsection("Material"); // copper, unless the file says otherwise
-    prm.set("Young's modulus", "117e9");
-    prm.set("Poisson's ratio", "0.35");
-    prm.set("Density", "8930");
-    prm.leave_subsection();
+    FiniteStrainImpact::declare_material_parameters(prm); // copper
     PlasticityParameters::declare_parameters(prm);
     OutputParameters::declare_parameters(prm, "results/taylor_bar");
     FiniteStrainImpact::Verification::declare_parameters(prm);
@@ -116,13 +110,11 @@ namespace TaylorBarProgram
   TaylorBarProblem::parse_parameters(ParameterHandler &prm)
   {
     settings.parse_parameters(prm);
-    material.parse_parameters(prm, 3);
+    material = FiniteStrainImpact::parse_material_parameters(prm);
     plasticity.parse_parameters(prm);
     output.parse_parameters(prm);
-    verification.parse_parameters(prm);
-    AssertThrow(!verification.rebound_check || material.poissons_ratio == 0.,
-                ExcMessage("Verification/Elastic rebound check needs "
-                           "Material/Poisson's ratio = 0 (a 1D bar)."));
+    verification.parse_parameters(prm, material);
+    output.refuse_mesh_output("the Taylor bar's mesh comes from 'Geometry'");
     n_steps = settings.n_steps();
     output.check_shape_times(false, n_steps, settings.time_step);
   }
@@ -143,9 +135,6 @@ namespace TaylorBarProgram
       // stops early must not leave them beside its own history, as if
       // they were its results
       remove_previous_run_output(output.directory, {"solution"}, {"solution"});
-      std::error_code not_removed; // then writing it fails with a message
-      std::filesystem::remove(output.directory + "/cells_final.csv",
-                              not_removed);
       history = std::make_unique<HistoryWriter>(
         output.directory + "/history.csv",
         Utilities::split_string_list(
@@ -264,8 +253,17 @@ namespace TaylorBarProgram
       .add("energy_balance_relative_error", worst_balance)
       .add("cpu_seconds", cpu_seconds);
     bar->add_to_summary(summary, initial_momentum);
-    on_rank_zero(communicator,
-                 [&]() { summary.write(output.directory + "/summary.json"); });
+    on_rank_zero(communicator, [&]() {
+      summary.write(output.directory + "/summary.json");
+      history->close();
+      report_output_files(
+        std::cout,
+        output,
+        "history.csv, summary.json, cells_initial.csv, cells_final.csv" +
+          std::string(output.vtu_output ? ", solution.pvd (VTU files)" : ""),
+        {"length_mm", "footprint_radius_mm", "normal_force", "kinetic_energy"},
+        "Taylor bar");
+    });
   }
 
 

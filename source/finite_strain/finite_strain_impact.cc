@@ -60,12 +60,12 @@ namespace impactfe
     prm.declare_entry("Radial cells",
                       "5",
                       Patterns::Integer(1),
-                      "Q1 cells across the radius (3d: a power of two "
+                      "Q1 cells across the radius [-] (3d: a power of two "
                       ">= 2, the refined quarter disc).");
     prm.declare_entry("Axial cells",
                       "50",
                       Patterns::Integer(1),
-                      "Q1 cells along the length.");
+                      "Q1 cells along the length [-].");
     prm.leave_subsection();
     prm.enter_subsection("Initial conditions");
     prm.declare_entry("Impact velocity",
@@ -77,12 +77,17 @@ namespace impactfe
     prm.declare_entry("End time",
                       "80e-6",
                       Patterns::Double(),
-                      "Simulated time [s].");
-    prm.declare_entry("Time step", "2e-7", Patterns::Double(), "Step h [s].");
+                      "End time T [s]. Must be >= the time step. The run "
+                      "makes ceil(T / h) steps: it ends at the first "
+                      "multiple of h at or after T.");
+    prm.declare_entry("Time step",
+                      "2e-7",
+                      Patterns::Double(),
+                      "Time step h [s]. Must be > 0.");
     prm.declare_entry("Theta",
                       "1",
                       Patterns::Double(),
-                      "theta of the theta-method, in [0.5, 1].");
+                      "theta of the theta-method [-], in [0.5, 1].");
     prm.leave_subsection();
     prm.enter_subsection("Contact");
     prm.declare_entry("Bilateral contact",
@@ -96,8 +101,8 @@ namespace impactfe
     prm.declare_entry("Friction coefficient",
                       "0",
                       Patterns::Double(),
-                      "Coulomb coefficient mu at the wall (0: frictionless, "
-                      "normal LCP rows only).");
+                      "Coulomb coefficient mu at the wall [-] (0: "
+                      "frictionless, normal LCP rows only).");
     prm.leave_subsection();
     prm.enter_subsection("Discretisation");
     prm.declare_entry("F-bar",
@@ -108,18 +113,20 @@ namespace impactfe
     prm.declare_entry("Tangent",
                       "closed form",
                       Patterns::Selection("closed form|finite differences"),
-                      "The consistent tangent of Newton's method: closed "
-                      "form, or central differences of the cell forces "
-                      "(16-48 cell evaluations per cell, for checking).");
+                      "The consistent tangent of Newton's method: 'closed "
+                      "form', or 'finite differences' (central differences "
+                      "of the cell forces, 16-48 cell evaluations per cell, "
+                      "for checking).");
     prm.declare_entry("Newton tolerance",
                       "1e-9",
                       Patterns::Double(),
                       "Newton stops when the residual, relative to the "
-                      "momentum max(M) v0, is below this.");
+                      "momentum max(M) v0, is below this [-].");
     prm.declare_entry("Maximum Newton iterations",
                       "25",
                       Patterns::Integer(1),
-                      "A step that needs more stops the run with a message.");
+                      "A step that needs more stops the run with a message "
+                      "[-].");
     prm.leave_subsection();
   }
 
@@ -211,6 +218,46 @@ namespace impactfe
 
 
 
+  void
+  FiniteStrainImpact::declare_material_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Material");
+    prm.declare_entry("Young's modulus",
+                      "117e9",
+                      Patterns::Double(),
+                      "Young's modulus E [Pa]. Must be > 0. Default: "
+                      "copper, 117 GPa (the bar of the paper's section "
+                      "6.4).");
+    prm.declare_entry("Poisson's ratio",
+                      "0.35",
+                      Patterns::Double(),
+                      "Poisson's ratio nu [-], in [0, 0.5). Default: "
+                      "copper, 0.35.");
+    prm.declare_entry("Density",
+                      "8930",
+                      Patterns::Double(),
+                      "Mass density rho [kg/m^3]. Must be > 0. Default: "
+                      "copper, 8930 kg/m^3.");
+    prm.leave_subsection();
+  }
+
+
+
+  MaterialParameters
+  FiniteStrainImpact::parse_material_parameters(ParameterHandler &prm)
+  {
+    MaterialParameters material;
+    prm.enter_subsection("Material");
+    material.youngs_modulus = prm.get_double("Young's modulus");
+    material.poissons_ratio = prm.get_double("Poisson's ratio");
+    material.density        = prm.get_double("Density");
+    prm.leave_subsection();
+    material.check("Material");
+    return material;
+  }
+
+
+
   std::unique_ptr<FiniteStrainImpact>
   FiniteStrainImpact::create(const Settings             &settings,
                              const MaterialParameters   &material,
@@ -233,7 +280,9 @@ namespace impactfe
   unsigned int
   FiniteStrainImpact::Settings::n_steps() const
   {
-    return static_cast<unsigned int>(std::llround(end_time / time_step));
+    // as TimeSteppingParameters::n_steps(): the first multiple of h at or
+    // after T (1e-9 of a step of rounding is not one more step)
+    return static_cast<unsigned int>(std::ceil(end_time / time_step - 1e-9));
   }
 
 
@@ -1335,13 +1384,18 @@ namespace impactfe
 
 
   void
-  FiniteStrainImpact::Verification::parse_parameters(ParameterHandler &prm)
+  FiniteStrainImpact::Verification::parse_parameters(
+    ParameterHandler         &prm,
+    const MaterialParameters &material)
   {
     prm.enter_subsection("Verification");
     rebound_check       = prm.get_bool("Elastic rebound check");
     max_rebound_error   = prm.get_double("Maximum rebound error");
     published_tolerance = prm.get_double("Published range tolerance");
     prm.leave_subsection();
+    AssertThrow(!rebound_check || material.poissons_ratio == 0.,
+                ExcMessage("Verification/Elastic rebound check needs "
+                           "Material/Poisson's ratio = 0 (a 1D bar)."));
   }
 
 

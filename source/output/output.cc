@@ -118,6 +118,17 @@ namespace impactfe
 
 
   void
+  OutputParameters::refuse_mesh_output(const std::string &why) const
+  {
+    AssertThrow(!write_meshes,
+                ExcMessage("Output: 'Write meshes' = true, but this program "
+                           "writes no mesh files: " +
+                           why + "."));
+  }
+
+
+
+  void
   create_output_directory(const std::string &directory)
   {
     std::error_code error;
@@ -135,8 +146,11 @@ namespace impactfe
                              const std::vector<std::string> &parallel_records)
   {
     std::error_code not_removed; // then writing it fails with a message
-    for (const char *name :
-         {"summary.json", "history.png", "solution.pvd", "shapes.csv"})
+    for (const char *name : {"summary.json",
+                             "history.png",
+                             "solution.pvd",
+                             "shapes.csv",
+                             "cells_final.csv"})
       std::filesystem::remove(directory + "/" + name, not_removed);
     const auto digits = [](const std::string &text,
                            const std::size_t  at_least) {
@@ -567,6 +581,27 @@ namespace impactfe
         return "";
       }
     return png;
+  }
+
+
+
+  void
+  report_output_files(std::ostream                   &out,
+                      const OutputParameters         &output,
+                      const std::string              &files,
+                      const std::vector<std::string> &columns,
+                      const std::string              &title)
+  {
+    out << "Results in " << output.directory << "/: " << files << std::endl;
+    if (!output.plot)
+      return;
+    std::string       why_not;
+    const std::string png = plot_history(output.directory + "/history.csv",
+                                         output.directory + "/history.png",
+                                         columns,
+                                         title,
+                                         why_not);
+    out << (png.empty() ? "No plot: " + why_not : "Plot: " + png) << std::endl;
   }
 
 

@@ -154,24 +154,12 @@ namespace impactfe
                                    const std::vector<std::string> &columns,
                                    const std::string              &title) const
   {
-    out << "Results in " << output.directory
-        << "/: history.csv, contact_nodes.csv, summary.json";
+    std::string files = "history.csv, contact_nodes.csv, summary.json";
     if (output.vtu_output)
-      out << ", solution.pvd (VTU files)";
+      files += ", solution.pvd (VTU files)";
     if (shape_writer)
-      out << ", shapes.csv";
-    out << std::endl;
-    if (output.plot)
-      {
-        std::string       why_not;
-        const std::string png = plot_history(output.directory + "/history.csv",
-                                             output.directory + "/history.png",
-                                             columns,
-                                             title,
-                                             why_not);
-        out << (png.empty() ? "No plot: " + why_not : "Plot: " + png)
-            << std::endl;
-      }
+      files += ", shapes.csv";
+    report_output_files(out, output, files, columns, title);
   }
 
 

@@ -693,6 +693,10 @@ main()
   // taylor_bar: the finite-strain program's own entries.
   const std::string taylor = TAYLOR_BAR_EXECUTABLE;
   run_case("taylor_theta_below_half", with("Time", "Theta = 0.3"), taylor);
+  // taylor_bar used to accept these and ignore them without a word: it
+  // writes no mesh files, and its J2 material has no viscosity
+  run_case("taylor_write_meshes", with("Output", "Write meshes = true"), taylor);
+  run_case("taylor_viscosity", with("Material", "Viscosity = 1e9"), taylor);
   // A run that stops at a step (an element inverted at 2000 m/s) in the
   // folder of an earlier, finished run: the earlier run's summary and final
   // cells are removed at the start, so that the folder holds one run's

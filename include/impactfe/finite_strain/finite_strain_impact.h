@@ -132,7 +132,8 @@ namespace impactfe
       double       friction_coefficient = 0.;
       bool         bilateral            = false;
       bool         f_bar                = true;
-      /// Newton's tangent in closed form (false: by central differences).
+      /// Newton's tangent in closed form (false: by central differences
+      /// of the cell forces, 'finite differences').
       bool         closed_form_tangent   = true;
       double       newton_tolerance      = 1e-9;
       unsigned int max_newton_iterations = 25;
@@ -147,6 +148,17 @@ namespace impactfe
       void
       check() const;
     };
+
+    /**
+     * Parameter subsection `Material` of the Taylor bar: Young's modulus,
+     * Poisson's ratio and the density, copper by default (the bar of the
+     * paper's section 6.4). The J2 model has no viscosity or Rayleigh
+     * damping, so those entries of MaterialParameters are not declared.
+     */
+    static void
+    declare_material_parameters(ParameterHandler &prm);
+    static MaterialParameters
+    parse_material_parameters(ParameterHandler &prm);
 
     /**
      * Parameter subsection `Verification`: checks against results known
@@ -164,8 +176,11 @@ namespace impactfe
 
       static void
       declare_parameters(ParameterHandler &prm);
+      /// Throws if the rebound check is asked for with @p material's
+      /// Poisson's ratio other than 0.
       void
-      parse_parameters(ParameterHandler &prm);
+      parse_parameters(ParameterHandler         &prm,
+                       const MaterialParameters &material);
     };
 
     /**

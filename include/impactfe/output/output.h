@@ -42,6 +42,11 @@ namespace impactfe
      * time is reached by its @p n_steps steps of @p time_step. A time past
      * the end would be skipped without a word.
      */
+    /// Throw if `Write meshes` is set, in a program that writes no mesh
+    /// files; @p why says where its meshes come from.
+    void
+    refuse_mesh_output(const std::string &why) const;
+
     void
     check_shape_times(const bool         writes_shapes,
                       const unsigned int n_steps,
@@ -55,7 +60,8 @@ namespace impactfe
   /**
    * Remove from @p directory the files of an earlier run of a serial
    * program that describe that run as a whole: summary.json, history.png,
-   * solution.pvd, shapes.csv and the VTU files "<body>-NNNNN.vtu" of the
+   * solution.pvd, shapes.csv, cells_final.csv (taylor_bar) and the VTU
+   * files "<body>-NNNNN.vtu" of the
    * bodies @p body_names. Left there, they would stand beside this run's
    * files (a longer earlier run's last VTU files, its plot), and stay if
    * this run fails. Other files are not touched: LCP dumps of chosen steps,
@@ -192,6 +198,21 @@ namespace impactfe
                const std::vector<std::string> &columns,
                const std::string              &title,
                std::string                    &why_not);
+
+
+
+  /**
+   * The end of a run's screen output: "Results in <Output directory>/: "
+   * and @p files, then, if `Plot` is set, history.png drawn from the
+   * columns @p columns of history.csv by plot_history() (or why there is
+   * no plot). history.csv must be complete (closed) by then.
+   */
+  void
+  report_output_files(std::ostream                   &out,
+                      const OutputParameters         &output,
+                      const std::string              &files,
+                      const std::vector<std::string> &columns,
+                      const std::string              &title);
 } // namespace impactfe
 
 #endif
