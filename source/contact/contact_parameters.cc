@@ -9,8 +9,15 @@
 namespace impactfe
 {
   void
-  ContactSolverParameters::declare_parameters(ParameterHandler &prm)
+  ContactSolverParameters::declare_parameters(ParameterHandler &prm,
+                                              const bool        distributed)
   {
+    // contact_mpi reads the serial programs' files, so it declares every
+    // entry; its help says which of them it does not use.
+    const std::string serial_only =
+      distributed ? " Serial programs only: contact_mpi reads it and ignores "
+                    "it." :
+                    "";
     prm.enter_subsection("Contact solver");
     prm.declare_entry(
       "Method",
@@ -30,14 +37,19 @@ namespace impactfe
       "in 3D with friction the active set method at every size where its "
       "products are dense (see 'Dense Schur complement'), since Lemke's "
       "facet LCPs are the dearer ones there (doc/lcp.md, 'Which method "
-      "automatic takes').");
+      "automatic takes')." +
+        std::string(distributed ?
+                      " In contact_mpi 'automatic' is the active set method "
+                      "at every size." :
+                      ""));
     prm.declare_entry("Active set threshold",
                       "300",
                       Patterns::Integer(1),
                       "With 'Method = automatic': the number of contact "
                       "candidates in a step's problem from which the active "
                       "set method is used (in 3D with friction and dense "
-                      "products: from one) [-].");
+                      "products: from one) [-]." +
+                        serial_only);
     prm.declare_entry(
       "Dense Schur complement",
       "true",
@@ -48,7 +60,8 @@ namespace impactfe
       "eliminates those DoFs last, so that W x and the preconditioner are "
       "dense products instead of sparse solve pairs. Used only where that "
       "is the cheaper product (|C|^2 < 4 nnz(L), at most 1 GiB; typically "
-      "3D) (doc/lcp.md, 'Large contact sets').");
+      "3D) (doc/lcp.md, 'Large contact sets')." +
+        serial_only);
     prm.declare_entry("Active set iterations",
                       "50",
                       Patterns::Integer(1),
@@ -80,7 +93,8 @@ namespace impactfe
       "sparse LU factorisation of the size of M~ (see 'Exact normal rows "
       "state lag'); it pays for large friction coefficients and many open "
       "candidates (doc/lcp.md, 'Large friction coefficients'). 0: from the "
-      "first solve, in every problem.");
+      "first solve, in every problem." +
+        serial_only);
     prm.declare_entry(
       "Exact normal rows state lag",
       "16",
@@ -92,7 +106,8 @@ namespace impactfe
       "it was factorised at, which costs the linear solves a few GMRES "
       "iterations, far less than a factorisation at every change: on the "
       "2D slab 1 m long at 30 001 contacts, 16 took a fifth off the run "
-      "(doc/lcp.md). 0: a factorisation at every change of the states.");
+      "(doc/lcp.md). 0: a factorisation at every change of the states." +
+        serial_only);
     prm.declare_entry(
       "Largest Lemke fallback",
       "3000",
@@ -112,7 +127,13 @@ namespace impactfe
                       Patterns::Bool(),
                       "Start Lemke's method from the previous step's active "
                       "set (falls back to a cold start when that fails). The "
-                      "answers are the same; only the pivot count changes.");
+                      "answers are the same; only the pivot count changes." +
+                        std::string(
+                          distributed ?
+                            " In contact_mpi: the active set method starts "
+                            "from the last step's states and impulses; its "
+                            "Lemke solves start cold." :
+                            ""));
     prm.declare_entry("Dump LCP of step",
                       "-1",
                       Patterns::Integer(-1),

@@ -7,7 +7,9 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 
 #include <impactfe/lcp/exact_cone.h>
+#include <impactfe/lcp/problem_io.h>
 #include <impactfe/parallel/distributed_dynamics.h>
+#include <impactfe/utilities/mpi_errors.h>
 #include <impactfe/utilities/program.h>
 
 #include <Epetra_CrsMatrix.h>
@@ -972,19 +974,29 @@ namespace impactfe
           ++stats.fallbacks;
           stats.last_fallback_reason = result.message;
           report.fallback            = true;
-          AssertThrow(
-            solver_parameters.lemke_fallback_allowed(n, nd),
-            ExcMessage(
-              "The contact problem at t = " + format_number(report.time) +
-              " s (" + std::to_string(n) +
-              " candidates) was not solved: the active set method "
-              "did not converge (" +
-              result.message + "), and " +
-              solver_parameters.lemke_fallback_limit_text(n, nd) + "."));
+          if (!solver_parameters.lemke_fallback_allowed(n, nd))
+            {
+              const std::string written = write_unsolved_problem(nullptr);
+              AssertThrow(false,
+                          ExcMessage(
+                            "The contact problem of step " +
+                            std::to_string(step_number) +
+                            " (t = " + format_number(report.time) + " s, " +
+                            std::to_string(n) +
+                            " candidates) was not solved: the active set "
+                            "method did not converge (" +
+                            result.message + "), and " +
+                            solver_parameters.lemke_fallback_limit_text(n, nd) +
+                            "." + written));
+            }
           solve_by_lemke();
           return;
         }
       stats.record(result.verification);
+      if (solver_parameters.dump_step == static_cast<int>(step_number))
+        write_contact_problem(dump_directory + "/lcp_step_" +
+                                std::to_string(step_number) + ".dat",
+                              nullptr);
       lcp_P = active_set_solver.impulses();
       // with every contact open the solver makes no last product
       if (!fine.substructured_solver &&
@@ -1012,8 +1024,79 @@ namespace impactfe
       const unsigned int  nd = contact.n_directions();
       const unsigned int  n  = lcp_candidates.size();
       lcp::ContactProblem problem;
-      problem.n_directions = nd;
-      problem.n_contacts   = n;
+      build_contact_problem(problem);
+      std::vector<double> column;
+
+      lcp::ContactSolution solution;
+      lcp::ContactOptions  options;
+      if (nd == 3 && solver_parameters.friction_cone == lcp::ConeModel::exact)
+        {
+          lcp::ExactConeSolver  exact;
+          lcp::ExactConeOptions cone;
+          cone.tolerance = solver_parameters.exact_cone_tolerance;
+          solution       = exact.solve(problem, options, cone);
+          if (solution.lcp.status == lcp::Status::solved &&
+              !exact.report().converged)
+            {
+              const std::string written = write_unsolved_problem(&problem);
+              AssertThrow(false,
+                          ExcMessage("The exact cone was not reached in step " +
+                                     std::to_string(step_number) +
+                                     " (t = " + format_number(report.time) +
+                                     " s): residual " +
+                                     format_number(exact.report().residual) +
+                                     "." + written));
+            }
+        }
+      else
+        {
+          if (nd == 3)
+            {
+              options.form     = lcp::FrictionForm::facets;
+              options.n_facets = solver_parameters.n_facets;
+            }
+          solution = lcp::solve_contact_problem(problem, options);
+        }
+      if (solution.lcp.status != lcp::Status::solved)
+        {
+          const std::string written = write_unsolved_problem(&problem);
+          AssertThrow(false,
+                      ExcMessage("The contact LCP of step " +
+                                 std::to_string(step_number) +
+                                 " (t = " + format_number(report.time) +
+                                 " s, " + std::to_string(n) +
+                                 " candidates) was not solved: " +
+                                 lcp::to_string(solution.lcp.status) + ". " +
+                                 solution.lcp.message + written));
+        }
+      if (solver_parameters.dump_step == static_cast<int>(step_number))
+        write_contact_problem(dump_directory + "/lcp_step_" +
+                                std::to_string(step_number) + ".dat",
+                              &problem);
+      stats.record(lcp::verify_contact_solution(problem, solution.P));
+      lcp_P = solution.P;
+      const std::vector<ContactState> states =
+        solution.states.size() == n ? solution.states :
+                                      lcp::contact_states(problem, solution.P);
+      for (unsigned int a = 0; a < n; ++a)
+        last_states[lcp_candidates[a]] = states[a];
+      // correction = M~^{-1} H P (the substructured path's time step
+      // finishes its solve with H P instead)
+      if (!fine.substructured_solver)
+        delassus_product(lcp_P, column);
+    }
+
+
+
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::build_contact_problem(
+      lcp::ContactProblem &problem)
+    {
+      const unsigned int nd = contact.n_directions();
+      const unsigned int n  = lcp_candidates.size();
+      problem.n_directions  = nd;
+      problem.n_contacts    = n;
       problem.W.reinit(n * nd, n * nd);
       problem.free_velocity = lcp_q;
       problem.gap_term      = lcp_b;
@@ -1037,47 +1120,76 @@ namespace impactfe
         for (unsigned int j = 0; j < i; ++j)
           problem.W(i, j) = problem.W(j, i) =
             0.5 * (problem.W(i, j) + problem.W(j, i));
+    }
 
-      lcp::ContactSolution solution;
-      lcp::ContactOptions  options;
-      if (nd == 3 && solver_parameters.friction_cone == lcp::ConeModel::exact)
+
+
+    // The problem is replicated: rank 0 writes it in the frictional-contact
+    // text format of Siconos numerics, as the serial programs do.
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::write_contact_problem(
+      const std::string         &file,
+      const lcp::ContactProblem *built)
+    {
+      lcp::ContactProblem formed;
+      if (built == nullptr)
         {
-          lcp::ExactConeSolver  exact;
-          lcp::ExactConeOptions cone;
-          cone.tolerance = solver_parameters.exact_cone_tolerance;
-          solution       = exact.solve(problem, options, cone);
-          AssertThrow(solution.lcp.status != lcp::Status::solved ||
-                        exact.report().converged,
-                      ExcMessage("The exact cone was not reached at t = " +
-                                 format_number(report.time) + " s: residual " +
-                                 format_number(exact.report().residual) + "."));
+          // W's columns are products, which leave their last solve in
+          // `correction` and `impulse_force`; the step goes on with the
+          // answer's (M~^{-1} H P)
+          const DistributedVector saved_correction    = correction;
+          const DistributedVector saved_impulse_force = impulse_force;
+          build_contact_problem(formed);
+          correction    = saved_correction;
+          impulse_force = saved_impulse_force;
         }
-      else
+      const lcp::ContactProblem &problem = built ? *built : formed;
+      on_rank_zero(body.communicator(),
+                   [&]() { lcp::write_friction_contact_file(file, problem); });
+    }
+
+
+
+    template <int dim>
+    std::string
+    DistributedImpactSolver<dim>::write_unsolved_problem(
+      const lcp::ContactProblem *built)
+    {
+      constexpr std::size_t largest_written_rows = 4000;
+      const std::size_t rows = lcp_candidates.size() * contact.n_directions();
+      if (built == nullptr && rows > largest_written_rows &&
+          solver_parameters.dump_step != static_cast<int>(step_number))
+        return " Its W (" + std::to_string(rows) + " x " +
+               std::to_string(rows) +
+               ") was not written to a file: a failed step writes W up to " +
+               std::to_string(largest_written_rows) +
+               " rows; 'Dump LCP of step' = " + std::to_string(step_number) +
+               " writes it whatever its size.";
+      const std::string name = dump_directory + "/lcp_failure_step_" +
+                               std::to_string(step_number) + ".dat";
+      // the failure's own message must not be lost to one of the file's
+      try
         {
-          if (nd == 3)
-            {
-              options.form     = lcp::FrictionForm::facets;
-              options.n_facets = solver_parameters.n_facets;
-            }
-          solution = lcp::solve_contact_problem(problem, options);
+          write_contact_problem(name, built);
         }
-      AssertThrow(
-        solution.lcp.status == lcp::Status::solved,
-        ExcMessage(
-          "The contact LCP at t = " + format_number(report.time) + " s (" +
-          std::to_string(n) + " candidates) was not solved: " +
-          lcp::to_string(solution.lcp.status) + ". " + solution.lcp.message));
-      stats.record(lcp::verify_contact_solution(problem, solution.P));
-      lcp_P = solution.P;
-      const std::vector<ContactState> states =
-        solution.states.size() == n ? solution.states :
-                                      lcp::contact_states(problem, solution.P);
-      for (unsigned int a = 0; a < n; ++a)
-        last_states[lcp_candidates[a]] = states[a];
-      // correction = M~^{-1} H P (the substructured path's time step
-      // finishes its solve with H P instead)
-      if (!fine.substructured_solver)
-        delassus_product(lcp_P, column);
+      catch (const std::exception &e)
+        {
+          return " The problem could not be written to " + name + ": " +
+                 e.what();
+        }
+      return " The problem was written to " + name + " (replay: lcp-solve " +
+             name + ").";
+    }
+
+
+
+    template <int dim>
+    void
+    DistributedImpactSolver<dim>::set_dump_directory(
+      const std::string &directory)
+    {
+      dump_directory = directory;
     }
 
 
@@ -1299,6 +1411,7 @@ namespace impactfe
         if (local_free_velocity[c * nd] + gap_terms[c] < 0.)
           return false;
 
+      step_number += free_flight_factor;
       report            = DistributedStepReport();
       report.time       = current_time + coarse->scheme->time_step();
       report.n_substeps = free_flight_factor;
@@ -1342,6 +1455,7 @@ namespace impactfe
           max_substeps >= free_flight_factor && try_free_flight_step())
         return report;
 
+      ++step_number;
       const double       h    = fine.scheme->time_step();
       const unsigned int n    = contact.n_candidates();
       const unsigned int nd   = contact.n_directions();

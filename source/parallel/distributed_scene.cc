@@ -336,8 +336,10 @@ namespace impactfe
       prm.declare_entry("Dimension",
                         "3",
                         Patterns::Integer(2, 3),
-                        "2: the block's section in the x-y plane (plane "
-                        "strain, sliding along x); 3: the box [-].");
+                        "The scene's dimension [-]. Scene = sliding block: "
+                        "2, the block's section in the x-y plane, sliding "
+                        "along x; 3, the box. 2D bodies take their "
+                        "material's 'Plane model'.");
       prm.declare_entry(
         "Scene",
         "sliding block",
@@ -494,7 +496,7 @@ namespace impactfe
       MaterialParameters::declare_parameters(prm,
                                              2,
                                              "Material of the second body");
-      SceneParameters::declare_parameters(prm, "results/contact_mpi");
+      SceneParameters::declare_parameters(prm, "results/contact_mpi", true);
       MeshParameters::declare_parameters(prm, "Mesh", 2);
       MeshParameters::declare_parameters(prm, "Mesh of the second body", 0);
       ObstacleParameters::declare_parameters(prm, "0, 0, 0", "0, 1, 0", "0.5");
@@ -684,11 +686,9 @@ namespace impactfe
       for (ObstacleContact &contact : obstacle_contacts)
         if (contact.friction_coefficient < 0.)
           contact.friction_coefficient = obstacle.friction_coefficient;
-      AssertThrow(!scene.output.write_meshes,
-                  ExcMessage("Output: 'Write meshes' is for the serial "
-                             "programs, whose meshes contact_mpi reads; "
-                             "contact_mpi's own meshes come from files or "
-                             "the built-in box."));
+      scene.output.refuse_mesh_output(
+        "contact_mpi reads the serial programs' meshes; its own come from "
+        "files or the built-in box");
       // contact_mpi writes no shapes.csv
       scene.output.check_shape_times(false, 0, 0.);
       AssertThrow(dimension == 3 || std::abs(std::sin(box.phi)) < 1e-12,
@@ -1176,6 +1176,7 @@ namespace impactfe
         time_stepping,
         parameters.scene.contact_solver,
         parameters.linear_solver);
+      solver->set_dump_directory(parameters.scene.output.directory);
       solver->setup();
       work.reinit(body.locally_owned_dofs(), comm);
       if (parameters.multibody())
@@ -1743,10 +1744,6 @@ namespace impactfe
                     stats.contact_preconditioner :
                   std::string())
             << "\n";
-      out << "Results in " << parameters.scene.output.directory
-          << "/: history.csv, summary.json"
-          << (parameters.scene.output.vtu_output ? ", solution.pvd" : "")
-          << "\n";
       pcout << out.str();
 
       JsonObject summary;
@@ -1797,6 +1794,17 @@ namespace impactfe
         summary.add("sliding", sliding);
       on_rank_zero(comm, [&]() {
         summary.write(parameters.scene.output.directory + "/summary.json");
+        history->close();
+        report_output_files(std::cout,
+                            parameters.scene.output,
+                            parameters.scene.output.vtu_output ?
+                              "history.csv, summary.json, solution.pvd" :
+                              "history.csv, summary.json",
+                            {"normal_force",
+                             "tangential_force",
+                             "kinetic_energy"},
+                            "contact_mpi, " + std::to_string(dim) + "D, " +
+                              std::to_string(n_ranks) + " ranks");
       });
       if (parameters.scene.output.print_performance)
         pcout << "RESULT program=contact_mpi dim=" << dim

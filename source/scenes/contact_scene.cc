@@ -25,11 +25,12 @@ namespace impactfe
   void
   SceneParameters::declare_parameters(
     ParameterHandler  &prm,
-    const std::string &default_output_directory)
+    const std::string &default_output_directory,
+    const bool         distributed)
   {
     DiscretizationParameters::declare_parameters(prm);
     TimeSteppingParameters::declare_parameters(prm);
-    ContactSolverParameters::declare_parameters(prm);
+    ContactSolverParameters::declare_parameters(prm, distributed);
     OutputParameters::declare_parameters(prm, default_output_directory);
     ContactVerificationParameters::declare_parameters(prm);
     prm.declare_entry(
@@ -41,7 +42,10 @@ namespace impactfe
       "chain of small operations that threads do not shorten: with 2 "
       "threads the 1D bars' time loop took 2.7 times the CPU time and no "
       "less wall time, and idle OpenBLAS workers doubled the plate's "
-      "(doc/performance.md).");
+      "(doc/performance.md)." +
+        std::string(distributed ? " contact_mpi reads it and ignores it: one "
+                                  "thread per MPI rank." :
+                                  ""));
   }
 
 

@@ -7,6 +7,7 @@ must also pass their own checks (exit code 0). The "serial" program may be
 contact_mpi itself, run on one rank without mpiexec; --rename is
 passed on to compare_histories.py (the serial bars' column names)."""
 import argparse
+import csv
 import json
 import os
 import shlex
@@ -56,6 +57,69 @@ def run(command, cwd, log):
         sys.exit(1)
 
 
+def read_contact_problem(path):
+    """W, q (gap terms folded in) and mu of a frictional-contact file in
+    the dense Siconos text format the programs write (Dump LCP of step)."""
+    import numpy as np
+    tokens = open(path).read().split()
+    nd, nc = int(tokens[0]), int(tokens[1])
+    assert tokens[2] == "0", f"{path}: not dense storage"
+    m = int(tokens[3])
+    start = 7
+    w = np.array([float(x) for x in tokens[start:start + m * m]])
+    w = w.reshape((m, m)).T  # written column by column
+    q = np.array([float(x) for x in tokens[start + m * m:start + m * m + m]])
+    mu = np.array([float(x) for x in tokens[start + m * m + m:]])
+    assert m == nd * nc and len(mu) == nc, f"{path}: sizes"
+    return nd, nc, w, q, mu
+
+
+def check_dumped_step(a, step):
+    """The contact problem of step @p step that both runs wrote (`Dump LCP
+    of step`): the same problem up to the order of the candidates (the
+    eigenvalues of W, the sorted q and mu, to 1e-8 of their scales), and
+    lcp-solve's answer of the distributed run's file gives the normal
+    impulse of that step in its history.csv. Returns an error or None."""
+    import numpy as np
+    name = f"lcp_step_{step}.dat"
+    problems = [read_contact_problem(os.path.join(a.work, sub, "results",
+                                                  name))
+                for sub in ("serial", "mpi")]
+    (nd, nc, w_s, q_s, mu_s), (nd_m, nc_m, w_m, q_m, mu_m) = problems
+    print(f"{name}: {nc} contacts of {nd} directions (serial), {nc_m} of "
+          f"{nd_m} (two ranks)")
+    if (nd, nc) != (nd_m, nc_m) or nc == 0:
+        return "the dumped problems differ in size, or are empty"
+    scale_w = np.abs(w_s).max()
+    ew = np.abs(np.linalg.eigvalsh(w_s) - np.linalg.eigvalsh(w_m)).max()
+    eq = np.abs(np.sort(q_s) - np.sort(q_m)).max() / np.abs(q_s).max()
+    emu = np.abs(np.sort(mu_s) - np.sort(mu_m)).max()
+    print(f"eigenvalues of W: {ew / scale_w:.1e} of max|W|; sorted q: "
+          f"{eq:.1e} of max|q|; mu: {emu:.1e}")
+    if ew > 1e-8 * scale_w or eq > 1e-8 or emu > 1e-12:
+        return "the two runs dumped different problems"
+    out = subprocess.run([a.lcp_solve, "--solution",
+                          os.path.join(a.work, "mpi", "results", name)],
+                         capture_output=True, text=True)
+    lines = out.stdout.split("\n")
+    if out.returncode != 0 or " solved " not in lines[0]:
+        return f"lcp-solve did not solve the dumped file: {out.stdout}"
+    p = np.array([float(x) for x in lines[1].split()[1:]])
+    normal_impulse = p[::nd].sum()
+    with open(os.path.join(a.work, "mpi", "results", "history.csv")) as f:
+        rows = list(csv.DictReader(f))
+    h = float(rows[1]["time"]) - float(rows[0]["time"])
+    row = min(rows, key=lambda r: abs(float(r["time"]) - step * h))
+    force = float(row["normal_force"])
+    error = abs(normal_impulse / h - force) / abs(force)
+    print(f"step {step}: sum of lcp-solve's normal impulses / h = "
+          f"{normal_impulse / h:.10g}, the run's normal_force {force:.10g} "
+          f"(relative difference {error:.1e})")
+    if error > 1e-8:
+        return "the dumped problem's answer is not the step's impulse"
+    return None
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--serial", required=True)
@@ -72,15 +136,31 @@ def main():
     ap.add_argument("--copy-parallel-prm", action="store_true",
                     help="run a copy of --parallel-prm in the work directory "
                          "(its mesh files are the serial run's output)")
+    ap.add_argument("--dump-step", type=int,
+                    help="both runs write the contact problem of this step "
+                         "(Dump LCP of step), checked by check_dumped_step()")
+    ap.add_argument("--lcp-solve", help="lcp-solve, for --dump-step")
     a = ap.parse_args()
     shutil.rmtree(a.work, ignore_errors=True)
     for sub in ("serial", "mpi"):
         os.makedirs(os.path.join(a.work, sub))
-    run([a.serial, a.serial_prm], os.path.join(a.work, "serial"), "log")
-    parallel_prm = a.parallel_prm
+    serial_prm, parallel_prm = a.serial_prm, a.parallel_prm
     if a.copy_parallel_prm:
         parallel_prm = os.path.join(a.work, "mpi", "parallel.prm")
         shutil.copyfile(a.parallel_prm, parallel_prm)
+    if a.dump_step:
+        # the run files included, the dump set after them (an override)
+        for sub, prm in (("serial", serial_prm), ("mpi", parallel_prm)):
+            wrapper = os.path.join(a.work, sub, "dump.prm")
+            with open(wrapper, "w") as out:
+                out.write(f"include {os.path.abspath(prm)}\n"
+                          "subsection Contact solver\n"
+                          f"  set Dump LCP of step = {a.dump_step}\nend\n")
+            if sub == "serial":
+                serial_prm = wrapper
+            else:
+                parallel_prm = wrapper
+    run([a.serial, serial_prm], os.path.join(a.work, "serial"), "log")
     run(shlex.split(a.mpiexec) + [a.parallel, parallel_prm],
         os.path.join(a.work, "mpi"), "log")
     # each run's own impulse balance error bounds its momentum's round-off
@@ -102,6 +182,11 @@ def main():
                 print(f"{name}: theta = {summary.get('theta')}, expected "
                       f"{a.expect_theta}")
                 return 1
+    if a.dump_step:
+        error = check_dumped_step(a, a.dump_step)
+        if error:
+            print(error)
+            return 1
     return subprocess.call([sys.executable, a.compare,
                             os.path.join(a.work, "serial/results/history.csv"),
                             os.path.join(a.work, "mpi/results/history.csv"),

@@ -90,8 +90,10 @@ namespace impactfe
     lemke_fallback_limit_text(const std::size_t  n_candidates,
                               const unsigned int n_directions) const;
 
+    /// @p distributed: the help of contact_mpi, which declares the same
+    /// entries and says which of them it ignores.
     static void
-    declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &prm, const bool distributed = false);
     void
     parse_parameters(ParameterHandler &prm);
   };

@@ -219,6 +219,11 @@ namespace impactfe
       double
       energy() const;
 
+      /// The directory of the contact problems written for replay (`Dump
+      /// LCP of step`, and those of failed steps).
+      void
+      set_dump_directory(const std::string &directory);
+
     private:
       const DistributedElasticBody<dim> &body;
       const DistributedContact<dim>     &contact;
@@ -424,6 +429,27 @@ namespace impactfe
       solve_contact_problem();
       void
       solve_by_lemke();
+      /// W of lcp_candidates column by column (n n_d solves, or products on
+      /// the contact DoFs with the substructured solver), symmetrised, with
+      /// the step's free velocity, gap terms and friction coefficients.
+      /// Collective.
+      void
+      build_contact_problem(lcp::ContactProblem &problem);
+      /// Rank 0 writes the step's contact problem to @p file for replay
+      /// with lcp-solve, forming W first unless @p built is given.
+      /// Collective; throws on every rank if the file cannot be written.
+      void
+      write_contact_problem(const std::string         &file,
+                            const lcp::ContactProblem *built);
+      /// The end of the message of a failed step: where its problem was
+      /// written, or why it was not (W is formed for the file only up to
+      /// 4000 rows, or when `Dump LCP of step` names the step). Collective.
+      std::string
+      write_unsolved_problem(const lcp::ContactProblem *built);
+      /// `Dump LCP of step` writes lcp_step_<n>.dat here, a failed step
+      /// lcp_failure_step_<n>.dat; n counts steps h, a free-flight step k.
+      std::string  dump_directory = ".";
+      unsigned int step_number    = 0;
     };
   } // namespace distributed
 } // namespace impactfe

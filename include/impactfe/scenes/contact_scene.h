@@ -35,9 +35,11 @@ namespace impactfe
     /// Top-level entry `Number of threads` (0: one per core).
     unsigned int n_threads = 1;
 
+    /// @p distributed: contact_mpi's help texts (ContactSolverParameters).
     static void
     declare_parameters(ParameterHandler  &prm,
-                       const std::string &default_output_directory);
+                       const std::string &default_output_directory,
+                       const bool         distributed = false);
     void
     parse_parameters(ParameterHandler &prm);
   };
