@@ -159,8 +159,8 @@ namespace CylinderImpact
                       "0",
                       Patterns::Double(),
                       "Distance from the lowest point of the built-in "
-                      "cylinder to the plane at t = 0 [m]. Must be >= 0. (A "
-                      "mesh file is used where it is.)");
+                      "cylinder to the plane at t = 0 [m]. Must be >= 0. A "
+                      "mesh file's nodes are not moved by it.");
     prm.leave_subsection();
     prm.enter_subsection("Verification");
     prm.declare_entry("Maximum symmetry error",

@@ -681,13 +681,16 @@ namespace impactfe
                       "Mesh file of this body (Gmsh .msh, UCD .ucd, Abaqus "
                       ".inp, VTK .vtk), relative to the directory of the "
                       "parameter file that sets it (an included file's "
-                      "own). Empty: the program's built-in geometry. "
+                      "own). Empty: the program's built-in geometry, "
+                      "where the scene has one (contact_mpi's bodies of "
+                      "Scene = impact and two bodies need a file). "
                       "Coordinates in [m].");
     prm.declare_entry("Mesh file format",
                       "auto",
                       Patterns::Selection("auto|msh|ucd|abaqus|vtk"),
-                      "Format of the mesh file; auto: from its extension "
-                      "(.msh, .ucd, .inp = Abaqus, .vtk).");
+                      "Format of the mesh file: auto, msh, ucd, abaqus or "
+                      "vtk; auto: from its extension (.msh, .ucd, .inp = "
+                      "Abaqus, .vtk).");
     prm.declare_entry("Contact boundary id",
                       std::to_string(default_contact_boundary_id),
                       Patterns::Integer(0, 254),

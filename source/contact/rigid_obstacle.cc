@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
 
 #include <impactfe/contact/rigid_obstacle.h>
 #include <impactfe/utilities/program.h>
@@ -213,10 +214,11 @@ namespace impactfe
     prm.declare_entry("Type",
                       "plane",
                       Patterns::Selection("plane|ball|level set"),
-                      "The rigid obstacle: a plane (Point on plane, Normal), "
-                      "a disc in 2D or a ball in 3D (Center, Radius; the "
-                      "bodies are outside), or the zero level set of a "
-                      "function (Level set; positive on the bodies' side).");
+                      "The rigid obstacle: 'plane' (Point on plane, Normal), "
+                      "'ball' (a disc in 2D, a ball in 3D: Center, Radius; "
+                      "the bodies are outside), or 'level set', the zero "
+                      "level set of a function (Level set; positive on the "
+                      "bodies' side).");
     prm.declare_entry("Point on plane",
                       default_point,
                       Patterns::List(Patterns::Double(), 1, 3),
@@ -234,11 +236,33 @@ namespace impactfe
                       "1",
                       Patterns::Double(),
                       "Radius of the disc or ball [m]. Must be > 0.");
+    // the default plane as a level set, so that switching 'Type' keeps
+    // the scene's obstacle (y = 0 in most scenes, z = 0 for the ball)
+    std::string plane;
+    {
+      const auto normal = Utilities::split_string_list(default_normal);
+      const auto point  = Utilities::split_string_list(default_point);
+      const char axes[] = {'x', 'y', 'z'};
+      double     offset = 0.;
+      for (unsigned int d = 0; d < normal.size() && d < 3; ++d)
+        {
+          const double n = Utilities::string_to_double(normal[d]);
+          if (n == 0.)
+            continue;
+          if (d < point.size())
+            offset += n * Utilities::string_to_double(point[d]);
+          plane += (plane.empty() ? "" : " + ") +
+                   (n == 1. ? std::string() : normal[d] + "*") + axes[d];
+        }
+      if (offset != 0.)
+        plane += " - (" + format_number(offset) + ")";
+    }
     prm.declare_entry("Level set",
-                      "y",
+                      plane,
                       Patterns::Anything(),
                       "Function phi(x, y, z) whose zero level set is the "
-                      "obstacle's surface, phi > 0 on the bodies' side [m].");
+                      "obstacle's surface, phi > 0 on the bodies' side [m]. "
+                      "The default is the default plane.");
     prm.declare_entry("Friction coefficient",
                       default_friction,
                       Patterns::Double(),

@@ -46,8 +46,8 @@ namespace impactfe
     prm.declare_entry("Vertical velocity",
                       "-5",
                       Patterns::Double(),
-                      "V_v, along y, at t = 0 [m/s]. Must be < 0 for an "
-                      "impact.");
+                      "V_v, along y, at t = 0 [m/s]. Must be < 0 (towards "
+                      "the plane).");
     prm.leave_subsection();
   }
 

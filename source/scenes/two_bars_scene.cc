@@ -27,8 +27,8 @@ namespace impactfe
     prm.declare_entry("Target",
                       "bar",
                       Patterns::Selection("bar|rigid wall"),
-                      "What bar 1 hits: bar 2 (at rest on [0, L]) or a "
-                      "rigid frictionless wall at x = 0.");
+                      "What bar 1 hits: 'bar', bar 2 (at rest on [0, L]), "
+                      "or 'rigid wall', a rigid frictionless wall at x = 0.");
     prm.leave_subsection();
     MaterialParameters::declare_parameters(prm, dim);
     prm.enter_subsection("Initial conditions");
