@@ -564,6 +564,37 @@ namespace impactfe
                                  "' has two nodes at one place: a "
                                  "degenerate cell, which a Q1 element "
                                  "cannot have."));
+          // The Q1 map's Jacobian at each corner, from the edges along the
+          // reference axes (vertex k's neighbour along axis d is k ^ 2^d):
+          // a negative one is a folded cell (a 'bow tie', or a corner
+          // turned inwards), whose map is not one-to-one although its
+          // measure may be positive.
+          for (const unsigned int k : cell->vertex_indices())
+            {
+              Tensor<2, dim> edges;
+              double         lengths = 1.;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  const unsigned int   other = k ^ (1u << d);
+                  const Tensor<1, dim> edge = cell->vertex(std::max(k, other)) -
+                                              cell->vertex(std::min(k, other));
+                  for (unsigned int e = 0; e < dim; ++e)
+                    edges[e][d] = edge[e];
+                  lengths *= edge.norm();
+                }
+              AssertThrow(determinant(edges) > -1e-10 * lengths,
+                          ExcMessage(
+                            "Mesh: cell " +
+                            std::to_string(cell->active_cell_index()) +
+                            " of '" + path.string() +
+                            "' is folded at its "
+                            "node at " +
+                            position(cell->vertex(k)) +
+                            ": its nodes are not in order around it (a "
+                            "'bow tie'), or a corner points inwards. Its Q1 "
+                            "map is not one-to-one there; check the node "
+                            "order of the element."));
+            }
           smallest_cell =
             std::min(smallest_cell, cell->minimum_vertex_distance());
         }

@@ -695,7 +695,9 @@ main()
   run_case("taylor_theta_below_half", with("Time", "Theta = 0.3"), taylor);
   // taylor_bar used to accept these and ignore them without a word: it
   // writes no mesh files, and its J2 material has no viscosity
-  run_case("taylor_write_meshes", with("Output", "Write meshes = true"), taylor);
+  run_case("taylor_write_meshes",
+           with("Output", "Write meshes = true"),
+           taylor);
   run_case("taylor_viscosity", with("Material", "Viscosity = 1e9"), taylor);
   // A run that stops at a step (an element inverted at 2000 m/s) in the
   // folder of an earlier, finished run: the earlier run's summary and final
@@ -904,6 +906,37 @@ main()
            three_bars + "  set Contact pairs = 1:1 against 2:0\n  set Initial "
                         "velocities = 1, 0; 0, x; 0, 0\nend\n",
            mpi);
+  // nan passed as a number, and was reported as an overflow of the
+  // kinetic energy ("largest initial velocity 1 m/s" on one rank)
+  run_case("mpi_bodies_velocity_nan",
+           three_bars + "  set Contact pairs = 1:1 against 2:0\n  set Initial "
+                        "velocities = 1, 0; 0, nan; 0, 0\nend\n",
+           mpi);
+  // a pair or an obstacle contact named twice made its candidates twice
+  // (with two coefficients, neither one's answer)
+  run_case("mpi_bodies_pair_twice",
+           three_bars + "  set Contact pairs = 1:1 against 2:0, 1:1 against "
+                        "2:0 with friction 0.2\nend\n",
+           mpi);
+  run_case("mpi_bodies_obstacle_contact_twice",
+           three_bars + "  set Contact pairs = 1:1 against 2:0\n  set "
+                        "Obstacle contacts = 1:2, 1:2\nend\n",
+           mpi);
+  // gravity that overflows the state (the cylinder thrown at the plane):
+  // with MUMPS the error met on rank 0 alone hung both ranks; AMG-CG took
+  // the infinite right-hand side as converged with x = 0 and ran on,
+  // without gravity, to exit code 0
+  for (const std::string solver : {"direct", "amg cg"})
+    run_case("mpi_gravity_overflow_" + solver.substr(0, solver.find(' ')),
+             "include " PARAMETER_FILES_DIR "/cylinder_impact_mpi.prm\n" +
+               with("Loads", "Gravity = 1e200") +
+               "subsection Parallel solver\n  set Solver = " + solver +
+               "\nend\nsubsection Time stepping\n  set End time = "
+               "0.2\nend\n",
+             mpi,
+             "",
+             ".prm",
+             false);
   // a contact search that finds nothing, and one without a distance
   run_case("mpi_bodies_search_finds_nothing",
            three_bars +
@@ -952,6 +985,28 @@ main()
   run_case("mpi_second_body_without_two_bodies",
            with("Second body", "Contact normal = -1, 0, 0"),
            mpi);
+  // A cell whose nodes are not in order around it (a 'bow tie': 2 3 5 6
+  // instead of 2 3 6 5, node 6 moved so that the area is not zero) has a
+  // positive area and passed: the serial programs ran on it, and
+  // contact_mpi stopped in one rank's Cholesky factorisation ("not
+  // positive definite") after 10 s and MPI_Abort.
+  {
+    std::ofstream("bow_tie.msh")
+      << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n6\n"
+         "1 0 0 0\n2 1 0 0\n3 2 0 0\n4 0 1 0\n5 1 1 0\n6 2.6 1.4 0\n"
+         "$EndNodes\n$Elements\n4\n1 1 2 1 1 1 2\n2 1 2 1 1 2 3\n"
+         "3 3 2 0 1 1 2 5 4\n4 3 2 0 1 2 3 5 6\n$EndElements\n";
+    const std::string mesh = with("Mesh",
+                                  "Mesh file = bow_tie.msh\n  set Contact "
+                                  "boundary id = 1");
+    run_case("mesh_bow_tie", mesh, cylinder);
+    run_case("mpi_mesh_bow_tie",
+             "set Dimension = 2\nset Scene = impact\n" + mesh +
+               "subsection Initial conditions\n  set Initial velocity = 0, "
+               "-1\nend\nsubsection Obstacle\n  set Point on plane = 0, "
+               "-1\n  set Normal = 0, 1\nend\n",
+             mpi);
+  }
   run_case("mpi_write_meshes", with("Output", "Write meshes = true"), mpi);
   run_case("mpi_bad_solver_tolerance",
            with("Parallel solver", "Tolerance = 2"),
