@@ -704,6 +704,14 @@ namespace impactfe
         }
       x                  = 0.;
       const double normb = b.l2_norm();
+      // an infinite norm makes any residual small enough: CG would stop
+      // at once with x = 0 (the same norm on every rank)
+      AssertThrow(std::isfinite(normb),
+                  ExcMessage("The right-hand side of the step's solve is not "
+                             "finite at t = " +
+                             format_number(current_time) +
+                             " s: the loads or the state overflowed (check "
+                             "'Gravity', the velocities and 'Time step')."));
       if (normb == 0.)
         return;
       SolverControl               control(linear_parameters.max_iterations,

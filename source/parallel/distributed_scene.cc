@@ -50,23 +50,26 @@ namespace impactfe
 
 
 
-      // @p text as a number (double or int), or a throw with @p message.
+      // @p text as a finite number (double or int), or a throw with
+      // @p message ("nan" and "inf" are doubles to string_to_double()).
       template <typename Number>
       Number
       number_or_throw(const std::string &text, const std::string &message)
       {
+        Number value = Number();
         try
           {
             if constexpr (std::is_same_v<Number, int>)
-              return Utilities::string_to_int(text);
+              value = Utilities::string_to_int(text);
             else
-              return Utilities::string_to_double(text);
+              value = Utilities::string_to_double(text);
           }
         catch (...)
           {
             AssertThrow(false, ExcMessage(message));
           }
-        return Number();
+        AssertThrow(std::isfinite(double(value)), ExcMessage(message));
+        return value;
       }
 
 
@@ -221,7 +224,8 @@ namespace impactfe
                   body_velocities[b].push_back(number_or_throw<double>(
                     v,
                     "Bodies: 'Initial velocities' has '" + v + "' for body " +
-                      std::to_string(b + 1) + ", which is not a number."));
+                      std::to_string(b + 1) +
+                      ", which is not a finite number."));
                 }
               AssertThrow(body_velocities[b].size() == dimension,
                           ExcMessage("Bodies: 'Initial velocities' must give " +
@@ -257,6 +261,18 @@ namespace impactfe
                       ExcMessage("Bodies: 'Contact pairs' has '" + pair +
                                  "': a pair with 'all' needs 'Contact search "
                                  "distance' > 0."));
+          // twice, the pair's candidates would be made twice (each
+          // node's impulse split between them, two coefficients mixed)
+          AssertThrow(std::none_of(body_pairs.begin(),
+                                   body_pairs.end(),
+                                   [&](const BodyPair &p) {
+                                     return p.body_a == a.first &&
+                                            p.boundary_a == a.second &&
+                                            p.body_b == b.first &&
+                                            p.boundary_b == b.second;
+                                   }),
+                      ExcMessage("Bodies: 'Contact pairs' names '" + pair +
+                                 "' twice."));
           body_pairs.push_back({a.first,
                                 b.first,
                                 a.second,
@@ -285,6 +301,15 @@ namespace impactfe
             without_friction(token, "Obstacle contacts");
           const auto [b, boundary] =
             body_and_boundary(contact, n, "Obstacle contacts");
+          AssertThrow(std::none_of(obstacle_contacts.begin(),
+                                   obstacle_contacts.end(),
+                                   [&, b = b, boundary = boundary](
+                                     const ObstacleContact &c) {
+                                     return c.body == b &&
+                                            c.boundary == boundary;
+                                   }),
+                      ExcMessage("Bodies: 'Obstacle contacts' names '" +
+                                 contact + "' twice."));
           obstacle_contacts.push_back({b, boundary, contact_mu});
         }
       discretization = dimension == 2 ? "node-to-segment" : "node-to-face";
@@ -1277,41 +1302,52 @@ namespace impactfe
           for (const double g : gaps)
             largest_penetration = std::max(largest_penetration, -g);
         }
-      if (history)
-        {
-          const double per_impulse = solver->integrator().force_per_impulse();
-          // the contact force on body b (none before the first step)
-          const auto force = [&](const unsigned int b, const unsigned int d) {
-            return b < last_report.body_impulse.size() ?
-                     last_report.body_impulse[b][d] * per_impulse :
-                     0.;
-          };
-          std::vector<double> row = {solver->time(),
-                                     last_report.normal_impulse * per_impulse,
-                                     last_report.tangential_impulse *
-                                       per_impulse};
-          // the total: the obstacle's reaction (zero between bodies alone)
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              double total = 0.;
-              for (unsigned int b = 0; b < contact.n_bodies(); ++b)
-                total += force(b, d);
-              row.push_back(total + 0.); // not -0
-            }
-          for (unsigned int d = 0; d < dim; ++d)
-            row.push_back(p[d]);
-          row.push_back(kinetic_energy);
-          row.push_back(elastic_energy);
-          row.push_back(last_report.active_contacts);
-          for (unsigned int b = 0; b < per_body.size(); ++b)
-            {
-              for (unsigned int d = 0; d < dim; ++d)
-                row.push_back(force(b, d) + 0.); // not -0
-              for (unsigned int d = 0; d < dim; ++d)
-                row.push_back(per_body[b][d]);
-            }
+      // the row on every rank (its values are the same there): a value
+      // that is not finite stops every rank, not rank 0 alone, which
+      // would leave the others in a collective call
+      {
+        const double per_impulse = solver->integrator().force_per_impulse();
+        // the contact force on body b (none before the first step)
+        const auto force = [&](const unsigned int b, const unsigned int d) {
+          return b < last_report.body_impulse.size() ?
+                   last_report.body_impulse[b][d] * per_impulse :
+                   0.;
+        };
+        std::vector<double> row = {solver->time(),
+                                   last_report.normal_impulse * per_impulse,
+                                   last_report.tangential_impulse *
+                                     per_impulse};
+        // the total: the obstacle's reaction (zero between bodies alone)
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            double total = 0.;
+            for (unsigned int b = 0; b < contact.n_bodies(); ++b)
+              total += force(b, d);
+            row.push_back(total + 0.); // not -0
+          }
+        for (unsigned int d = 0; d < dim; ++d)
+          row.push_back(p[d]);
+        row.push_back(kinetic_energy);
+        row.push_back(elastic_energy);
+        row.push_back(last_report.active_contacts);
+        for (unsigned int b = 0; b < per_body.size(); ++b)
+          {
+            for (unsigned int d = 0; d < dim; ++d)
+              row.push_back(force(b, d) + 0.); // not -0
+            for (unsigned int d = 0; d < dim; ++d)
+              row.push_back(per_body[b][d]);
+          }
+        if (history)
           history->add_row(row);
-        }
+        else
+          AssertThrow(std::all_of(row.begin(),
+                                  row.end(),
+                                  [](const double x) {
+                                    return std::isfinite(x);
+                                  }),
+                      ExcMessage("Output: a value of history.csv is not "
+                                 "finite (rank 0 names it)."));
+      }
       // every `Output interval` steps h (a free-flight step may cross a
       // multiple of it)
       const unsigned int interval = parameters.scene.output.output_interval;

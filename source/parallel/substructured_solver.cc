@@ -3,6 +3,7 @@
 #include <deal.II/lac/lapack_templates.h>
 
 #include <impactfe/parallel/substructured_solver.h>
+#include <impactfe/utilities/mpi_errors.h>
 #include <impactfe/utilities/program.h>
 
 #include <algorithm>
@@ -219,8 +220,14 @@ namespace impactfe
       for (unsigned int l = 0; l < n_local; ++l)
         if (on_interface[l])
           trailing.push_back(l);
-      std::vector<double> trailing_factor =
-        factor.factorize_with_trailing_block(subdomain_matrix, trailing, name);
+      // a rank's own factor may fail alone (a folded cell in its part):
+      // every rank stops with its message
+      std::vector<double> trailing_factor;
+      on_every_rank(communicator, [&]() {
+        trailing_factor = factor.factorize_with_trailing_block(subdomain_matrix,
+                                                               trailing,
+                                                               name);
+      });
       // the blocks below need C_i before B_i: the factor's order of the
       // trailing unknowns (returned in trailing) must keep them apart
       for (unsigned int k = 0; k < trailing.size(); ++k)
