@@ -493,6 +493,24 @@ namespace impactfe
 
 
   bool
+  check_figures_are_numbers(
+    std::ostream                                      &out,
+    const std::vector<std::pair<std::string, double>> &figures)
+  {
+    bool ok = true;
+    for (const auto &[what, value] : figures)
+      if (!std::isfinite(value))
+        {
+          out << "  Check " << what << " is a number: FAILED (" << value << ")"
+              << std::endl;
+          ok = false;
+        }
+    return ok;
+  }
+
+
+
+  bool
   print_contact_summary(std::ostream                        &out,
                         const ContactRunSummary             &s,
                         const ContactVerificationParameters &bounds,
@@ -600,7 +618,15 @@ namespace impactfe
                        const ContactVerificationParameters &bounds,
                        const bool                           frictional)
   {
-    bool ok = true;
+    std::vector<std::pair<std::string, double>> figures = {
+      {"penetration", s.max_penetration},
+      {"energy increase in a step", s.max_energy_increase},
+      {"energy ratio", s.energy_ratio}};
+    if (s.impulse_balance_checked)
+      figures.emplace_back("impulse balance error", s.impulse_balance_error);
+    if (frictional)
+      figures.emplace_back("Coulomb excess", s.coulomb_excess);
+    bool ok = check_figures_are_numbers(out, figures);
     if (s.impulse_balance_checked)
       ok &= print_check(out,
                         "impulse balance error",

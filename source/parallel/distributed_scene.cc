@@ -1677,9 +1677,12 @@ namespace impactfe
         out << "  Last fallback: " << stats.last_fallback_reason << "\n";
       const double largest_violation = std::max(
         {stats.largest_signorini, stats.largest_cone, stats.largest_sliding});
-      bool ok = true;
+      bool ok = check_figures_are_numbers(
+        out,
+        {{"impulse balance error", mass_damping ? 0. : balance_error},
+         {"contact verification", largest_violation}});
       if (!mass_damping)
-        ok =
+        ok &=
           print_check(out,
                       "impulse balance error",
                       balance_error,
@@ -1729,6 +1732,11 @@ namespace impactfe
               << ", largest increase in a step = "
               << format_figure(largest_increase / energy_scale, 1e-12)
               << " of the initial energy\n";
+          ok &= check_figures_are_numbers(out,
+                                          {{"penetration", largest_penetration},
+                                           {"energy increase in a step",
+                                            largest_increase / energy_scale},
+                                           {"energy ratio", energy_ratio}});
           ok &= print_check(out,
                             "penetration",
                             largest_penetration,

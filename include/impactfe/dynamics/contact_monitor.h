@@ -113,6 +113,17 @@ namespace impactfe
               const double       bound);
 
   /**
+   * Print `Check <what> is a number: FAILED (<value>)` for each figure of
+   * @p figures that is not finite (a state that overflowed or underflowed:
+   * 0/0 of a momentum scale that is zero) and return false if there was
+   * one. Such a run fails whatever its bounds: nothing they check holds.
+   */
+  bool
+  check_figures_are_numbers(
+    std::ostream                                      &out,
+    const std::vector<std::pair<std::string, double>> &figures);
+
+  /**
    * Print the run's contact summary (contact interval, peak force,
    * impulses, impulse balance, penetration, Coulomb, energy, state changes)
    * and the checks of @p bounds. Returns false if a check failed; a sliding
