@@ -144,7 +144,9 @@ namespace impactfe
                       "lcp_failure_step_<n>.dat: always after Lemke's "
                       "method, and after the active set method if its W "
                       "has at most 4000 rows or this entry names the "
-                      "step.");
+                      "step. Steps count h: a free-flight step k h "
+                      "('Free-flight step factor') solves no contact "
+                      "problem, and a step inside it writes nothing.");
     prm.declare_entry(
       "Friction cone",
       "exact",
@@ -170,7 +172,10 @@ namespace impactfe
                       "relative to the largest impulse (doc/lcp.md, 'The "
                       "exact cone'). Must be > 0. A problem that does not "
                       "reach it is counted and reported (summary.json: "
-                      "lcp.cone_not_converged) and fails the run's check.");
+                      "lcp.cone_not_converged) and fails the run's check" +
+                        std::string(distributed ?
+                                      "; contact_mpi stops at that step." :
+                                      "."));
     prm.leave_subsection();
   }
 
@@ -216,6 +221,40 @@ namespace impactfe
                            "> 0, got " +
                            format_number(exact_cone_tolerance) + "."));
   }
+
+
+  std::string
+  ContactSolverParameters::write_unsolved_problem(
+    const std::string                              &directory,
+    const unsigned int                              step,
+    const std::size_t                               rows,
+    const bool                                      w_formed,
+    const std::function<void(const std::string &)> &write) const
+  {
+    // Beyond a few thousand rows W's columns (a solve pair each) and its
+    // text (about 20 bytes per entry) would cost more than the failed run.
+    constexpr std::size_t largest_written_rows = 4000;
+    if (!w_formed && rows > largest_written_rows &&
+        dump_step != static_cast<int>(step))
+      return " Its W (" + std::to_string(rows) + " x " + std::to_string(rows) +
+             ") was not written to a file: a failed step writes W up to " +
+             std::to_string(largest_written_rows) +
+             " rows; 'Dump LCP of step' = " + std::to_string(step) +
+             " writes it whatever its size.";
+    const std::string name =
+      directory + "/lcp_failure_step_" + std::to_string(step) + ".dat";
+    try
+      {
+        write(name);
+      }
+    catch (const std::exception &e)
+      {
+        return " The problem could not be written to " + name + ": " + e.what();
+      }
+    return " The problem was written to " + name + " (replay: lcp-solve " +
+           name + ").";
+  }
+
 
 
   std::size_t

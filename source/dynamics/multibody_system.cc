@@ -1162,29 +1162,13 @@ namespace impactfe
   std::string
   MultibodySystem<dim>::write_unsolved_problem(const bool w_formed)
   {
-    constexpr std::size_t largest_written_rows = 4000;
-    const std::size_t rows = lcp_candidates.size() * contact_set.n_directions();
-    if (!w_formed && rows > largest_written_rows &&
-        solver_parameters.dump_step != static_cast<int>(step_number))
-      return " Its W (" + std::to_string(rows) + " x " + std::to_string(rows) +
-             ") was not written to a file: a failed step writes W up to " +
-             std::to_string(largest_written_rows) +
-             " rows; 'Dump LCP of step' = " + std::to_string(step_number) +
-             " writes it whatever its size.";
-    const std::string name = dump_directory + "/lcp_failure_step_" +
-                             std::to_string(step_number) + ".dat";
-    // the failure's own message must not be lost to one of the file's
-    try
-      {
-        // after Lemke's method, solve_contact_lcp() has built the problem
-        dump_lcp(name, w_formed);
-      }
-    catch (const std::exception &e)
-      {
-        return " The problem could not be written to " + name + ": " + e.what();
-      }
-    return " The problem was written to " + name + " (replay: lcp-solve " +
-           name + ").";
+    // after Lemke's method, solve_contact_lcp() has built the problem
+    return solver_parameters.write_unsolved_problem(
+      dump_directory,
+      step_number,
+      lcp_candidates.size() * contact_set.n_directions(),
+      w_formed,
+      [&](const std::string &name) { dump_lcp(name, w_formed); });
   }
 
 

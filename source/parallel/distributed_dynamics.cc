@@ -1145,12 +1145,15 @@ namespace impactfe
         {
           // W's columns are products, which leave their last solve in
           // `correction` and `impulse_force`; the step goes on with the
-          // answer's (M~^{-1} H P)
-          const DistributedVector saved_correction    = correction;
-          const DistributedVector saved_impulse_force = impulse_force;
+          // answer's (M~^{-1} H P); the run's counts of products and solves
+          // are those of the run without the file
+          const DistributedVector        saved_correction    = correction;
+          const DistributedVector        saved_impulse_force = impulse_force;
+          const DistributedRunStatistics saved_stats         = stats;
           build_contact_problem(formed);
           correction    = saved_correction;
           impulse_force = saved_impulse_force;
+          stats         = saved_stats;
         }
       const lcp::ContactProblem &problem = built ? *built : formed;
       on_rank_zero(body.communicator(),
@@ -1164,30 +1167,12 @@ namespace impactfe
     DistributedImpactSolver<dim>::write_unsolved_problem(
       const lcp::ContactProblem *built)
     {
-      constexpr std::size_t largest_written_rows = 4000;
-      const std::size_t rows = lcp_candidates.size() * contact.n_directions();
-      if (built == nullptr && rows > largest_written_rows &&
-          solver_parameters.dump_step != static_cast<int>(step_number))
-        return " Its W (" + std::to_string(rows) + " x " +
-               std::to_string(rows) +
-               ") was not written to a file: a failed step writes W up to " +
-               std::to_string(largest_written_rows) +
-               " rows; 'Dump LCP of step' = " + std::to_string(step_number) +
-               " writes it whatever its size.";
-      const std::string name = dump_directory + "/lcp_failure_step_" +
-                               std::to_string(step_number) + ".dat";
-      // the failure's own message must not be lost to one of the file's
-      try
-        {
-          write_contact_problem(name, built);
-        }
-      catch (const std::exception &e)
-        {
-          return " The problem could not be written to " + name + ": " +
-                 e.what();
-        }
-      return " The problem was written to " + name + " (replay: lcp-solve " +
-             name + ").";
+      return solver_parameters.write_unsolved_problem(
+        dump_directory,
+        step_number,
+        lcp_candidates.size() * contact.n_directions(),
+        built != nullptr,
+        [&](const std::string &name) { write_contact_problem(name, built); });
     }
 
 

@@ -6,6 +6,7 @@
 #include <impactfe/lcp/exact_cone.h>
 
 #include <cstddef>
+#include <functional>
 #include <string>
 
 namespace impactfe
@@ -89,6 +90,22 @@ namespace impactfe
     std::string
     lemke_fallback_limit_text(const std::size_t  n_candidates,
                               const unsigned int n_directions) const;
+
+    /**
+     * The end of the message of step @p step that was not solved: its
+     * problem, of @p rows rows, written by @p write to
+     * <@p directory>/lcp_failure_step_<n>.dat (always when W is already
+     * formed, @p w_formed; otherwise up to 4000 rows, or when 'Dump LCP of
+     * step' names the step), or why it was not written. An error of the
+     * write is told, not thrown: the failure's own message comes first.
+     */
+    std::string
+    write_unsolved_problem(
+      const std::string                              &directory,
+      const unsigned int                              step,
+      const std::size_t                               rows,
+      const bool                                      w_formed,
+      const std::function<void(const std::string &)> &write) const;
 
     /// @p distributed: the help of contact_mpi, which declares the same
     /// entries and says which of them it ignores.
