@@ -713,9 +713,8 @@ namespace impactfe
                       ".inp, VTK .vtk), relative to the directory of the "
                       "parameter file that sets it (an included file's "
                       "own). Empty: the program's built-in geometry, "
-                      "where the scene has one (contact_mpi's bodies of "
-                      "Scene = impact and two bodies need a file). "
-                      "Coordinates in [m].");
+                      "where the scene has one (a scene without one needs "
+                      "a file). Coordinates in [m].");
     prm.declare_entry("Mesh file format",
                       "auto",
                       Patterns::Selection("auto|msh|ucd|abaqus|vtk"),

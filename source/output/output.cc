@@ -45,8 +45,10 @@ namespace impactfe
     prm.declare_entry("Write meshes",
                       "false",
                       Patterns::Bool(),
-                      "Write each body's mesh as <body name>.msh (Gmsh, "
-                      "with its boundary ids) at the set-up, so that "
+                      "Serial contact programs (contact_mpi and taylor_bar "
+                      "refuse it): write each body's mesh as <body "
+                      "name>.msh (Gmsh, with its boundary ids) at the "
+                      "set-up, so that "
                       "contact_mpi can run the same scene on several MPI "
                       "ranks ('Mesh file', Scene = impact or two "
                       "bodies).");

@@ -1243,6 +1243,16 @@ namespace impactfe
       // is refused here, before an earlier run's files are removed; every
       // rank has the same sum, so all stop together.
       {
+        // as in the serial programs (ContactScene::check_initial_state())
+        const double mass = body.total_mass();
+        AssertThrow(mass >= 1e-100 && mass <= 1e100,
+                    ExcMessage("Initial conditions: the mass of the bodies "
+                               "('Density' times their volume, or area times "
+                               "'Thickness' in 2D) is " +
+                               format_number(mass) +
+                               " kg, outside [1e-100, 1e100] kg, where their "
+                               "momenta and energies would leave double "
+                               "precision: the run is not started."));
         const DistributedVector &v = solver->velocity();
         body.mass_matrix().vmult(work, v);
         const double kinetic_energy = 0.5 * (work * v);
@@ -1302,9 +1312,9 @@ namespace impactfe
           for (const double g : gaps)
             largest_penetration = std::max(largest_penetration, -g);
         }
-      // the row on every rank (its values are the same there): a value
-      // that is not finite stops every rank, not rank 0 alone, which
-      // would leave the others in a collective call
+      // the row on every rank (its values are the same there), written by
+      // rank 0 in on_rank_zero(): its error stops every rank, not rank 0
+      // alone, which would leave the others in a collective call
       {
         const double per_impulse = solver->integrator().force_per_impulse();
         // the contact force on body b (none before the first step)
@@ -1337,16 +1347,9 @@ namespace impactfe
             for (unsigned int d = 0; d < dim; ++d)
               row.push_back(per_body[b][d]);
           }
-        if (history)
-          history->add_row(row);
-        else
-          AssertThrow(std::all_of(row.begin(),
-                                  row.end(),
-                                  [](const double x) {
-                                    return std::isfinite(x);
-                                  }),
-                      ExcMessage("Output: a value of history.csv is not "
-                                 "finite (rank 0 names it)."));
+        // rank 0 writes it; its error (a value that is not finite, which
+        // it names, or a failed write) stops every rank
+        on_rank_zero(comm, [&]() { history->add_row(row); });
       }
       // every `Output interval` steps h (a free-flight step may cross a
       // multiple of it)
@@ -1535,7 +1538,9 @@ namespace impactfe
               std::hypot(along, across) > 0.01 * parameters.box.speed)
             largest_turn = std::max(largest_turn, std::atan2(across, along));
         }
-      balance_error /= largest_momentum;
+      // a body that never moves: no momentum to compare with
+      balance_error /=
+        std::max(largest_momentum, std::numeric_limits<double>::min());
       report_results();
     }
 

@@ -209,15 +209,23 @@ namespace impactfe
     // would depend on the solver (a density of 1e-20 kg/m^3 gave an
     // impulse balance error of 196 on one rank and an indefinite
     // factorisation on two). The benchmarks go up to C ~ 1e3.
-    AssertThrow(courant_number <= 1e6,
-                ExcMessage("Time stepping: the Courant number c_p h / dx = " +
-                           format_number(courant_number) +
-                           " (the fastest wave's speed c_p, from 'Young's "
-                           "modulus' and 'Density', times 'Time step' over "
-                           "the smallest cell) is above 1e6: the step matrix "
-                           "M + theta^2 h^2 K would be too ill-conditioned "
-                           "for double precision. Lower 'Time step', or "
-                           "check 'Density' and 'Young's modulus'."));
+    // (a free-flight step k h has k times the Courant number)
+    AssertThrow(courant_number * free_flight_step_factor <= 1e6,
+                ExcMessage(
+                  "Time stepping: the Courant number c_p h / dx = " +
+                  format_number(courant_number) +
+                  (free_flight_step_factor > 1 ?
+                     " (" +
+                       format_number(courant_number * free_flight_step_factor) +
+                       " for the free-flight steps of 'Free-flight step "
+                       "factor' h)" :
+                     std::string()) +
+                  ", with the fastest wave's speed c_p from 'Young's "
+                  "modulus' and 'Density', and dx the cells' mean size, is "
+                  "above 1e6: the step matrix M + theta^2 h^2 K would be too "
+                  "ill-conditioned for double precision. Lower 'Time step' "
+                  "(or 'Free-flight step factor'), or check 'Density' and "
+                  "'Young's modulus'."));
     if (!theta_from_courant)
       return;
     AssertThrow(valid,

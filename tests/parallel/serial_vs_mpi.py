@@ -108,7 +108,8 @@ def check_dumped_step(a, step):
     normal_impulse = p[::nd].sum()
     with open(os.path.join(a.work, "mpi", "results", "history.csv")) as f:
         rows = list(csv.DictReader(f))
-    h = float(rows[1]["time"]) - float(rows[0]["time"])
+    with open(os.path.join(a.work, "mpi", "results", "summary.json")) as f:
+        h = json.load(f)["time_step"]
     row = min(rows, key=lambda r: abs(float(r["time"]) - step * h))
     force = float(row["normal_force"])
     error = abs(normal_impulse / h - force) / abs(force)

@@ -36,17 +36,17 @@ namespace impactfe
     void
     parse_parameters(ParameterHandler &prm);
 
+    /// Throw if `Write meshes` is set, in a program that writes no mesh
+    /// files; @p why says where its meshes come from.
+    void
+    refuse_mesh_output(const std::string &why) const;
+
     /**
      * Throw unless the run writes every shape snapshot asked for: the
      * program writes shapes (@p writes_shapes: the 2D programs) and each
      * time is reached by its @p n_steps steps of @p time_step. A time past
      * the end would be skipped without a word.
      */
-    /// Throw if `Write meshes` is set, in a program that writes no mesh
-    /// files; @p why says where its meshes come from.
-    void
-    refuse_mesh_output(const std::string &why) const;
-
     void
     check_shape_times(const bool         writes_shapes,
                       const unsigned int n_steps,
@@ -202,7 +202,8 @@ namespace impactfe
 
 
   /**
-   * The end of a run's screen output: "Results in <Output directory>/: "
+   * Near the end of a run's screen output (before its checks): "Results
+   * in <Output directory>/: "
    * and @p files, then, if `Plot` is set, history.png drawn from the
    * columns @p columns of history.csv by plot_history() (or why there is
    * no plot). history.csv must be complete (closed) by then.
