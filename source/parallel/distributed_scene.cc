@@ -1243,16 +1243,7 @@ namespace impactfe
       // is refused here, before an earlier run's files are removed; every
       // rank has the same sum, so all stop together.
       {
-        // as in the serial programs (ContactScene::check_initial_state())
-        const double mass = body.total_mass();
-        AssertThrow(mass >= 1e-100 && mass <= 1e100,
-                    ExcMessage("Initial conditions: the mass of the bodies "
-                               "('Density' times their volume, or area times "
-                               "'Thickness' in 2D) is " +
-                               format_number(mass) +
-                               " kg, outside [1e-100, 1e100] kg, where their "
-                               "momenta and energies would leave double "
-                               "precision: the run is not started."));
+        require_representable_mass(body.total_mass(), "the bodies");
         const DistributedVector &v = solver->velocity();
         body.mass_matrix().vmult(work, v);
         const double kinetic_energy = 0.5 * (work * v);
@@ -1347,8 +1338,6 @@ namespace impactfe
             for (unsigned int d = 0; d < dim; ++d)
               row.push_back(per_body[b][d]);
           }
-        // rank 0 writes it; its error (a value that is not finite, which
-        // it names, or a failed write) stops every rank
         on_rank_zero(comm, [&]() { history->add_row(row); });
       }
       // every `Output interval` steps h (a free-flight step may cross a

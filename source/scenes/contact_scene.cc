@@ -263,18 +263,7 @@ namespace impactfe
     for (unsigned int b = 0; b < body_list.size(); ++b)
       {
         const std::string &name = body_list[b]->name();
-        // Momenta and energies are sums of squares times masses: a body of
-        // 1e-298 kg (a plate 1e-300 m thick) made them underflow, and the
-        // impulse balance came out 0/0
-        const double mass = body_list[b]->total_mass();
-        AssertThrow(mass >= 1e-100 && mass <= 1e100,
-                    ExcMessage("Initial conditions: the mass of the " + name +
-                               " ('Density' times its volume, or area "
-                               "times 'Thickness' in 2D) is " +
-                               format_number(mass) +
-                               " kg, outside [1e-100, 1e100] kg, where its "
-                               "momenta and energies would leave double "
-                               "precision: the run is not started."));
+        require_representable_mass(body_list[b]->total_mass(), "the " + name);
         const double v =
           multibody_system->state().velocity.block(b).linfty_norm();
         AssertThrow(std::isfinite(multibody_system->kinetic_energy(b)),

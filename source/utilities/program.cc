@@ -206,6 +206,22 @@ namespace impactfe
 
 
   void
+  require_representable_mass(const double mass, const std::string &what)
+  {
+    AssertThrow(mass >= 1e-100 && mass <= 1e100,
+                dealii::ExcMessage(
+                  "Initial conditions: the mass of " + what +
+                  " ('Density' times the volume, or the area times "
+                  "'Thickness' in 2D) is " +
+                  format_number(mass) +
+                  " kg, outside [1e-100, 1e100] kg, where momenta and "
+                  "energies would leave double precision: the run is not "
+                  "started."));
+  }
+
+
+
+  void
   require_non_negative(const double       value,
                        const std::string &subsection,
                        const std::string &entry)

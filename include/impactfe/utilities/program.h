@@ -80,6 +80,15 @@ namespace impactfe
                       const std::string              &subsection,
                       const std::vector<std::string> &entries);
 
+  /**
+   * Throw unless the mass @p mass [kg] of @p what ("the plate", "the
+   * bodies") is in [1e-100, 1e100] kg: momenta and energies are sums of
+   * squares times masses, and outside that range they leave double
+   * precision (a plate 1e-300 m thick gave an impulse balance of 0/0).
+   */
+  void
+  require_representable_mass(const double mass, const std::string &what);
+
   /** The same for "must be >= 0". */
   void
   require_non_negative(const double       value,
