@@ -602,6 +602,26 @@ namespace impactfe
 
 
 
+      double
+      cone_equation_miss(const ContactProblem &p, const ContactSolution &s)
+      {
+        if (p.n_directions != 2 || all_zero(p.mu) || s.P.empty())
+          return 0.;
+        const double p_max = linfty_norm(s.P);
+        double       miss  = 0.;
+        for (unsigned int c = 0; c < p.n_contacts; ++c)
+          {
+            const double excess =
+              std::abs(s.P[2 * c + 1]) - p.mu[c] * s.P[2 * c];
+            const bool sliding = s.states[c] == ContactState::slip_positive ||
+                                 s.states[c] == ContactState::slip_negative;
+            miss = std::max(miss, sliding ? std::abs(excess) : excess);
+          }
+        return p_max > 0. ? miss / p_max : 0.;
+      }
+
+
+
       bool
       polish_2d_impulses(const ContactProblem     &p,
                          const ContactOptions     &options,
@@ -614,17 +634,7 @@ namespace impactfe
         // Only where Lemke's P misses the cone's equations by more than
         // round-off: the re-solve costs about as much as Lemke on these
         // sizes, and most answers need none.
-        const double p_max = linfty_norm(s.P);
-        double       miss  = 0.;
-        for (unsigned int c = 0; c < p.n_contacts; ++c)
-          {
-            const double excess =
-              std::abs(s.P[2 * c + 1]) - p.mu[c] * s.P[2 * c];
-            const bool sliding = s.states[c] == ContactState::slip_positive ||
-                                 s.states[c] == ContactState::slip_negative;
-            miss = std::max(miss, sliding ? std::abs(excess) : excess);
-          }
-        if (miss <= 1e-12 * p_max)
+        if (cone_equation_miss(p, s) <= 1e-12)
           return false;
         ws.states.assign(s.states.begin(), s.states.end());
         Verification verification;

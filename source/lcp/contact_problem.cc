@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 #include "contact_workspace.h"
@@ -437,6 +438,30 @@ namespace impactfe
 
 
 
+      std::string
+      klarbring_objection(const ContactProblem      &p,
+                          const ContactOptions      &options,
+                          const std::vector<double> &P,
+                          std::vector<double>       &V)
+      {
+        const double tol =
+          std::max(options.lemke.verification_tolerance_factor *
+                     std::numeric_limits<double>::epsilon() * 4. *
+                     std::max(p.n_contacts, 1u),
+                   1e-10);
+        const ContactVerification v = verify_contact_solution(p, P, tol, V);
+        if (v.ok)
+          return "";
+        std::ostringstream m;
+        m << "the Klarbring impulses fail the contact conditions (Signorini "
+          << v.max_signorini_violation << ", cone " << v.max_cone_violation
+          << ", sliding " << v.max_sliding_violation
+          << "): W_TT^{-1} ill-conditioned";
+        return m.str();
+      }
+
+
+
       void
       finish_lemke_route(const ContactProblem     &p,
                          const ContactOptions     &options,
@@ -455,6 +480,24 @@ namespace impactfe
         if (polished)
           s.message.append("; impulses solved again at these contact states "
                            "(one block pivoting solve, verified)");
+        // Lemke's "solved" is a verdict on the form's LCP. When P misses the
+        // cone's equations and the re-solve at its states did not replace
+        // it, P itself is checked, as the other routes check theirs.
+        else if (s.lcp.status == Status::solved &&
+                 s.form == FrictionForm::klarbring &&
+                 cone_equation_miss(p, s) > 1e-12)
+          {
+            const std::string objection =
+              klarbring_objection(p, options, s.P, ws.velocity);
+            if (!objection.empty())
+              {
+                s.lcp.status = Status::numerical_failure;
+                s.message.append("; rejected: ");
+                s.message.append(objection);
+                s.P.clear();
+                s.states.clear();
+              }
+          }
         // automatic: never stop at the first failure (contact_routes.h)
         if (options.form == FrictionForm::automatic &&
             s.lcp.status != Status::solved)

@@ -9,6 +9,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "contact_workspace.h"
 #include "floating_point_mode.h"
 
 namespace impactfe
@@ -166,21 +167,11 @@ namespace impactfe
       {
         if (s.form == FrictionForm::klarbring)
           {
-            const double tol =
-              std::max(options.lemke.verification_tolerance_factor *
-                         std::numeric_limits<double>::epsilon() * 4. *
-                         std::max(p.n_contacts, 1u),
-                       1e-10);
-            const ContactVerification v = verify_contact_solution(p, s.P, tol);
-            if (!v.ok)
-              {
-                std::ostringstream m;
-                m << "the Klarbring impulses fail the contact conditions (Signorini "
-                  << v.max_signorini_violation << ", cone "
-                  << v.max_cone_violation << ", sliding "
-                  << v.max_sliding_violation << "): W_TT^{-1} ill-conditioned";
-                return m.str();
-              }
+            std::vector<double> V;
+            const std::string   objection =
+              internal::klarbring_objection(p, options, s.P, V);
+            if (!objection.empty())
+              return objection;
           }
         const double normW = p.W.max_abs(),
                      qmax =

@@ -196,6 +196,28 @@ namespace impactfe
                          ContactSolver::Workspace &ws,
                          ContactSolution          &s);
 
+      /**
+       * How far the impulses s.P miss the cone's equations of their states
+       * s.states, over max|P|: |P_T| - mu P_N > 0 for any contact, or
+       * | |P_T| - mu P_N | for a sliding one (2D). 0 without friction.
+       */
+      double
+      cone_equation_miss(const ContactProblem &p, const ContactSolution &s);
+
+      /**
+       * Why the impulses @p P of a solve in Klarbring's form are not an
+       * answer, or "" if they are: the contact conditions checked on P itself
+       * (verify_contact_solution(), work vector @p V), to the tolerance of
+       * the other routes. Klarbring's P_T goes through W_TT^{-1}: an LCP
+       * answer verified to the rounding of its M can still leave the cone
+       * when W's entries span many orders (massless contact nodes).
+       */
+      std::string
+      klarbring_objection(const ContactProblem      &p,
+                          const ContactOptions      &options,
+                          const std::vector<double> &P,
+                          std::vector<double>       &V);
+
       /// The form solve_contact_problem() uses for @p requested.
       FrictionForm
       resolved_form(const ContactProblem &p, FrictionForm requested);
