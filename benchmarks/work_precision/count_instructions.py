@@ -38,6 +38,7 @@ exists). Several runs go at once (--jobs): counts do not depend on it.
 """
 import argparse
 import concurrent.futures
+import datetime
 import json
 import math
 import os
@@ -270,12 +271,27 @@ def main():
         print(text)
         texts.append(text + f"\n\n![{name}](work_precision_{name}_instructions.png)\n")
     md = os.path.join(args.out, "work_precision_instructions.md")
+    made = ("Made by `/usr/bin/python3 benchmarks/work_precision/count_instructions.py"
+            f" --only {args.only}`; {wp.caption_line(args.build)}.")
+    if args.plot_only:
+        # The counts are the CSVs' own: keep the line that says where they
+        # were made, and say when the tables were redrawn.
+        counted = made
+        if os.path.exists(md):
+            with open(md) as f:
+                for line in f:
+                    if line.startswith("Made by"):
+                        counted = line.split(" What it counts")[0].strip()
+                    elif line.startswith("Counts: "):
+                        counted = line[len("Counts: "):].split(" Tables redrawn")[0].strip()
+        made = (f"Counts: {counted} Tables redrawn with `--plot-only` on "
+                f"{datetime.date.today().isoformat()}, the errors taken again from "
+                "the scenes' CSVs.")
     with open(md, "w") as f:
-        f.write("# Work–precision in instructions (generated)\n\nMade by "
-                "`/usr/bin/python3 benchmarks/work_precision/count_instructions.py"
-                f" --only {args.only}`; {wp.caption_line(args.build)}. What it counts and "
-                "why: the script's docstring and doc/work_precision.md, \"Instructions "
-                "instead of seconds\".\n" + "\n".join(texts))
+        f.write("# Work–precision in instructions (generated)\n\n" + made
+                + " What it counts and why: the script's docstring and "
+                "doc/work_precision.md, \"Instructions instead of seconds\".\n"
+                + "\n".join(texts))
     os.makedirs(args.runs, exist_ok=True)
     with open(os.path.join(args.runs, "summary.json"), "w") as f:
         json.dump(stats, f, indent=1)
